@@ -1,0 +1,15 @@
+#pragma once
+// Private: constructors of the traversal back-ends, chosen by buildAccel().
+
+#include <memory>
+
+#include "rayview/accel.h"
+
+namespace rayview {
+
+std::unique_ptr<Accel> makeEmbreeAccel(const Scene& scene, const glm::dvec3& origin, BuildProgress progress,
+                                       void* progressUser);
+std::unique_ptr<Accel> makeReferenceAccel(const Scene& scene, const glm::dvec3& origin,
+                                          BuildProgress progress, void* progressUser);
+
+}  // namespace rayview

@@ -1,0 +1,57 @@
+#pragma once
+// Ray traversal over the scene's triangles: closest hit and occlusion. Two back-ends: Embree (fast, float)
+// and the reference BVH (double, independent of Embree). Both work in coordinates relative to `origin()`,
+// a point fixed when the structure is built (the camera position), so that precision does not depend on
+// how far the scene sits from the world origin.
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+
+#include <glm/vec3.hpp>
+
+#include "rayview/render_settings.h"
+#include "rayview/scene.h"
+
+namespace rayview {
+
+inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
+
+struct Ray {
+  glm::vec3 origin{0.0f};     // relative to Accel::origin()
+  glm::vec3 direction{0.0f};  // need not be normalised; t is measured in units of |direction|
+  float tNear = 0.0f;
+  float tFar = 0.0f;
+  std::uint32_t excludedTriangle = kNoTriangle;  // never reported as a hit (the triangle a ray leaves)
+};
+
+struct Hit {
+  float t = 0.0f;
+  std::uint32_t triangle = 0;  // index into Scene::triangles
+  float b1 = 0.0f, b2 = 0.0f;  // barycentric weights of vertex 1 and 2 (vertex 0 gets 1 - b1 - b2)
+};
+
+class Accel {
+ public:
+  virtual ~Accel() = default;
+  virtual std::optional<Hit> closestHit(const Ray& ray) const = 0;
+  virtual bool occluded(const Ray& ray) const = 0;  // any hit with tNear <= t <= tFar
+  virtual AccelKind kind() const = 0;
+
+  // The world point that ray coordinates are relative to.
+  const glm::dvec3& origin() const { return origin_; }
+
+ protected:
+  explicit Accel(const glm::dvec3& origin) : origin_(origin) {}
+
+ private:
+  glm::dvec3 origin_;
+};
+
+// Progress in [0, 1]; return false to cancel the build (buildAccel then returns nullptr).
+using BuildProgress = bool (*)(void* user, double fraction);
+
+std::unique_ptr<Accel> buildAccel(const Scene& scene, AccelKind kind, const glm::dvec3& origin,
+                                  BuildProgress progress = nullptr, void* progressUser = nullptr);
+
+}  // namespace rayview

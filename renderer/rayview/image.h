@@ -1,0 +1,41 @@
+#pragma once
+// An 8-bit RGB image, rows top to bottom, and its files (PNG or PPM by extension, written whole).
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rayview {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;  // width * height * 3
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
+  std::uint8_t* pixel(int x, int y) { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
+  const std::uint8_t* pixel(int x, int y) const { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
+};
+
+class ImageIoError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Writes to a temporary file beside `path` and renames it into place, so an existing file is never left
+// half-written. Format from the extension: .png or .ppm (binary P6). Throws ImageIoError.
+void writeImageFile(const std::filesystem::path& path, const Image& image);
+
+// Reads PNG, PPM, JPEG... as 8-bit RGB. Throws ImageIoError.
+Image readImageFile(const std::filesystem::path& path);
+
+// True when `path` has an extension writeImageFile understands.
+bool isSupportedImageExtension(const std::filesystem::path& path);
+
+// Writes `bytes` to `path` whole (temporary file + rename). Throws ImageIoError.
+void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes);
+
+}  // namespace rayview

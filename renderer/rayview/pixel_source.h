@@ -1,0 +1,38 @@
+#pragma once
+// What a render computes, one pixel at a time. The progressive renderer and the tests see only this;
+// TracedImage is the real one (a scene snapshot, its geometry and the settings, owned together).
+
+#include <memory>
+
+#include "rayview/prepared_scene.h"
+#include "rayview/tracer.h"
+
+namespace rayview {
+
+class PixelSource {
+ public:
+  virtual ~PixelSource() = default;
+  virtual int width() const = 0;
+  virtual int height() const = 0;
+  // Radiance of pixel (x, y); must be a pure function of (x, y): called from many threads at once.
+  virtual Color pixel(int x, int y, RayCounts& counts) const = 0;
+};
+
+// A scene snapshot, its prepared geometry and the settings, kept alive together for as long as a render
+// uses them. The viewer edits its own copy of the scene and hands a new snapshot to each restart.
+class TracedImage final : public PixelSource {
+ public:
+  TracedImage(std::shared_ptr<const Scene> scene, std::shared_ptr<const PreparedGeometry> geometry,
+              const RenderSettings& settings);
+  int width() const override { return scene_->camera.width; }
+  int height() const override { return scene_->camera.height; }
+  Color pixel(int x, int y, RayCounts& counts) const override { return tracer_.tracePixel(x, y, counts); }
+  const Tracer& tracer() const { return tracer_; }
+
+ private:
+  std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<const PreparedGeometry> geometry_;
+  Tracer tracer_;
+};
+
+}  // namespace rayview

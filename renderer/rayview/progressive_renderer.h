@@ -1,0 +1,99 @@
+#pragma once
+// Coarse-to-fine rendering in the background (the viewer's engine; no GL here).
+//
+// Passes use pixel strides 16, 8, 4, 2, 1 (or start finer, see below). Pass k computes only the pixels on
+// its stride grid that no earlier pass computed, so every pixel is computed exactly once and the final pass
+// equals `rayview render` bit for bit. A published frame is the full-resolution image where every pixel
+// shows the nearest computed sample above-left of it (blocky upscaling, no blur).
+//
+// Cancellation by generation: restart() bumps the generation and returns at once; workers check it per
+// tile; a pass whose generation is stale is never published. The UI thread never renders and never waits.
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include "rayview/image.h"
+#include "rayview/pixel_source.h"
+#include "rayview/thread_pool.h"
+
+namespace rayview {
+
+inline constexpr int kCoarsestStride = 16;
+// The first pass of a restart is chosen to take about this long (so it shows within one 60 Hz frame).
+inline constexpr double kFirstPassBudgetMs = 8.0;
+
+struct ProgressiveFrame {
+  std::uint64_t version = 0;     // increases with every published frame
+  std::uint64_t generation = 0;  // the restart this frame belongs to
+  int stride = 0;                // 1 = full resolution
+  bool final = false;            // all pixels computed
+  Image image;
+  double passMs = 0.0;           // time of the pass that completed this frame
+  double msSinceRestart = 0.0;   // from restart() to this frame's publication
+  RayCounts passRays;
+  double megaRaysPerSecond = 0.0;  // of that pass
+};
+
+class ProgressiveRenderer {
+ public:
+  explicit ProgressiveRenderer(int threads = 0);
+  ~ProgressiveRenderer();
+  ProgressiveRenderer(const ProgressiveRenderer&) = delete;
+  ProgressiveRenderer& operator=(const ProgressiveRenderer&) = delete;
+
+  // Cancels the running render (without waiting) and starts `source` from its first pass.
+  // Returns the new generation. A null source just cancels.
+  std::uint64_t restart(std::shared_ptr<const PixelSource> source);
+
+  // While true (the user is dragging), only the first pass of each restart is rendered.
+  void setInteractive(bool interactive);
+
+  // Copies the newest complete frame into `out` if its version is newer than `haveVersion`.
+  bool takeFrameIfNewer(std::uint64_t haveVersion, ProgressiveFrame& out) const;
+
+  std::uint64_t generation() const { return generation_.load(); }
+  bool idle() const;   // nothing queued or running
+  int threads() const { return pool_.size(); }
+
+  // Blocks until the render of `generation` is final or superseded (tests, automation). Returns true if final.
+  bool waitForFinal(std::uint64_t generation, std::chrono::milliseconds timeout) const;
+
+  // The stride the next restart starts with (adapted from measured pass times).
+  int firstStride() const { return firstStride_.load(); }
+
+ private:
+  void controllerLoop();
+  bool renderPass(const PixelSource& source, std::uint64_t generation, int stride, int previousStride,
+                  RayCounts& rays);
+  void publish(const PixelSource& source, std::uint64_t generation, int stride, double passMs,
+               const RayCounts& rays, std::chrono::steady_clock::time_point restartTime);
+  void adaptFirstStride(int stride, double passMs);
+
+  ThreadPool pool_;
+  std::atomic<std::uint64_t> generation_{0};
+  std::atomic<bool> interactive_{false};
+  std::atomic<int> firstStride_{kCoarsestStride};
+
+  mutable std::mutex mutex_;
+  mutable std::condition_variable changed_;
+  std::shared_ptr<const PixelSource> pending_;
+  std::uint64_t pendingGeneration_ = 0;
+  std::chrono::steady_clock::time_point pendingTime_;
+  bool busy_ = false;
+  bool stopping_ = false;
+
+  // Written by the controller only while no pass of another generation can run.
+  Image samples_;
+  ProgressiveFrame published_;  // guarded by mutex_
+  std::uint64_t finalGeneration_ = 0;  // guarded by mutex_
+
+  std::thread controller_;
+};
+
+}  // namespace rayview

@@ -1,0 +1,31 @@
+#pragma once
+// Reading the handout's XML format, tolerant of its typos, located in its errors (SPEC section 2).
+
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rayview/diagnostics.h"
+#include "rayview/scene.h"
+
+namespace rayview {
+
+struct LoadOptions {
+  bool strict = false;        // every repair and unknown element becomes an error
+  bool loadTexture = true;    // read <textureimage> from disk
+};
+
+struct LoadedScene {
+  Scene scene;
+  std::vector<Diagnostic> warnings;
+};
+
+// Throws SceneError (with file:line) for anything that cannot be read as a whole scene.
+LoadedScene loadSceneFile(const std::filesystem::path& path, const LoadOptions& options = {});
+
+// `displayName` is what messages call the file; textures are looked up relative to `baseDirectory`.
+LoadedScene loadSceneText(std::string_view xml, const std::string& displayName,
+                          const std::filesystem::path& baseDirectory, const LoadOptions& options = {});
+
+}  // namespace rayview

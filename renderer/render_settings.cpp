@@ -1,0 +1,45 @@
+#include "rayview/render_settings.h"
+
+namespace rayview {
+
+std::string_view toString(TriangularLightModel model) {
+  return model == TriangularLightModel::Area ? "area" : "directional";
+}
+
+std::string_view toString(AccelKind kind) { return kind == AccelKind::Embree ? "embree" : "reference"; }
+
+bool parseTriangularLightModel(std::string_view text, TriangularLightModel& out) {
+  if (text == "area") out = TriangularLightModel::Area;
+  else if (text == "directional") out = TriangularLightModel::Directional;
+  else return false;
+  return true;
+}
+
+bool parseAccelKind(std::string_view text, AccelKind& out) {
+  if (text == "embree") out = AccelKind::Embree;
+  else if (text == "reference") out = AccelKind::Reference;
+  else return false;
+  return true;
+}
+
+std::string_view toString(SecondaryRayStart start) {
+  return start == SecondaryRayStart::Offset ? "offset" : "exclude-hit";
+}
+
+bool parseSecondaryRayStart(std::string_view text, SecondaryRayStart& out) {
+  if (text == "offset") out = SecondaryRayStart::Offset;
+  else if (text == "exclude-hit") out = SecondaryRayStart::ExcludeHitTriangle;
+  else return false;
+  return true;
+}
+
+AccelKind availableAccel(AccelKind requested) {
+#ifdef RAYVIEW_HAVE_EMBREE
+  return requested;
+#else
+  (void)requested;
+  return AccelKind::Reference;
+#endif
+}
+
+}  // namespace rayview

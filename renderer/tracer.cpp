@@ -1,0 +1,208 @@
+#include "rayview/tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include <glm/geometric.hpp>
+
+#include "rayview/light_samples.h"
+#include "rayview/ray_offset.h"
+
+namespace rayview {
+namespace {
+
+constexpr float kInfinity = std::numeric_limits<float>::infinity();
+
+glm::vec3 toFloat(const glm::dvec3& v) { return glm::vec3(v); }
+
+// Shadow rays stop just short of the light: "up to (but not including) it".
+float justBefore(float distance) { return distance * (1.0f - 1e-6f); }
+
+}  // namespace
+
+ShadingGeometry prepareShadingGeometry(const Scene& scene, const glm::dvec3& origin) {
+  ShadingGeometry g;
+  g.vertices.reserve(scene.vertices.size());
+  for (const glm::dvec3& v : scene.vertices) g.vertices.push_back(toFloat(v - origin));
+  g.faceNormals.reserve(scene.triangles.size());
+  g.coordinateScale.reserve(scene.triangles.size());
+  for (const Triangle& t : scene.triangles) {
+    // Normal in double from the world positions: exact whatever the origin.
+    const glm::dvec3& a = scene.vertices[t.vertex[0]];
+    const glm::dvec3 n = glm::cross(scene.vertices[t.vertex[1]] - a, scene.vertices[t.vertex[2]] - a);
+    const double length = glm::length(n);
+    g.faceNormals.push_back(length > 0.0 ? toFloat(n / length) : glm::vec3(0.0f, 0.0f, 1.0f));
+    g.coordinateScale.push_back(std::max({maxAbsComponent(g.vertices[t.vertex[0]]),
+                                          maxAbsComponent(g.vertices[t.vertex[1]]),
+                                          maxAbsComponent(g.vertices[t.vertex[2]])}));
+  }
+  return g;
+}
+
+std::uint8_t quantizeChannel(float value) {
+  if (!(value > 0.0f)) return 0;  // also NaN
+  if (value >= 255.0f) return 255;
+  return static_cast<std::uint8_t>(std::floor(value + 0.5f));
+}
+
+Tracer::Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& geometry,
+               const RenderSettings& settings)
+    : scene_(scene), accel_(accel), geometry_(geometry), settings_(settings) {
+  maxDepth_ = settings.maxDepthOverride >= 0 ? settings.maxDepthOverride : scene.maxRayDepth;
+  basis_ = cameraBasis(scene.camera);
+  eyeRelative_ = scene.camera.position - accel.origin();
+  for (const PointLight& light : scene.pointLights) pointLightPositions_.push_back(toFloat(light.position - accel.origin()));
+  for (const TriangularLight& light : scene.triangularLights) {
+    TriangularLightFrame f;
+    f.v1 = toFloat(light.vertex1 - accel.origin());
+    f.v2 = toFloat(light.vertex2 - accel.origin());
+    f.v3 = toFloat(light.vertex3 - accel.origin());
+    f.centroid = toFloat((light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - accel.origin());
+    const glm::dvec3 n = glm::cross(light.vertex1 - light.vertex2, light.vertex1 - light.vertex3);
+    const double length = glm::length(n);
+    if (!(length > 0.0)) continue;  // a degenerate light emits nothing
+    f.normal = toFloat(n / length);
+    f.intensity = light.intensity;
+    triangularLights_.push_back(f);
+  }
+  useTexture_ = scene.texture.has_value() && !scene.texture->rgb.empty();
+  settings_.lightSamples = std::clamp(settings_.lightSamples, 1, kMaxLightSamples);
+}
+
+Color Tracer::tracePixel(int i, int j, RayCounts& counts) const {
+  const glm::dvec3 direction = glm::normalize(pixelDirection(scene_.camera, basis_, i, j));
+  Ray ray{toFloat(eyeRelative_), toFloat(direction), 0.0f, kInfinity};
+  const std::uint32_t seed = hash32(static_cast<std::uint32_t>(j) * 0x9E3779B1U + static_cast<std::uint32_t>(i));
+  ++counts.camera;
+  if (std::optional<Hit> hit = accel_.closestHit(ray)) return shadeHit(ray, *hit, 0, seed, counts);
+  return scene_.background;
+}
+
+Color Tracer::trace(const Ray& ray, int depth, std::uint32_t pixelSeed, RayCounts& counts) const {
+  ++counts.reflection;
+  if (std::optional<Hit> hit = accel_.closestHit(ray)) return shadeHit(ray, *hit, depth, pixelSeed, counts);
+  return Color(0.0f);  // a reflected ray that hits nothing adds nothing (course reference)
+}
+
+Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
+                       RayCounts& counts) const {
+  const Triangle& triangle = scene_.triangles[hit.triangle];
+  const Material& material = scene_.materials[triangle.material];
+  const float b0 = 1.0f - hit.b1 - hit.b2;
+  const glm::vec3& a = geometry_.vertices[triangle.vertex[0]];
+  const glm::vec3& b = geometry_.vertices[triangle.vertex[1]];
+  const glm::vec3& c = geometry_.vertices[triangle.vertex[2]];
+  // The point from the barycentrics lies on the triangle to within rounding, wherever the ray came from.
+  const glm::vec3 p = b0 * a + hit.b1 * b + hit.b2 * c;
+  const glm::vec3& ng = geometry_.faceNormals[hit.triangle];
+  glm::vec3 n = ng;
+  if (triangle.hasNormals()) {
+    const glm::vec3 interpolated = b0 * scene_.normals[triangle.normal[0]] + hit.b1 * scene_.normals[triangle.normal[1]] +
+                                   hit.b2 * scene_.normals[triangle.normal[2]];
+    const float length = glm::length(interpolated);
+    if (length > 0.0f && std::isfinite(length)) n = interpolated / length;
+  }
+  const glm::vec3 d = glm::normalize(ray.direction);
+  const glm::vec3 toEye = -d;
+  const float scale = std::max(geometry_.coordinateScale[hit.triangle], maxAbsComponent(p));
+  const bool excludeHit = settings_.secondaryRayStart == SecondaryRayStart::ExcludeHitTriangle;
+  const bool fixedEpsilon = scene_.shadowRayEpsilon.has_value();
+  const float epsilon = fixedEpsilon ? static_cast<float>(*scene_.shadowRayEpsilon) : 0.0f;
+  // A secondary ray leaving the surface along `direction`.
+  auto secondaryRay = [&](const glm::vec3& direction) {
+    if (excludeHit) return Ray{p, direction, 0.0f, kInfinity, hit.triangle};
+    const glm::vec3 origin = fixedEpsilon ? p + epsilon * ng : offsetRayOrigin(p, ng, direction, scale);
+    return Ray{origin, direction, 0.0f, kInfinity};
+  };
+
+  Color color = material.ambient * scene_.ambientLight;
+
+  // One light direction's Blinn-Phong terms, before the shadow test.
+  auto reflectedLight = [&](const glm::vec3& toLight, const Color& irradiance) {
+    const Color diffuse = material.diffuse * irradiance * std::max(0.0f, glm::dot(n, toLight));
+    const glm::vec3 h = glm::normalize(toLight + toEye);
+    const float specular = std::pow(std::max(0.0f, glm::dot(n, h)), material.phongExponent);
+    return diffuse + material.specular * irradiance * specular;
+  };
+  // Shadow ray from the surface toward `target` (stopping just before it), or along `l` without end.
+  auto visible = [&](const glm::vec3& l, const glm::vec3* target) {
+    Ray shadow = secondaryRay(l);
+    if (target) {
+      const glm::vec3 toTarget = *target - shadow.origin;
+      const float length = glm::length(toTarget);
+      if (!(length > 0.0f)) return true;
+      shadow.direction = toTarget / length;
+      shadow.tFar = justBefore(length);
+    }
+    ++counts.shadow;
+    return !accel_.occluded(shadow);
+  };
+
+  for (std::size_t k = 0; k < pointLightPositions_.size(); ++k) {
+    const glm::vec3 toLight = pointLightPositions_[k] - p;
+    const float distanceSquared = glm::dot(toLight, toLight);
+    if (!(distanceSquared > 0.0f)) continue;
+    const float distance = std::sqrt(distanceSquared);
+    const glm::vec3 l = toLight / distance;
+    const Color contribution = reflectedLight(l, scene_.pointLights[k].intensity / distanceSquared);
+    if (contribution == Color(0.0f)) continue;  // no shadow ray for light that would add nothing
+    if (visible(l, &pointLightPositions_[k])) color += contribution;
+  }
+
+  for (const TriangularLightFrame& light : triangularLights_) {
+    if (settings_.triangularLightModel == TriangularLightModel::Directional) {
+      const glm::vec3 l = -light.normal;
+      const Color contribution = reflectedLight(l, light.intensity);
+      if (contribution != Color(0.0f) && visible(l, nullptr)) color += contribution;
+      continue;
+    }
+    const int samples = settings_.lightSamples;
+    const Color perSample = light.intensity / static_cast<float>(samples);
+    for (int s = 0; s < samples; ++s) {
+      const glm::vec2 w = triangleSample(s, samples, pixelSeed);
+      const glm::vec3 y = samples == 1 ? light.centroid
+                                       : light.v1 + w.x * (light.v2 - light.v1) + w.y * (light.v3 - light.v1);
+      const glm::vec3 toLight = y - p;
+      const float distanceSquared = glm::dot(toLight, toLight);
+      if (!(distanceSquared > 0.0f)) continue;
+      const float distance = std::sqrt(distanceSquared);
+      const glm::vec3 l = toLight / distance;
+      const float cosine = glm::dot(light.normal, -l);  // n_L . omega, omega from the light to x
+      if (!(cosine > 0.0f)) continue;
+      const Color contribution = reflectedLight(l, perSample * (cosine / distanceSquared));
+      if (contribution == Color(0.0f)) continue;
+      if (visible(l, &y)) color += contribution;
+    }
+  }
+
+  if (material.isMirror() && depth < maxDepth_) {
+    const glm::vec3 r = glm::normalize(d - 2.0f * glm::dot(d, n) * n);
+    const Ray reflected = secondaryRay(r);
+    color += material.mirror * trace(reflected, depth + 1, pixelSeed, counts);
+  }
+
+  if (useTexture_ && material.textureFactor != 0.0f && triangle.hasTexCoords()) {
+    const float tf = material.textureFactor;
+    color = tf * sampleTexture(triangle, hit) + (1.0f - tf) * color;
+  }
+  return color;
+}
+
+// Texture lookup: uv interpolated from the face's <texturedata> entries; u to the right, v up (OBJ
+// convention: v = 0 is the bottom row of the image); repeat wrap; nearest texel.
+Color Tracer::sampleTexture(const Triangle& triangle, const Hit& hit) const {
+  const Texture& texture = *scene_.texture;
+  const float b0 = 1.0f - hit.b1 - hit.b2;
+  const glm::vec2 uv = b0 * scene_.texCoords[triangle.texCoord[0]] + hit.b1 * scene_.texCoords[triangle.texCoord[1]] +
+                       hit.b2 * scene_.texCoords[triangle.texCoord[2]];
+  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return Color(0.0f);
+  const float u = uv.x - std::floor(uv.x);
+  const float v = uv.y - std::floor(uv.y);
+  const int x = std::min(static_cast<int>(u * texture.width), texture.width - 1);
+  const int y = std::min(static_cast<int>((1.0f - v) * texture.height), texture.height - 1);
+  const std::uint8_t* texel = &texture.rgb[(static_cast<std::size_t>(y) * texture.width + x) * 3];
+  return Color(texel[0], texel[1], texel[2]);
+}
+
+}  // namespace rayview

@@ -1,0 +1,77 @@
+// Ray-triangle intersection at the edges: shared edges and vertices, parallel rays, both back-ends.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "rayview/accel.h"
+#include "support/scene_builder.h"
+
+namespace rayview {
+namespace {
+
+class AccelBasics : public ::testing::TestWithParam<AccelKind> {
+ protected:
+  void SetUp() override {
+    if (availableAccel(GetParam()) != GetParam()) GTEST_SKIP() << "built without " << toString(GetParam());
+    scene_.camera = testing::frontCamera(3);
+    scene_.materials.push_back(testing::plainMaterial());
+    testing::addQuadFacingZ(scene_, -1, -1, 1, 1, -2, 0);  // diagonal from (-1,-1) to (1,1)
+    accel_ = buildAccel(scene_, GetParam(), glm::dvec3(0.0));
+  }
+  std::optional<Hit> shoot(glm::vec3 origin, glm::vec3 direction) const {
+    return accel_->closestHit(Ray{origin, direction, 0.0f, INFINITY});
+  }
+  Scene scene_;
+  std::unique_ptr<Accel> accel_;
+};
+
+TEST_P(AccelBasics, HitsTheInteriorWithDistanceAndBarycentrics) {
+  auto hit = shoot({0.5f, -0.5f, 0.0f}, {0, 0, -1});
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 2.0f, 1e-6f);
+  EXPECT_EQ(hit->triangle, 0u);
+  // Triangle 0 is (-1,-1), (1,-1), (1,1): (0.5,-0.5) = 0.25 a + 0.5 b + 0.25 c.
+  EXPECT_NEAR(hit->b1, 0.5f, 1e-6f);
+  EXPECT_NEAR(hit->b2, 0.25f, 1e-6f);
+}
+
+TEST_P(AccelBasics, SharedDiagonalNeverLeaks) {
+  for (int k = -100; k <= 100; ++k) {
+    const float s = k / 101.0f;
+    EXPECT_TRUE(shoot({s, s, 0.0f}, {0, 0, -1})) << "leak at " << s;
+    EXPECT_TRUE(shoot({0, 0, 0}, {s, s, -2.0f})) << "leak on a slanted ray at " << s;
+  }
+}
+
+TEST_P(AccelBasics, SharedVerticesAndOuterEdgesHit) {
+  EXPECT_TRUE(shoot({-1, -1, 0}, {0, 0, -1}));
+  EXPECT_TRUE(shoot({1, 1, 0}, {0, 0, -1}));
+  EXPECT_TRUE(shoot({1, -1, 0}, {0, 0, -1}));
+  EXPECT_TRUE(shoot({0, -1, 0}, {0, 0, -1}));
+}
+
+TEST_P(AccelBasics, OutsideAndParallelRaysMiss) {
+  EXPECT_FALSE(shoot({1.001f, 0, 0}, {0, 0, -1}));
+  EXPECT_FALSE(shoot({-5, 0, -2}, {1, 0, 0}));  // in the plane of the quad
+  EXPECT_FALSE(shoot({-5, 0, -1}, {1, 0, 0}));  // parallel, above it
+  EXPECT_FALSE(shoot({0, 0, -3}, {0, 0, -1}));  // behind the origin
+}
+
+TEST_P(AccelBasics, OcclusionRespectsTheInterval) {
+  EXPECT_TRUE(accel_->occluded(Ray{{0, 0, 0}, {0, 0, -1}, 0.0f, 3.0f}));
+  EXPECT_FALSE(accel_->occluded(Ray{{0, 0, 0}, {0, 0, -1}, 0.0f, 1.9f}));
+  EXPECT_FALSE(accel_->occluded(Ray{{0, 0, 0}, {0, 0, 1}, 0.0f, INFINITY}));
+}
+
+TEST_P(AccelBasics, CoordinatesAreRelativeToTheOrigin) {
+  auto shifted = buildAccel(scene_, GetParam(), glm::dvec3(0, 0, -1));
+  auto hit = shifted->closestHit(Ray{{0.5f, -0.5f, 1.0f}, {0, 0, -1}, 0.0f, INFINITY});
+  ASSERT_TRUE(hit);
+  EXPECT_NEAR(hit->t, 2.0f, 1e-6f);
+}
+
+INSTANTIATE_TEST_SUITE_P(BothBackEnds, AccelBasics, ::testing::Values(AccelKind::Embree, AccelKind::Reference),
+                         [](const auto& info) { return std::string(toString(info.param)); });
+
+}  // namespace
+}  // namespace rayview

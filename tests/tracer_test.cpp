@@ -1,0 +1,272 @@
+// The Whitted integrator against values worked out by hand (SPEC sections 3-5).
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+#include "rayview/camera_rays.h"
+#include "rayview/frame_renderer.h"
+#include "rayview/prepared_scene.h"
+#include "support/scene_builder.h"
+
+namespace rayview {
+namespace {
+
+using testing::addQuadFacingZ;
+using testing::addTriangle;
+using testing::frontCamera;
+using testing::plainMaterial;
+
+// Radiance of the centre pixel of a 3x3 image: its ray goes exactly down -z.
+Color centrePixel(const Scene& scene, const RenderSettings& settings = {}, RayCounts* countsOut = nullptr) {
+  auto geometry = prepareGeometry(scene, settings.accel);
+  Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
+  RayCounts counts;
+  const Color c = tracer.tracePixel(1, 1, counts);
+  if (countsOut) *countsOut = counts;
+  return c;
+}
+
+Scene quadScene(const Material& material) {
+  Scene scene;
+  scene.camera = frontCamera(3);
+  scene.materials.push_back(material);
+  addQuadFacingZ(scene, -10, -10, 10, 10, -2, 0);
+  return scene;
+}
+
+TEST(CameraBasis, AxisAlignedCamera) {
+  Camera camera = frontCamera(3);
+  const CameraBasis b = cameraBasis(camera);
+  EXPECT_EQ(b.u, glm::dvec3(1, 0, 0));
+  EXPECT_EQ(b.v, glm::dvec3(0, 1, 0));
+  EXPECT_EQ(b.w, glm::dvec3(0, 0, 1));
+  EXPECT_EQ(pixelDirection(camera, b, 1, 1), glm::dvec3(0, 0, -1));
+  // Column 0 is on the left (l), row 0 at the top (t).
+  const glm::dvec3 topLeft = pixelDirection(camera, b, 0, 0);
+  EXPECT_LT(topLeft.x, 0.0);
+  EXPECT_GT(topLeft.y, 0.0);
+}
+
+TEST(CameraBasis, TiltedUpIsReorthogonalised) {
+  Camera camera = frontCamera(3);
+  camera.up = {0.2, 1.0, 0.3};
+  const CameraBasis b = cameraBasis(camera);
+  EXPECT_NEAR(glm::dot(b.v, b.w), 0.0, 1e-12);
+  EXPECT_NEAR(glm::dot(b.u, b.w), 0.0, 1e-12);
+  EXPECT_NEAR(glm::length(b.v), 1.0, 1e-12);
+  EXPECT_GT(b.v.y, 0.9);
+}
+
+TEST(CameraBasis, DegenerateCamerasAreRefused) {
+  Camera camera = frontCamera(3);
+  camera.up = {0, 0, -2};
+  EXPECT_NE(cameraProblem(camera), "");
+  EXPECT_THROW(cameraBasis(camera), std::invalid_argument);
+  camera = frontCamera(3);
+  camera.gaze = {0, 0, 0};
+  EXPECT_NE(cameraProblem(camera), "");
+  camera = frontCamera(3);
+  camera.left = camera.right = 1;
+  EXPECT_NE(cameraProblem(camera), "");
+  camera = frontCamera(3);
+  camera.nearDistance = 0;
+  EXPECT_NE(cameraProblem(camera), "");
+}
+
+TEST(Shading, AmbientDiffuseSpecularFromAPointLight) {
+  Material m = plainMaterial();
+  m.ambient = Color(0.1f);
+  m.diffuse = Color(0.5f);
+  m.specular = Color(0.25f);
+  m.phongExponent = 1.0f;
+  Scene scene = quadScene(m);
+  scene.ambientLight = Color(20.0f);
+  scene.pointLights.push_back({"1", {0, 0, 0}, Color(1000.0f)});
+  // E = 1000 / 2^2 = 250; n.l = 1; h = n: 0.1*20 + 0.5*250 + 0.25*250.
+  EXPECT_NEAR(centrePixel(scene).x, 2.0f + 125.0f + 62.5f, 1e-3f);
+}
+
+TEST(Shading, PhongExponentSharpensTheHighlight) {
+  Material m = plainMaterial();
+  m.ambient = m.diffuse = Color(0.0f);
+  m.specular = Color(1.0f);
+  m.phongExponent = 50.0f;
+  Scene scene = quadScene(m);
+  scene.pointLights.push_back({"1", {2, 0, 0}, Color(1000.0f)});
+  // l = normalize(2,0,2), v = (0,0,1): h = normalize(l + v); E = 1000 / 8.
+  const glm::dvec3 l = glm::normalize(glm::dvec3(2, 0, 2));
+  const glm::dvec3 h = glm::normalize(l + glm::dvec3(0, 0, 1));
+  EXPECT_NEAR(centrePixel(scene).x, 125.0 * std::pow(h.z, 50.0), 1e-3);
+}
+
+TEST(Shading, HardShadowBehindAnOccluder) {
+  Scene scene = quadScene(plainMaterial());
+  scene.ambientLight = Color(7.0f);
+  scene.pointLights.push_back({"1", {0, 5, -2.5}, Color(1000.0f)});
+  // A blocker between the light and the centre of the quad, out of the camera's way.
+  addTriangle(scene, {-1, 2, -3}, {1, 2, -3}, {0, 2, -1}, 0);
+  EXPECT_NEAR(centrePixel(scene).x, 7.0f, 1e-4f);
+}
+
+TriangularLight lightAboveCentre(float intensity) {
+  // n_L = normalize((v1-v2) x (v1-v3)) = (0,0,-1): it shines toward -z, onto the quad. Centroid (0,-1/3,0).
+  return TriangularLight{"t", {0, 1, 0}, {1, -1, 0}, {-1, -1, 0}, Color(intensity)};
+}
+
+TEST(TriangularLight, AreaModelWithOneSampleIsTheCentroid) {
+  Scene scene = quadScene(plainMaterial());
+  scene.materials[0].ambient = Color(0.0f);
+  scene.triangularLights.push_back(lightAboveCentre(900.0f));
+  // y = (0,-1/3,0), p = (0,0,-2): d^2 = 37/9, n_L.omega = n.l = 6/sqrt(37): E = 900 (6/sqrt37) / (37/9).
+  const double expected = 900.0 * (36.0 / 37.0) * (9.0 / 37.0);
+  EXPECT_NEAR(centrePixel(scene).x, expected, 1e-3);
+}
+
+TEST(TriangularLight, AreaModelIsOneSided) {
+  Scene scene = quadScene(plainMaterial());
+  scene.materials[0].ambient = Color(0.0f);
+  TriangularLight light = lightAboveCentre(900.0f);
+  std::swap(light.vertex2, light.vertex3);  // now it shines toward +z, away from the quad
+  scene.triangularLights.push_back(light);
+  EXPECT_EQ(centrePixel(scene).x, 0.0f);
+}
+
+TEST(TriangularLight, AreaModelSamplesConvergeToTheIntegral) {
+  Scene scene = quadScene(plainMaterial());
+  scene.materials[0].ambient = Color(0.0f);
+  scene.triangularLights.push_back(lightAboveCentre(900.0f));
+  RenderSettings settings;
+  settings.lightSamples = 256;
+  const float many = centrePixel(scene, settings).x;
+  settings.lightSamples = 1024;
+  const float more = centrePixel(scene, settings).x;
+  EXPECT_NEAR(many, more, 0.01f * more);  // stratified: converged to 1 %
+  settings.lightSamples = 256;
+  EXPECT_EQ(centrePixel(scene, settings).x, many);  // deterministic
+}
+
+TEST(TriangularLight, DirectionalModelHasNoFallOff) {
+  Scene scene = quadScene(plainMaterial());
+  scene.materials[0].ambient = Color(0.0f);
+  scene.triangularLights.push_back(lightAboveCentre(100.0f));
+  RenderSettings settings;
+  settings.triangularLightModel = TriangularLightModel::Directional;
+  EXPECT_NEAR(centrePixel(scene, settings).x, 100.0f, 1e-4f);  // E = I, l = -n_L = n
+}
+
+TEST(TriangularLight, DirectionalShadowRayIsUnbounded) {
+  Scene scene = quadScene(plainMaterial());
+  scene.materials[0].ambient = Color(0.0f);
+  scene.triangularLights.push_back(lightAboveCentre(100.0f));
+  addTriangle(scene, {-1, -1, 50}, {1, -1, 50}, {0, 1, 50}, 0);  // far behind the light, on the way
+  RenderSettings settings;
+  settings.triangularLightModel = TriangularLightModel::Directional;
+  EXPECT_EQ(centrePixel(scene, settings).x, 0.0f);
+}
+
+// Two facing mirrors: the camera ray bounces between them until the depth runs out.
+Scene facingMirrors(int depth) {
+  Material mirror = plainMaterial();
+  mirror.mirror = Color(0.5f);
+  Scene scene = quadScene(mirror);
+  scene.maxRayDepth = depth;
+  scene.background = Color(255.0f);
+  scene.ambientLight = Color(10.0f);
+  addTriangle(scene, {-10, -10, 2}, {0, 10, 2}, {10, -10, 2}, 0);  // faces -z, behind the camera
+  return scene;
+}
+
+TEST(Mirror, RecursionStopsAtMaxDepth) {
+  for (int depth : {0, 1, 2, 7}) {
+    RayCounts counts;
+    const Color c = centrePixel(facingMirrors(depth), {}, &counts);
+    EXPECT_EQ(counts.reflection, static_cast<std::uint64_t>(depth)) << "depth " << depth;
+    // Each bounce adds ambient 10 scaled by 0.5^k: 10 (1 + 0.5 + ... + 0.5^depth).
+    EXPECT_NEAR(c.x, 10.0 * (2.0 - std::pow(0.5, depth)), 1e-3) << "depth " << depth;
+  }
+}
+
+TEST(Mirror, DepthOverrideWins) {
+  RenderSettings settings;
+  settings.maxDepthOverride = 3;
+  RayCounts counts;
+  centrePixel(facingMirrors(9), settings, &counts);
+  EXPECT_EQ(counts.reflection, 3u);
+}
+
+TEST(Mirror, AMissAddsNothingNotTheBackground) {
+  Material mirror = plainMaterial();
+  mirror.mirror = Color(1.0f);
+  Scene scene = quadScene(mirror);
+  scene.maxRayDepth = 5;
+  scene.background = Color(200.0f);
+  scene.ambientLight = Color(10.0f);
+  EXPECT_NEAR(centrePixel(scene).x, 10.0f, 1e-4f);
+}
+
+TEST(Quantize, ClampsAndRoundsToNearest) {
+  EXPECT_EQ(quantizeChannel(-3.0f), 0);
+  EXPECT_EQ(quantizeChannel(0.49f), 0);
+  EXPECT_EQ(quantizeChannel(0.5f), 1);
+  EXPECT_EQ(quantizeChannel(254.5f), 255);
+  EXPECT_EQ(quantizeChannel(1e30f), 255);
+  EXPECT_EQ(quantizeChannel(INFINITY), 255);
+  EXPECT_EQ(quantizeChannel(NAN), 0);
+}
+
+Scene busyScene() {
+  Scene scene;
+  scene.camera = frontCamera(61);
+  scene.camera.width = 67;
+  scene.maxRayDepth = 3;
+  scene.ambientLight = Color(20.0f);
+  Material a = plainMaterial("a");
+  a.specular = Color(0.5f);
+  a.phongExponent = 20;
+  Material b = plainMaterial("b");
+  b.mirror = Color(0.6f);
+  scene.materials = {a, b};
+  addQuadFacingZ(scene, -3, -3, 3, 3, -4, 1);
+  addTriangle(scene, {-1, -1, -2}, {1, -1, -2.5}, {0, 1, -3}, 0);
+  addTriangle(scene, {0.2, -0.8, -1.5}, {0.9, -0.6, -1.6}, {0.5, 0.3, -1.8}, 0);
+  scene.pointLights.push_back({"p", {1, 2, 0}, Color(300.0f, 200.0f, 100.0f)});
+  scene.triangularLights.push_back(lightAboveCentre(200.0f));
+  return scene;
+}
+
+TEST(Threads, ImageIsBitIdenticalForAnyThreadCount) {
+  const Scene scene = busyScene();
+  RenderSettings settings;
+  settings.lightSamples = 9;
+  auto geometry = prepareGeometry(scene, settings.accel);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
+  Image reference;
+  for (int threads : {1, 2, 3, 8}) {
+    ThreadPool pool(threads);
+    Image image;
+    FrameStats stats;
+    ASSERT_TRUE(renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats));
+    if (threads == 1) {
+      reference = image;
+      continue;
+    }
+    EXPECT_EQ(image.rgb, reference.rgb) << threads << " threads";
+  }
+}
+
+TEST(Threads, AStopRaisedBeforeTheRenderCancelsIt) {
+  const Scene scene = busyScene();
+  auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, {});
+  ThreadPool pool(2);
+  Image image;
+  FrameStats stats;
+  std::atomic<bool> stop{true};
+  EXPECT_FALSE(renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats, &stop));
+  EXPECT_EQ(stats.rays.total(), 0u);
+}
+
+}  // namespace
+}  // namespace rayview
