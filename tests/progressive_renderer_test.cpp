@@ -1,0 +1,190 @@
+// The pass scheduler: cancellation by generation, exactly-once pixels, no stale frame ever published.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <condition_variable>
+#include <mutex>
+#include <thread>
+
+#include "rayview/progressive_renderer.h"
+
+namespace rayview {
+namespace {
+
+using namespace std::chrono_literals;
+
+// A pixel source that counts how often each pixel is computed; optionally blocks its first pixel until
+// released, to hold the renderer mid-pass.
+class CountingSource final : public PixelSource {
+ public:
+  CountingSource(int width, int height, float value, bool blockFirstPixel = false)
+      : width_(width), height_(height), value_(value), counts_(static_cast<std::size_t>(width) * height),
+        blocked_(blockFirstPixel) {}
+  int width() const override { return width_; }
+  int height() const override { return height_; }
+  Color pixel(int x, int y, RayCounts& rays) const override {
+    {
+      std::unique_lock lock(mutex_);
+      started_ = true;
+      startedChanged_.notify_all();
+      releaseChanged_.wait(lock, [&] { return !blocked_; });
+    }
+    counts_[static_cast<std::size_t>(y) * width_ + x].fetch_add(1);
+    ++rays.camera;
+    return Color(value_ + static_cast<float>((x * 7 + y * 13) % 50));
+  }
+  void waitUntilStarted() const {
+    std::unique_lock lock(mutex_);
+    startedChanged_.wait(lock, [&] { return started_; });
+  }
+  void release() const {
+    std::lock_guard lock(mutex_);
+    blocked_ = false;
+    releaseChanged_.notify_all();
+  }
+  int count(int x, int y) const { return counts_[static_cast<std::size_t>(y) * width_ + x].load(); }
+  long total() const {
+    long sum = 0;
+    for (const auto& c : counts_) sum += c.load();
+    return sum;
+  }
+
+ private:
+  int width_, height_;
+  float value_;
+  mutable std::vector<std::atomic<int>> counts_;
+  mutable std::mutex mutex_;
+  mutable std::condition_variable startedChanged_, releaseChanged_;
+  mutable bool started_ = false;
+  mutable bool blocked_;
+};
+
+ProgressiveFrame latest(const ProgressiveRenderer& renderer) {
+  ProgressiveFrame frame;
+  renderer.takeFrameIfNewer(0, frame);
+  return frame;
+}
+
+TEST(ProgressiveRenderer, EveryPixelIsComputedExactlyOnceAndTheFinalFrameIsExact) {
+  ProgressiveRenderer renderer(2);
+  auto source = std::make_shared<CountingSource>(37, 23, 10.0f);  // sizes that are not multiples of 16
+  const auto generation = renderer.restart(source);
+  ASSERT_TRUE(renderer.waitForFinal(generation, 10s));
+  for (int y = 0; y < 23; ++y)
+    for (int x = 0; x < 37; ++x) ASSERT_EQ(source->count(x, y), 1) << x << "," << y;
+  const ProgressiveFrame frame = latest(renderer);
+  EXPECT_TRUE(frame.final);
+  EXPECT_EQ(frame.stride, 1);
+  EXPECT_EQ(frame.generation, generation);
+  for (int y = 0; y < 23; ++y)
+    for (int x = 0; x < 37; ++x) ASSERT_EQ(frame.image.pixel(x, y)[0], 10 + (x * 7 + y * 13) % 50);
+}
+
+TEST(ProgressiveRenderer, CoarsePassesAreBlockyUpscalesOfTheirSamples) {
+  ProgressiveRenderer renderer(1);
+  auto source = std::make_shared<CountingSource>(40, 40, 0.0f);
+  renderer.setInteractive(true);  // hold the first (coarsest) pass
+  const auto generation = renderer.restart(source);
+  ProgressiveFrame frame;
+  for (int i = 0; i < 500 && !renderer.takeFrameIfNewer(0, frame); ++i) std::this_thread::sleep_for(2ms);
+  ASSERT_EQ(frame.generation, generation);
+  const int s = frame.stride;
+  ASSERT_GT(s, 1);
+  EXPECT_FALSE(frame.final);
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) {
+      const int sx = x - x % s, sy = y - y % s;
+      ASSERT_EQ(frame.image.pixel(x, y)[0], (sx * 7 + sy * 13) % 50) << x << "," << y;
+    }
+  // Held while interactive: nothing finer arrives.
+  std::this_thread::sleep_for(50ms);
+  EXPECT_EQ(latest(renderer).stride, s);
+  renderer.setInteractive(false);
+  EXPECT_TRUE(renderer.waitForFinal(generation, 10s));
+}
+
+TEST(ProgressiveRenderer, CancelMidPassNeverPublishesTheStaleGeneration) {
+  ProgressiveRenderer renderer(2);
+  // Watch every publication as the viewer would, frame by frame.
+  std::atomic<bool> watching{true};
+  std::vector<std::uint64_t> seenGenerations;
+  std::thread watcher([&] {
+    ProgressiveFrame frame;
+    std::uint64_t version = 0;
+    while (watching.load()) {
+      if (renderer.takeFrameIfNewer(version, frame)) {
+        version = frame.version;
+        seenGenerations.push_back(frame.generation);
+      }
+      std::this_thread::sleep_for(100us);
+    }
+  });
+  auto first = std::make_shared<CountingSource>(64, 64, 0.0f, /*blockFirstPixel=*/true);
+  const auto firstGeneration = renderer.restart(first);
+  first->waitUntilStarted();  // the first pass is running and stuck
+  auto second = std::make_shared<CountingSource>(64, 64, 100.0f);
+  const auto secondGeneration = renderer.restart(second);
+  EXPECT_GT(secondGeneration, firstGeneration);
+  EXPECT_FALSE(renderer.waitForFinal(firstGeneration, 1s));  // superseded
+  first->release();
+  ASSERT_TRUE(renderer.waitForFinal(secondGeneration, 10s));
+  const ProgressiveFrame frame = latest(renderer);
+  EXPECT_EQ(frame.generation, secondGeneration);
+  watching.store(false);
+  watcher.join();
+  ASSERT_FALSE(seenGenerations.empty());
+  for (std::uint64_t g : seenGenerations) EXPECT_EQ(g, secondGeneration);
+  EXPECT_LE(frame.version, 5u);  // versions count publications: at most the second render's five passes
+  EXPECT_LT(first->total(), 64 * 64);  // the first render stopped early
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x) ASSERT_EQ(second->count(x, y), 1);
+}
+
+TEST(ProgressiveRenderer, ARestartSupersededBeforeItStartsComputesNothing) {
+  ProgressiveRenderer renderer(2);
+  auto blocker = std::make_shared<CountingSource>(32, 32, 0.0f, true);
+  renderer.restart(blocker);
+  blocker->waitUntilStarted();
+  auto skipped = std::make_shared<CountingSource>(32, 32, 0.0f);
+  renderer.restart(skipped);
+  auto last = std::make_shared<CountingSource>(32, 32, 0.0f);
+  const auto lastGeneration = renderer.restart(last);
+  blocker->release();
+  ASSERT_TRUE(renderer.waitForFinal(lastGeneration, 10s));
+  EXPECT_EQ(skipped->total(), 0);
+  EXPECT_EQ(last->total(), 32 * 32);
+}
+
+TEST(ProgressiveRenderer, CancelWithNullSourceStopsAndPublishesNothingNew) {
+  ProgressiveRenderer renderer(2);
+  auto blocker = std::make_shared<CountingSource>(32, 32, 0.0f, true);
+  const auto generation = renderer.restart(blocker);
+  blocker->waitUntilStarted();
+  renderer.restart(nullptr);
+  blocker->release();
+  EXPECT_FALSE(renderer.waitForFinal(generation, 1s));
+  for (int i = 0; i < 500 && !renderer.idle(); ++i) std::this_thread::sleep_for(2ms);
+  EXPECT_TRUE(renderer.idle());
+  ProgressiveFrame frame;
+  EXPECT_FALSE(renderer.takeFrameIfNewer(0, frame));
+}
+
+TEST(ProgressiveRenderer, OnePixelImage) {
+  ProgressiveRenderer renderer(2);
+  auto source = std::make_shared<CountingSource>(1, 1, 42.0f);
+  ASSERT_TRUE(renderer.waitForFinal(renderer.restart(source), 10s));
+  EXPECT_EQ(latest(renderer).image.pixel(0, 0)[0], 42);
+  EXPECT_EQ(source->total(), 1);
+}
+
+TEST(ProgressiveRenderer, DestroyingWhileRenderingDoesNotHang) {
+  auto source = std::make_shared<CountingSource>(512, 512, 0.0f);
+  {
+    ProgressiveRenderer renderer(2);
+    renderer.restart(source);
+  }
+  SUCCEED();
+}
+
+}  // namespace
+}  // namespace rayview
