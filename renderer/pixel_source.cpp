@@ -6,6 +6,6 @@ TracedImage::TracedImage(std::shared_ptr<const Scene> scene, std::shared_ptr<con
                          const RenderSettings& settings)
     : scene_(std::move(scene)),
       geometry_(std::move(geometry)),
-      tracer_(*scene_, *geometry_->accel, geometry_->shading, settings) {}
+      tracer_(*scene_, *geometry_, settings) {}
 
 }  // namespace rayview

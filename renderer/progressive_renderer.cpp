@@ -175,6 +175,8 @@ void ProgressiveRenderer::publish(const PixelSource& source, std::uint64_t gener
   if (generation_.load() != generation) return;  // stale: an edit arrived while this pass finished
   frame.version = published_.version + 1;
   frame.msSinceRestart = msBetween(restartTime, Clock::now());
+  if (published_.generation != generation) firstPassMs_ = frame.msSinceRestart;
+  frame.firstPassMsSinceRestart = firstPassMs_;
   published_ = std::move(frame);
 }
 

@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 
 #include "rayview/light_samples.h"
+#include "rayview/prepared_scene.h"
 #include "rayview/ray_offset.h"
 
 namespace rayview {
@@ -48,7 +49,14 @@ std::uint8_t quantizeChannel(float value) {
 
 Tracer::Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& geometry,
                const RenderSettings& settings)
-    : scene_(scene), accel_(accel), geometry_(geometry), settings_(settings) {
+    : Tracer(scene, scene, accel, geometry, settings) {}
+
+Tracer::Tracer(const Scene& scene, const PreparedGeometry& geometry, const RenderSettings& settings)
+    : Tracer(scene, *geometry.source, *geometry.accel, geometry.shading, settings) {}
+
+Tracer::Tracer(const Scene& scene, const Scene& meshes, const Accel& accel, const ShadingGeometry& geometry,
+               const RenderSettings& settings)
+    : scene_(scene), meshes_(meshes), accel_(accel), geometry_(geometry), settings_(settings) {
   maxDepth_ = settings.maxDepthOverride >= 0 ? settings.maxDepthOverride : scene.maxRayDepth;
   basis_ = cameraBasis(scene.camera);
   eyeRelative_ = scene.camera.position - accel.origin();
@@ -66,7 +74,7 @@ Tracer::Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& ge
     f.intensity = light.intensity;
     triangularLights_.push_back(f);
   }
-  useTexture_ = scene.texture.has_value() && !scene.texture->rgb.empty();
+  useTexture_ = meshes.texture.has_value() && !meshes.texture->rgb.empty();
   settings_.lightSamples = std::clamp(settings_.lightSamples, 1, kMaxLightSamples);
 }
 
@@ -87,7 +95,7 @@ Color Tracer::trace(const Ray& ray, int depth, std::uint32_t pixelSeed, RayCount
 
 Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
                        RayCounts& counts) const {
-  const Triangle& triangle = scene_.triangles[hit.triangle];
+  const Triangle& triangle = meshes_.triangles[hit.triangle];
   const Material& material = scene_.materials[triangle.material];
   const float b0 = 1.0f - hit.b1 - hit.b2;
   const glm::vec3& a = geometry_.vertices[triangle.vertex[0]];
@@ -98,8 +106,8 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
   const glm::vec3& ng = geometry_.faceNormals[hit.triangle];
   glm::vec3 n = ng;
   if (triangle.hasNormals()) {
-    const glm::vec3 interpolated = b0 * scene_.normals[triangle.normal[0]] + hit.b1 * scene_.normals[triangle.normal[1]] +
-                                   hit.b2 * scene_.normals[triangle.normal[2]];
+    const glm::vec3 interpolated = b0 * meshes_.normals[triangle.normal[0]] + hit.b1 * meshes_.normals[triangle.normal[1]] +
+                                   hit.b2 * meshes_.normals[triangle.normal[2]];
     const float length = glm::length(interpolated);
     if (length > 0.0f && std::isfinite(length)) n = interpolated / length;
   }
@@ -192,10 +200,10 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
 // Texture lookup: uv interpolated from the face's <texturedata> entries; u to the right, v up (OBJ
 // convention: v = 0 is the bottom row of the image); repeat wrap; nearest texel.
 Color Tracer::sampleTexture(const Triangle& triangle, const Hit& hit) const {
-  const Texture& texture = *scene_.texture;
+  const Texture& texture = *meshes_.texture;
   const float b0 = 1.0f - hit.b1 - hit.b2;
-  const glm::vec2 uv = b0 * scene_.texCoords[triangle.texCoord[0]] + hit.b1 * scene_.texCoords[triangle.texCoord[1]] +
-                       hit.b2 * scene_.texCoords[triangle.texCoord[2]];
+  const glm::vec2 uv = b0 * meshes_.texCoords[triangle.texCoord[0]] + hit.b1 * meshes_.texCoords[triangle.texCoord[1]] +
+                       hit.b2 * meshes_.texCoords[triangle.texCoord[2]];
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return Color(0.0f);
   const float u = uv.x - std::floor(uv.x);
   const float v = uv.y - std::floor(uv.y);

@@ -19,7 +19,8 @@ class PixelSource {
 };
 
 // A scene snapshot, its prepared geometry and the settings, kept alive together for as long as a render
-// uses them. The viewer edits its own copy of the scene and hands a new snapshot to each restart.
+// uses them. The viewer edits its own copy of the scene and hands a new snapshot to each restart; the
+// snapshot may be parametersOf(scene): meshes are read from the geometry's own scene.
 class TracedImage final : public PixelSource {
  public:
   TracedImage(std::shared_ptr<const Scene> scene, std::shared_ptr<const PreparedGeometry> geometry,

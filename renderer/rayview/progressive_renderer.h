@@ -36,6 +36,7 @@ struct ProgressiveFrame {
   Image image;
   double passMs = 0.0;           // time of the pass that completed this frame
   double msSinceRestart = 0.0;   // from restart() to this frame's publication
+  double firstPassMsSinceRestart = 0.0;  // from restart() to the first pass of this generation
   RayCounts passRays;
   double megaRaysPerSecond = 0.0;  // of that pass
 };
@@ -91,6 +92,7 @@ class ProgressiveRenderer {
   // Written by the controller only while no pass of another generation can run.
   Image samples_;
   ProgressiveFrame published_;  // guarded by mutex_
+  double firstPassMs_ = 0.0;     // of the generation being rendered; guarded by mutex_
   std::uint64_t finalGeneration_ = 0;  // guarded by mutex_
 
   std::thread controller_;

@@ -40,8 +40,15 @@ ShadingGeometry prepareShadingGeometry(const Scene& scene, const glm::dvec3& ori
 // Clamp to [0, 255] and round to nearest; NaN becomes 0.
 std::uint8_t quantizeChannel(float value);
 
+struct PreparedGeometry;
+
 class Tracer {
  public:
+  // Camera, lights, materials and depth come from `scene`; triangles, normals, texture coordinates and the
+  // texture from the scene the geometry was prepared from. So the viewer's per-edit snapshot can be a
+  // parameter-only copy (see parametersOf) and an edit never copies the meshes.
+  Tracer(const Scene& scene, const PreparedGeometry& geometry, const RenderSettings& settings);
+  // Everything from `scene`, which must be the scene `accel` and `geometry` were built from.
   Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& geometry, const RenderSettings& settings);
 
   // Radiance (0..255 units, unclamped) of pixel (column i, row j from the top).
@@ -58,8 +65,11 @@ class Tracer {
   Color trace(const Ray& ray, int depth, std::uint32_t pixelSeed, RayCounts& counts) const;
   Color shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts) const;
   Color sampleTexture(const Triangle& triangle, const Hit& hit) const;
+  Tracer(const Scene& scene, const Scene& meshes, const Accel& accel, const ShadingGeometry& geometry,
+         const RenderSettings& settings);
 
-  const Scene& scene_;
+  const Scene& scene_;   // camera, lights, materials, depth
+  const Scene& meshes_;  // triangles, normals, texture coordinates, texture
   const Accel& accel_;
   const ShadingGeometry& geometry_;
   RenderSettings settings_;
