@@ -24,7 +24,7 @@ void addTriangle(Scene& scene, const glm::dvec3& a, const glm::dvec3& b, const g
   t.vertex[2] = first + 2;
   t.material = material;
   t.mesh = static_cast<std::uint32_t>(scene.meshes.size());
-  scene.meshes.push_back(Mesh{"m" + std::to_string(scene.meshes.size()), material,
+  scene.meshes.push_back(Mesh{std::string("m").append(std::to_string(scene.meshes.size())), material,
                               static_cast<std::uint32_t>(scene.triangles.size()), 1});
   scene.triangles.push_back(t);
 }
@@ -33,7 +33,7 @@ void addQuadFacingZ(Scene& scene, double x0, double y0, double x1, double y1, do
   const auto first = static_cast<std::uint32_t>(scene.vertices.size());
   scene.vertices.insert(scene.vertices.end(), {{x0, y0, z}, {x1, y0, z}, {x1, y1, z}, {x0, y1, z}});
   const auto mesh = static_cast<std::uint32_t>(scene.meshes.size());
-  scene.meshes.push_back(Mesh{"quad" + std::to_string(mesh), material, static_cast<std::uint32_t>(scene.triangles.size()), 2});
+  scene.meshes.push_back(Mesh{std::string("quad").append(std::to_string(mesh)), material, static_cast<std::uint32_t>(scene.triangles.size()), 2});
   for (auto [b, c] : {std::pair{1u, 2u}, std::pair{2u, 3u}}) {
     Triangle t;
     t.vertex[0] = first;

@@ -1,0 +1,152 @@
+#include "command_line.h"
+
+#include <charconv>
+#include <functional>
+
+namespace rayview {
+namespace {
+
+enum Applies : unsigned { kRender = 1u, kView = 2u, kBoth = kRender | kView };
+
+struct OptionSpec {
+  const char* name;
+  const char* valueName;  // nullptr: a flag
+  unsigned applies;
+  const char* help;
+  std::function<void(CommandLine&, const std::string& value)> apply;
+};
+
+int parseInt(const std::string& option, const std::string& text, int low, int high) {
+  int value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || value < low || value > high)
+    throw UsageError(option + " expects an integer from " + std::to_string(low) + " to " + std::to_string(high) +
+                     ", not '" + text + "'");
+  return value;
+}
+
+const std::vector<OptionSpec>& optionTable() {
+  static const std::vector<OptionSpec> table = {
+      {"-o", "OUT.png|OUT.ppm", kRender, "image to write (written whole: a temporary file renamed into place)",
+       [](CommandLine& c, const std::string& v) { c.outputPath = v; }},
+      {"--threads", "N", kBoth, "render threads (default: one per hardware thread)",
+       [](CommandLine& c, const std::string& v) { c.threads = parseInt("--threads", v, 1, 1024); }},
+      {"--depth", "N", kBoth, "maximum mirror recursion depth (default: the scene's <maxraytracedepth>)",
+       [](CommandLine& c, const std::string& v) { c.settings.maxDepthOverride = parseInt("--depth", v, 0, 1000000); }},
+      {"--tri-light", "area|directional", kBoth, "triangular-light model (default: area)",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseTriangularLightModel(v, c.settings.triangularLightModel))
+           throw UsageError("--tri-light expects 'area' or 'directional', not '" + v + "'");
+       }},
+      {"--light-samples", "N", kBoth, "samples per triangular light, area model (default: 1 = the centroid)",
+       [](CommandLine& c, const std::string& v) {
+         c.settings.lightSamples = parseInt("--light-samples", v, 1, kMaxLightSamples);
+       }},
+      {"--accel", "embree|reference", kBoth, "ray traversal: Embree (fast) or the double-precision reference BVH",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseAccelKind(v, c.settings.accel))
+           throw UsageError("--accel expects 'embree' or 'reference', not '" + v + "'");
+       }},
+      {"--ray-start", "offset|exclude-hit", kBoth,
+       "where shadow/mirror rays start: offset off the surface (default), or at the hit point ignoring its "
+       "triangle (the 2017-19 course renderer)",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseSecondaryRayStart(v, c.settings.secondaryRayStart))
+           throw UsageError("--ray-start expects 'offset' or 'exclude-hit', not '" + v + "'");
+       }},
+      {"--strict", nullptr, kBoth, "treat every repaired typo and unknown element as an error",
+       [](CommandLine& c, const std::string&) { c.strict = true; }},
+      {"--quiet", nullptr, kRender, "print only errors",
+       [](CommandLine& c, const std::string&) { c.quiet = true; }},
+      {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",
+       [](CommandLine& c, const std::string& v) { c.scriptPath = v; }},
+  };
+  return table;
+}
+
+}  // namespace
+
+CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
+  CommandLine command;
+  std::size_t i = 0;
+  if (!arguments.empty() && arguments[0] == "render") {
+    command.kind = CommandKind::Render;
+    i = 1;
+  } else if (!arguments.empty() && arguments[0] == "view") {
+    i = 1;
+  }
+  const unsigned mode = command.kind == CommandKind::Render ? kRender : kView;
+  for (; i < arguments.size(); ++i) {
+    const std::string& arg = arguments[i];
+    if (arg == "--help" || arg == "-h" || arg == "--version") {
+      CommandLine info;
+      info.kind = arg == "--version" ? CommandKind::Version : CommandKind::Help;
+      return info;
+    }
+    if (!arg.empty() && arg[0] == '-' && arg != "-") {
+      std::string name = arg, value;
+      bool hasInlineValue = false;
+      if (const auto eq = arg.find('='); eq != std::string::npos && arg.rfind("--", 0) == 0) {
+        name = arg.substr(0, eq);
+        value = arg.substr(eq + 1);
+        hasInlineValue = true;
+      }
+      const OptionSpec* spec = nullptr;
+      for (const OptionSpec& s : optionTable())
+        if (name == s.name) spec = &s;
+      if (!spec) throw UsageError("unknown option '" + name + "' (see rayview --help)");
+      if (!(spec->applies & mode))
+        throw UsageError("option '" + name + "' does not apply to " +
+                         (mode == kRender ? "'rayview render'" : "the viewer"));
+      if (spec->valueName && !hasInlineValue) {
+        if (i + 1 >= arguments.size()) throw UsageError("option '" + name + "' expects " + spec->valueName);
+        value = arguments[++i];
+      } else if (!spec->valueName && hasInlineValue) {
+        throw UsageError("option '" + name + "' takes no value");
+      }
+      spec->apply(command, value);
+      continue;
+    }
+    if (!command.scenePath.empty()) throw UsageError("more than one scene given: '" + command.scenePath + "' and '" + arg + "'");
+    command.scenePath = arg;
+  }
+  if (command.kind == CommandKind::Render) {
+    if (command.outputPath.empty()) throw UsageError("'rayview render' needs -o OUT.png or -o OUT.ppm");
+  }
+  return command;
+}
+
+std::string helpText() {
+  std::string text =
+      "rayview: a Whitted ray tracer for the CSE 461 scene format\n"
+      "\n"
+      "usage:\n"
+      "  rayview [SCENE] [options]               open the viewer (the embedded default scene without SCENE)\n"
+      "  rayview render [SCENE] -o OUT [options] render headless to PNG or PPM and print timings\n"
+      "  rayview --help | --version\n"
+      "\n"
+      "options:\n";
+  for (const OptionSpec& s : optionTable()) {
+    std::string left = std::string("  ") + s.name + (s.valueName ? std::string(" ") + s.valueName : "");
+    if (left.size() < 32) left.resize(32, ' ');
+    else left += "  ";
+    const char* where = s.applies == kBoth ? "" : (s.applies == kRender ? " [render]" : " [viewer]");
+    text += left + s.help + where + "\n";
+  }
+  text +=
+      "\n"
+      "exit status: 0 success, 1 the output could not be written, 2 bad scene or bad arguments (nothing written)\n";
+  return text;
+}
+
+std::string versionText() {
+  std::string text = std::string("rayview ") + RAYVIEW_VERSION;
+#ifdef RAYVIEW_HAVE_EMBREE
+  text += " (Embree 3 traversal and the reference BVH)";
+#else
+  text += " (reference BVH only: built without Embree)";
+#endif
+  return text + "\n";
+}
+
+}  // namespace rayview

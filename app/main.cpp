@@ -1,0 +1,42 @@
+// rayview: the viewer by default, `rayview render` headless.
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "command_line.h"
+#include "render_command.h"
+
+#ifdef RAYVIEW_HAVE_VIEWER
+#include "viewer_main.h"
+#endif
+
+int main(int argc, char** argv) {
+  using namespace rayview;
+  CommandLine command;
+  try {
+    command = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const UsageError& error) {
+    std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitBadInput;
+  }
+  switch (command.kind) {
+    case CommandKind::Help:
+      std::fputs(helpText().c_str(), stdout);
+      return kExitOk;
+    case CommandKind::Version:
+      std::fputs(versionText().c_str(), stdout);
+      return kExitOk;
+    case CommandKind::Render:
+      return runRenderCommand(command);
+    case CommandKind::View:
+#ifdef RAYVIEW_HAVE_VIEWER
+      return runViewer(command);
+#else
+      // Built without the viewer: render the scene headless instead and say where the image went.
+      command.kind = CommandKind::Render;
+      command.outputPath = "rayview-default.png";
+      return runRenderCommand(command);
+#endif
+  }
+  return kExitOk;
+}

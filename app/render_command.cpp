@@ -1,0 +1,73 @@
+#include "render_command.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include "rayview/camera_rays.h"
+#include "rayview/frame_renderer.h"
+#include "rayview/prepared_scene.h"
+#include "scene_source.h"
+
+namespace rayview {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int runRenderCommand(const CommandLine& command) {
+  const std::filesystem::path output = command.outputPath;
+  if (!isSupportedImageExtension(output)) {
+    std::fprintf(stderr, "rayview: error: the output must end in .png or .ppm: %s\n", command.outputPath.c_str());
+    return kExitBadInput;
+  }
+
+  const auto loadStart = std::chrono::steady_clock::now();
+  LoadedScene loaded;
+  try {
+    loaded = loadSceneOrDefault(command.scenePath, LoadOptions{command.strict, true});
+  } catch (const SceneError& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return kExitBadInput;
+  }
+  const double loadMs = msSince(loadStart);
+  if (!command.quiet)
+    for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
+
+  const Scene& scene = loaded.scene;
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, command.settings.accel);
+  ThreadPool pool(command.threads);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, command.settings);
+  Image image;
+  FrameStats stats;
+  renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats);
+
+  try {
+    writeImageFile(output, image);
+  } catch (const ImageIoError& error) {
+    std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitIoFailure;
+  }
+
+  if (!command.quiet) {
+    const RenderSettings& s = command.settings;
+    std::printf("scene      %s: %zu triangles, %zu point lights, %zu triangular lights, %dx%d\n",
+                command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(), scene.triangles.size(),
+                scene.pointLights.size(), scene.triangularLights.size(), scene.camera.width, scene.camera.height);
+    std::printf("settings   depth %d, triangular lights %s (%d sample%s), accel %s, %d threads\n", tracer.maxDepth(),
+                std::string(toString(s.triangularLightModel)).c_str(), s.lightSamples, s.lightSamples == 1 ? "" : "s",
+                std::string(toString(geometry->accel->kind())).c_str(), pool.size());
+    std::printf("time       load %.1f ms, BVH build %.1f ms, render %.1f ms\n", loadMs, geometry->buildMs, stats.renderMs);
+    std::printf("rays       camera %llu, shadow %llu, reflection %llu, total %llu, %.2f Mrays/s\n",
+                static_cast<unsigned long long>(stats.rays.camera), static_cast<unsigned long long>(stats.rays.shadow),
+                static_cast<unsigned long long>(stats.rays.reflection),
+                static_cast<unsigned long long>(stats.rays.total()), stats.megaRaysPerSecond());
+    std::printf("wrote      %s\n", std::filesystem::absolute(output).c_str());
+  }
+  return kExitOk;
+}
+
+}  // namespace rayview

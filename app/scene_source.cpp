@@ -1,0 +1,12 @@
+#include "scene_source.h"
+
+#include "default_scene.h"
+
+namespace rayview {
+
+LoadedScene loadSceneOrDefault(const std::string& path, const LoadOptions& options) {
+  if (path.empty()) return loadSceneText(defaultSceneXml(), kDefaultSceneName, {}, options);
+  return loadSceneFile(path, options);
+}
+
+}  // namespace rayview

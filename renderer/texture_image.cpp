@@ -1,0 +1,73 @@
+#include "texture_image.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+// The one translation unit of the project that compiles stb_image.
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_NO_STDIO_DEPRECATION
+#include <stb_image.h>
+
+namespace rayview::detail {
+
+namespace fs = std::filesystem;
+
+std::optional<Texture> readTextureImage(const fs::path& path, std::string& reason) {
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) {
+    reason = "not found";
+    return std::nullopt;
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) {
+    reason = "cannot be opened";
+    return std::nullopt;
+  }
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_file(file.get(), &width, &height, &channels)) {
+    reason = std::string("not a readable image (") + stbi_failure_reason() + ")";
+    return std::nullopt;
+  }
+  if (width <= 0 || height <= 0 || static_cast<long long>(width) * height > kMaxTexturePixels) {
+    reason = "image too large (" + std::to_string(width) + " x " + std::to_string(height) + ")";
+    return std::nullopt;
+  }
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_file(file.get(), &width, &height, &channels, 3),
+                                                   &stbi_image_free);
+  if (!pixels) {
+    reason = std::string("cannot be decoded (") + stbi_failure_reason() + ")";
+    return std::nullopt;
+  }
+  Texture texture;
+  texture.width = width;
+  texture.height = height;
+  texture.rgb.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
+  return texture;
+}
+
+std::vector<fs::path> textureCandidates(const fs::path& sceneDirectory, const std::string& written) {
+  std::vector<fs::path> out;
+  auto add = [&](const fs::path& p) {
+    fs::path normal = p.lexically_normal();
+    if (normal.empty()) return;
+    if (std::find(out.begin(), out.end(), normal) == out.end()) out.push_back(normal);
+  };
+  const fs::path asWritten(written);
+  const fs::path dir = sceneDirectory.empty() ? fs::path(".") : sceneDirectory;
+  const std::vector<fs::path> bases{dir, dir / "..", dir / ".." / "..", dir / ".." / ".." / ".."};
+  if (asWritten.is_relative())
+    for (const fs::path& b : bases) add(b / asWritten);
+  add(asWritten);
+  // Trailing components of the path: "capsule0.jpg", "textures/capsule0.jpg", "hw1/textures/capsule0.jpg".
+  std::vector<fs::path> parts;
+  for (const fs::path& part : asWritten.relative_path()) parts.push_back(part);
+  for (std::size_t k = 1; k <= std::min<std::size_t>(3, parts.size()); ++k) {
+    fs::path tail;
+    for (std::size_t i = parts.size() - k; i < parts.size(); ++i) tail /= parts[i];
+    for (const fs::path& b : bases) add(b / tail);
+  }
+  return out;
+}
+
+}  // namespace rayview::detail

@@ -1,0 +1,26 @@
+#pragma once
+// Reading a <textureimage> from disk with stb_image (PNG, JPEG, binary PPM/PGM, BMP, TGA).
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rayview/scene.h"
+
+namespace rayview::detail {
+
+// Largest texture accepted, in pixels (refused before decoding, from the header alone).
+inline constexpr long long kMaxTexturePixels = 1LL << 28;
+
+// Decodes an image file to 8-bit RGB. On failure returns nullopt and sets `reason` (never throws).
+std::optional<Texture> readTextureImage(const std::filesystem::path& path, std::string& reason);
+
+// Where `written` (the <textureimage> text) may be, in the order tried: next to the scene
+// (sceneDirectory/written), the scene directory's ancestors up to 3 levels (for paths relative to a
+// repository root), the path as written, then the file name and the last 2-3 path components (for
+// absolute paths from the author's machine) in the scene directory and its ancestors. No duplicates.
+std::vector<std::filesystem::path> textureCandidates(const std::filesystem::path& sceneDirectory,
+                                                     const std::string& written);
+
+}  // namespace rayview::detail
