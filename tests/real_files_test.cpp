@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -14,7 +15,9 @@
 #include <string>
 #include <vector>
 
+#include "rayview/prepared_scene.h"
 #include "rayview/scene_loader.h"
+#include "rayview/tracer.h"
 
 namespace rayview {
 namespace {
@@ -215,6 +218,22 @@ TEST_P(RealFile, HasItsExpectedOutcome) {
       }
     }
   }
+  // And it renders: every pixel finite, at a reduced resolution (same frustum) to keep the test quick.
+  Scene small = s;
+  const double shrink = std::min(1.0, 48.0 / std::max(s.camera.width, s.camera.height));
+  small.camera.width = std::max(1, static_cast<int>(s.camera.width * shrink));
+  small.camera.height = std::max(1, static_cast<int>(s.camera.height * shrink));
+  auto geometry = prepareGeometry(small, AccelKind::Embree);
+  ASSERT_TRUE(geometry);
+  const Tracer tracer(small, *geometry, RenderSettings{});
+  RayCounts counts;
+  for (int y = 0; y < small.camera.height; ++y)
+    for (int x = 0; x < small.camera.width; ++x) {
+      const Color c = tracer.tracePixel(x, y, counts);
+      ASSERT_TRUE(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z)) << "pixel " << x << "," << y;
+    }
+  EXPECT_EQ(counts.camera, static_cast<std::uint64_t>(small.camera.width) * small.camera.height);
+
   // Without warnings, strict mode has nothing to object to.
   if (row.warnings.empty()) {
     LoadOptions strict;
