@@ -1,0 +1,30 @@
+#pragma once
+// Writing a Scene back in the handout's XML format ("Save scene as" in the viewer).
+//
+// Correct spellings only (<background>, <nearplane>, <intensity>, <triangularlight>, <mirrorreflectance>),
+// every number in the shortest text that reads back to the same value, faces 1-based, written v/t/n when
+// a face has texture coordinates or normals. Loading the file back gives a Scene equal field by field,
+// so it renders the same image.
+
+#include <filesystem>
+#include <string>
+
+#include "rayview/scene.h"
+
+namespace rayview {
+
+// The whole file. `textureImage` is what to write in <textureimage> (nothing is written when empty).
+std::string sceneToXml(const Scene& scene, const std::string& textureImage);
+
+// What <textureimage> must say in a file written to `outputPath` so that it still finds the image the
+// scene was loaded with: unchanged in the scene's own directory, else a path to the file that was found.
+std::string textureReferenceFor(const Scene& scene, const std::filesystem::path& outputPath);
+
+// Writes the file whole (temporary file + rename). Throws ImageIoError (the file-writing error type).
+void writeSceneFile(const std::filesystem::path& outputPath, const Scene& scene);
+
+// Shortest decimal text that parses (as a double, as the loader does) back to exactly `value`.
+std::string formatNumber(double value);
+std::string formatNumber(float value);
+
+}  // namespace rayview

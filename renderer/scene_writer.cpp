@@ -1,0 +1,262 @@
+#include "rayview/scene_writer.h"
+
+#include <charconv>
+#include <system_error>
+
+#include "rayview/image.h"
+#include "texture_image.h"
+
+namespace rayview {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string shortestDouble(double value) {
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+double parseBack(const std::string& text) {
+  double value = 0.0;
+  std::from_chars(text.data(), text.data() + text.size(), value);
+  return value;
+}
+
+std::string escapeXml(const std::string& text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&': out += "&amp;"; break;
+      case '<': out += "&lt;"; break;
+      case '>': out += "&gt;"; break;
+      case '"': out += "&quot;"; break;
+      default: out += c;
+    }
+  }
+  return out;
+}
+
+// Appends numbers separated by single spaces.
+class Line {
+ public:
+  explicit Line(std::string& out) : out_(out) {}
+  Line& operator<<(double v) { return put(formatNumber(v)); }
+  Line& operator<<(float v) { return put(formatNumber(v)); }
+  Line& operator<<(int v) { return put(std::to_string(v)); }
+  Line& operator<<(const glm::dvec3& v) { return *this << v.x << v.y << v.z; }
+  Line& operator<<(const glm::vec3& v) { return *this << v.x << v.y << v.z; }
+  Line& operator<<(const glm::vec2& v) { return *this << v.x << v.y; }
+
+ private:
+  Line& put(const std::string& text) {
+    if (!first_) out_ += ' ';
+    out_ += text;
+    first_ = false;
+    return *this;
+  }
+  std::string& out_;
+  bool first_ = true;
+};
+
+class XmlWriter {
+ public:
+  explicit XmlWriter(std::string& out) : out_(out) {}
+
+  template <typename... Values>
+  void element(int depth, const char* name, const Values&... values) {
+    indent(depth);
+    out_ += '<';
+    out_ += name;
+    out_ += '>';
+    Line line(out_);
+    (line << ... << values);
+    out_ += "</";
+    out_ += name;
+    out_ += ">\n";
+  }
+  void text(int depth, const char* name, const std::string& value) {
+    indent(depth);
+    out_ += std::string("<") + name + ">" + escapeXml(value) + "</" + name + ">\n";
+  }
+  void open(int depth, const char* name, const std::string& id = {}, bool hasId = false) {
+    indent(depth);
+    out_ += std::string("<") + name;
+    if (hasId) out_ += " id=\"" + escapeXml(id) + "\"";
+    out_ += ">\n";
+  }
+  void close(int depth, const char* name) {
+    indent(depth);
+    out_ += std::string("</") + name + ">\n";
+  }
+  void indent(int depth) { out_.append(static_cast<std::size_t>(depth) * 4, ' '); }
+  std::string& raw() { return out_; }
+
+ private:
+  std::string& out_;
+};
+
+void appendIndex(std::string& out, std::int64_t zeroBased) {
+  char buffer[24];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, zeroBased + 1);  // the handout is 1-based
+  out.append(buffer, result.ptr);
+}
+
+void appendFace(std::string& out, const Triangle& t) {
+  for (int k = 0; k < 3; ++k) {
+    if (k) out += ' ';
+    appendIndex(out, t.vertex[k]);
+    if (t.texCoord[k] == kNoIndex && t.normal[k] == kNoIndex) continue;
+    out += '/';
+    if (t.texCoord[k] != kNoIndex) appendIndex(out, t.texCoord[k]);
+    if (t.normal[k] != kNoIndex) {
+      out += '/';
+      appendIndex(out, t.normal[k]);
+    }
+  }
+}
+
+bool sameFile(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  const bool same = fs::equivalent(a, b, ec);
+  return !ec && same;
+}
+
+}  // namespace
+
+std::string formatNumber(double value) { return shortestDouble(value); }
+
+std::string formatNumber(float value) {
+  // The loader reads a double and narrows it. The float's own shortest text almost always survives that
+  // double rounding; when it would not, the double's text of the float's exact value always does.
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  std::string text(buffer, result.ptr);
+  if (static_cast<float>(parseBack(text)) == value) return text;
+  return shortestDouble(static_cast<double>(value));
+}
+
+std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
+  std::string out;
+  // Faces dominate the size of big scenes: about 3 indices of up to 8 digits per triangle.
+  out.reserve(4096 + scene.vertices.size() * 64 + scene.triangles.size() * 40 +
+              (scene.texCoords.size() + scene.normals.size()) * 48);
+  XmlWriter xml(out);
+  out += "<!-- written by rayview " RAYVIEW_VERSION " -->\n";
+  xml.open(0, "scene");
+  xml.element(1, "maxraytracedepth", scene.maxRayDepth);
+  xml.element(1, "background", scene.background);
+  if (scene.shadowRayEpsilon) xml.element(1, "shadowrayepsilon", *scene.shadowRayEpsilon);
+
+  const Camera& c = scene.camera;
+  xml.open(1, "camera");
+  xml.element(2, "position", c.position);
+  xml.element(2, "gaze", c.gaze);
+  xml.element(2, "up", c.up);
+  xml.element(2, "nearplane", c.left, c.right, c.bottom, c.top);
+  xml.element(2, "neardistance", c.nearDistance);
+  xml.element(2, "imageresolution", c.width, c.height);
+  xml.close(1, "camera");
+
+  xml.open(1, "lights");
+  xml.element(2, "ambientlight", scene.ambientLight);
+  for (const PointLight& light : scene.pointLights) {
+    xml.open(2, "pointlight", light.id, true);
+    xml.element(3, "position", light.position);
+    xml.element(3, "intensity", light.intensity);
+    xml.close(2, "pointlight");
+  }
+  for (const TriangularLight& light : scene.triangularLights) {
+    xml.open(2, "triangularlight", light.id, true);
+    xml.element(3, "vertex1", light.vertex1);
+    xml.element(3, "vertex2", light.vertex2);
+    xml.element(3, "vertex3", light.vertex3);
+    xml.element(3, "intensity", light.intensity);
+    xml.close(2, "triangularlight");
+  }
+  xml.close(1, "lights");
+
+  xml.open(1, "materials");
+  for (const Material& m : scene.materials) {
+    xml.open(2, "material", m.id, true);
+    xml.element(3, "ambient", m.ambient);
+    xml.element(3, "diffuse", m.diffuse);
+    xml.element(3, "specular", m.specular);
+    xml.element(3, "phongexponent", m.phongExponent);
+    xml.element(3, "mirrorreflectance", m.mirror);
+    // A 2025 element: written only when it matters, so 2024 scenes stay 2024 files.
+    if (m.textureFactor != 0.0f) xml.element(3, "texturefactor", m.textureFactor);
+    xml.close(2, "material");
+  }
+  xml.close(1, "materials");
+
+  xml.open(1, "vertexdata");
+  for (const glm::dvec3& v : scene.vertices) {
+    xml.indent(2);
+    Line(out) << v;
+    out += '\n';
+  }
+  xml.close(1, "vertexdata");
+  if (!scene.texCoords.empty()) {
+    xml.open(1, "texturedata");
+    for (const glm::vec2& t : scene.texCoords) {
+      xml.indent(2);
+      Line(out) << t;
+      out += '\n';
+    }
+    xml.close(1, "texturedata");
+  }
+  if (!scene.normals.empty()) {
+    xml.open(1, "normaldata");
+    for (const glm::vec3& n : scene.normals) {
+      xml.indent(2);
+      Line(out) << n;
+      out += '\n';
+    }
+    xml.close(1, "normaldata");
+  }
+  if (!textureImage.empty()) xml.text(1, "textureimage", textureImage);
+
+  xml.open(1, "objects");
+  for (const Mesh& mesh : scene.meshes) {
+    xml.open(2, "mesh", mesh.id, true);
+    xml.text(3, "materialid", mesh.material < scene.materials.size() ? scene.materials[mesh.material].id : "");
+    xml.open(3, "faces");
+    const std::size_t end = std::min<std::size_t>(scene.triangles.size(),
+                                                  static_cast<std::size_t>(mesh.firstTriangle) + mesh.triangleCount);
+    for (std::size_t i = mesh.firstTriangle; i < end; ++i) {
+      xml.indent(4);
+      appendFace(out, scene.triangles[i]);
+      out += '\n';
+    }
+    xml.close(3, "faces");
+    xml.close(2, "mesh");
+  }
+  xml.close(1, "objects");
+  xml.close(0, "scene");
+  return out;
+}
+
+std::string textureReferenceFor(const Scene& scene, const fs::path& outputPath) {
+  if (scene.textureImage.empty()) return {};
+  const fs::path sourceDirectory = scene.sourcePath.parent_path();
+  const fs::path outputDirectory = outputPath.parent_path().empty() ? fs::path(".") : outputPath.parent_path();
+  if (sameFile(sourceDirectory.empty() ? fs::path(".") : sourceDirectory, outputDirectory)) return scene.textureImage;
+  std::error_code ec;
+  for (const fs::path& candidate : detail::textureCandidates(sourceDirectory, scene.textureImage)) {
+    if (!fs::is_regular_file(candidate, ec)) continue;
+    const fs::path found = fs::weakly_canonical(fs::absolute(candidate, ec), ec);
+    // Relative when the two directories share a root, so the pair can be moved together.
+    const fs::path relative = fs::relative(found, fs::weakly_canonical(fs::absolute(outputDirectory, ec), ec), ec);
+    if (!ec && !relative.empty()) return relative.generic_string();
+    return found.generic_string();
+  }
+  return scene.textureImage;  // never found: keep what the author wrote (it stays a warning on load)
+}
+
+void writeSceneFile(const fs::path& outputPath, const Scene& scene) {
+  writeFileAtomically(outputPath, sceneToXml(scene, textureReferenceFor(scene, outputPath)));
+}
+
+}  // namespace rayview

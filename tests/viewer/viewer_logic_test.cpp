@@ -1,0 +1,356 @@
+// The viewer's logic without a window: scripts, edits and restarts, numbered saves, file watching, recent files.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "automation_script.h"
+#include "file_watch.h"
+#include "numbered_file.h"
+#include "recent_files.h"
+#include "rayview/scene_loader.h"
+#include "scene_edits.h"
+#include "scene_session.h"
+#include "script_runner.h"
+#include "support/image_compare.h"
+
+namespace rayview {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path freshDirectory(const std::string& name) {
+  const fs::path directory = testing::testOutputDirectory() / "viewer_logic" / name;
+  fs::remove_all(directory);
+  fs::create_directories(directory);
+  return directory;
+}
+
+void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
+
+const fs::path kViewerScene = testing::sourceDirectory() / "tests/viewer/viewer_scene.xml";
+
+LoadedSceneParts loadParts() {
+  LoadedScene loaded = loadSceneFile(kViewerScene);
+  LoadedSceneParts parts;
+  parts.scene = std::make_shared<const Scene>(std::move(loaded.scene));
+  parts.geometry = prepareGeometry(parts.scene, AccelKind::Reference);
+  parts.bounds = sceneBounds(*parts.scene);
+  parts.accel = AccelKind::Reference;
+  return parts;
+}
+
+// ---------------------------------------------------------------------------------------------- scripts
+
+TEST(AutomationScript, ParsesEveryCommandWithItsArguments) {
+  const Script s = parseScript(
+      "# a comment\n"
+      "\n"
+      "wait-final\n"
+      "wait-final 5\n"
+      "set material \"my red\" diffuse 0.1 0.2 +0.3\n"
+      "set light sun position 1 2 3\n"
+      "set depth 3\n"
+      "set tri-light directional\n"
+      "camera orbit 10 -5\n"
+      "camera resolution 320 200\n"
+      "open /tmp/a dir/scene #1.xml\n"
+      "expect-error scene.xml:12: error\n"
+      "save-frame\n"
+      "quit 3\n",
+      "t.rvs");
+  ASSERT_EQ(s.commands.size(), 12u);
+  EXPECT_EQ(s.commands[0].line, 3);
+  EXPECT_TRUE(s.commands[0].numbers.empty());
+  EXPECT_EQ(s.commands[1].numbers, std::vector<double>{5.0});
+  EXPECT_EQ(s.commands[2].args, (std::vector<std::string>{"material", "my red", "diffuse"}));
+  EXPECT_EQ(s.commands[2].numbers, (std::vector<double>{0.1, 0.2, 0.3}));
+  EXPECT_EQ(s.commands[5].args, (std::vector<std::string>{"tri-light", "directional"}));
+  EXPECT_EQ(s.commands[6].numbers, (std::vector<double>{10.0, -5.0}));
+  EXPECT_EQ(s.commands[8].args, std::vector<std::string>{"/tmp/a dir/scene #1.xml"});  // the rest of the line
+  EXPECT_EQ(s.commands[9].args, std::vector<std::string>{"scene.xml:12: error"});
+  EXPECT_TRUE(s.commands[10].args.empty());
+  EXPECT_EQ(s.commands[11].numbers, std::vector<double>{3.0});
+}
+
+TEST(AutomationScript, MistakesNameTheFileAndLine) {
+  auto errorOf = [](const std::string& text) {
+    try {
+      parseScript(text, "t.rvs");
+    } catch (const ScriptError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(errorOf("wait-final\nfly away\n").rfind("t.rvs:2: unknown command 'fly'", 0), 0u) << errorOf("fly");
+  EXPECT_NE(errorOf("set material red diffuse 1 2\n").find("t.rvs:1: usage: set material"), std::string::npos);
+  EXPECT_NE(errorOf("set depth 1.5\n").find("whole numbers"), std::string::npos);
+  EXPECT_NE(errorOf("set depth x\n").find("expects a number, not 'x'"), std::string::npos);
+  EXPECT_NE(errorOf("camera resolution 0 10\n").find("t.rvs:1:"), std::string::npos);
+  EXPECT_NE(errorOf("set tri-light sun\n").find("area|directional"), std::string::npos);
+  EXPECT_NE(errorOf("open\n").find("needs a path"), std::string::npos);
+  EXPECT_NE(errorOf("wait-final 0\n").find("positive"), std::string::npos);
+  EXPECT_NE(errorOf("print-state now\n").find("takes no arguments"), std::string::npos);
+  EXPECT_NE(errorOf("set light \"sun position 1 2 3\n").find("unterminated quote"), std::string::npos);
+}
+
+// A host that records what the runner asks of the viewer.
+class FakeHost : public ScriptHost {
+ public:
+  explicit FakeHost(SceneSession* session) : session_(session) {}
+  SceneSession* session() override { return session_; }
+  void open(const std::string& path) override {
+    opened = path;
+    loadingFrames = 2;
+  }
+  void reload() override { loadingFrames = 1; }
+  bool loading() const override { return loadingFrames > 0; }
+  std::string loadError() const override { return loadingFrames > 0 ? "" : error; }
+  std::string scenePath() const override { return "scene.xml"; }
+  std::uint64_t sceneSerial() const override { return serial; }
+  bool finalFrameShown() const override { return final; }
+  std::string editProblem() const override { return {}; }
+  std::filesystem::path saveFrame(const std::string& path) override { return savedFrame = path; }
+  std::filesystem::path saveScene(const std::string& path) override { return path; }
+  void screenshot(const std::string&) override {}
+  std::string stateLine() const override { return "state"; }
+  void resizeWindow(int, int) override {}
+  void quit(int code) override { exitCode = code; }
+
+  void frame(ScriptRunner& runner) {
+    runner.step(*this);
+    if (loadingFrames > 0) --loadingFrames;
+  }
+
+  SceneSession* session_;
+  std::string opened, error, savedFrame = "-";
+  int loadingFrames = 0;
+  std::uint64_t serial = 1;
+  bool final = false;
+  int exitCode = -1;
+};
+
+TEST(ScriptRunner, WaitsForTheFinalPassThenRunsOneCommandPerFrame) {
+  SceneSession session(loadParts(), RenderSettings{});
+  FakeHost host(&session);
+  ScriptRunner runner(parseScript("wait-final\nset material red diffuse 0 1 0\nsave-frame out.png\nquit 4\n", "t"));
+  host.frame(runner);
+  host.frame(runner);
+  EXPECT_EQ(host.savedFrame, "-");  // still waiting
+  host.final = true;
+  host.frame(runner);  // wait over, the edit runs
+  EXPECT_EQ(session.edits().materials[static_cast<std::size_t>(findMaterial(session.edits(), "red"))].diffuse,
+            Color(0, 1, 0));
+  EXPECT_EQ(host.savedFrame, "-");
+  host.frame(runner);
+  EXPECT_EQ(host.savedFrame, "out.png");
+  host.frame(runner);
+  EXPECT_EQ(host.exitCode, 4);
+  EXPECT_FALSE(runner.running());
+  EXPECT_FALSE(runner.failed());
+}
+
+TEST(ScriptRunner, AFailedOpenMustBeExpected) {
+  SceneSession session(loadParts(), RenderSettings{});
+  {
+    FakeHost host(&session);
+    host.error = "broken.xml:7: error: the file ends inside <vertexdata>";
+    ScriptRunner runner(parseScript("open broken.xml\nexpect-error broken.xml:7\nquit\n", "t"));
+    for (int i = 0; i < 6; ++i) host.frame(runner);
+    EXPECT_EQ(host.opened, "broken.xml");
+    EXPECT_FALSE(runner.failed()) << runner.failure();
+    EXPECT_EQ(host.exitCode, 0);
+  }
+  {
+    FakeHost host(&session);
+    host.error = "broken.xml:7: error: the file ends inside <vertexdata>";
+    ScriptRunner runner(parseScript("open broken.xml\nquit\n", "t"));
+    for (int i = 0; i < 6; ++i) host.frame(runner);
+    EXPECT_TRUE(runner.failed());
+    EXPECT_NE(runner.failure().find("t:1: open failed: broken.xml:7"), std::string::npos) << runner.failure();
+  }
+  {
+    FakeHost host(&session);
+    host.error = "other.xml:1: error: something else";
+    ScriptRunner runner(parseScript("open broken.xml\nexpect-error broken.xml:7\n", "t"));
+    for (int i = 0; i < 6; ++i) host.frame(runner);
+    EXPECT_TRUE(runner.failed());
+    EXPECT_NE(runner.failure().find("t:2: expected an error containing 'broken.xml:7'"), std::string::npos);
+  }
+}
+
+TEST(ScriptRunner, UnknownIdsFailWithTheKnownOnes) {
+  SceneSession session(loadParts(), RenderSettings{});
+  FakeHost host(&session);
+  ScriptRunner runner(parseScript("set light moon position 1 2 3\n", "t"));
+  host.frame(runner);
+  ASSERT_TRUE(runner.failed());
+  EXPECT_NE(runner.failure().find("point lights: sun; triangular lights: strip"), std::string::npos) << runner.failure();
+}
+
+TEST(ScriptRunner, WaitFinalTimesOut) {
+  FakeHost host(nullptr);
+  ScriptRunner runner(parseScript("wait-final 0.05\n", "t"));
+  host.frame(runner);
+  std::this_thread::sleep_for(std::chrono::milliseconds(80));
+  host.frame(runner);
+  ASSERT_TRUE(runner.failed());
+  EXPECT_NE(runner.failure().find("no final pass within"), std::string::npos);
+}
+
+// ------------------------------------------------------------------------------------ edits and restarts
+
+TEST(SceneEdits, ClassifiesWhatAChangeCosts) {
+  const Scene scene = loadSceneFile(kViewerScene).scene;
+  const SceneEdits before = editsOf(scene);
+  const RenderSettings settings;
+  EXPECT_EQ(classifyEdit(before, settings, before, settings), EditEffect::None);
+  SceneEdits camera = before;
+  camera.camera.position.x += 1e-9;
+  EXPECT_EQ(classifyEdit(before, settings, camera, settings), EditEffect::Restart);
+  SceneEdits material = before;
+  material.materials[1].phongExponent += 1.0f;
+  EXPECT_EQ(classifyEdit(before, settings, material, settings), EditEffect::Restart);
+  SceneEdits light = before;
+  light.triangularLights[0].vertex2.z = 0.5;
+  EXPECT_EQ(classifyEdit(before, settings, light, settings), EditEffect::Restart);
+  RenderSettings samples = settings;
+  samples.lightSamples = 16;
+  EXPECT_EQ(classifyEdit(before, settings, before, samples), EditEffect::Restart);
+  RenderSettings accel = settings;
+  accel.accel = AccelKind::Reference;
+  EXPECT_EQ(classifyEdit(before, settings, before, accel), EditEffect::Rebuild);
+}
+
+TEST(SceneEdits, RefusesWhatCannotBeRendered) {
+  const SceneEdits good = editsOf(loadSceneFile(kViewerScene).scene);
+  EXPECT_EQ(editProblem(good, RenderSettings{}), "");
+  SceneEdits e = good;
+  e.camera.gaze = glm::dvec3(0.0);
+  EXPECT_NE(editProblem(e, RenderSettings{}).find("camera"), std::string::npos);
+  e = good;
+  e.camera.width = 100000;
+  EXPECT_NE(editProblem(e, RenderSettings{}).find("too large"), std::string::npos);
+  e = good;
+  e.materials[0].diffuse.x = std::numeric_limits<float>::infinity();
+  EXPECT_NE(editProblem(e, RenderSettings{}).find("material floor"), std::string::npos);
+}
+
+TEST(SceneSession, CommitRestartsOnlyOnChangeAndKeepsMeshesOutOfSnapshots) {
+  SceneSession session(loadParts(), RenderSettings{});
+  std::string problem;
+  EXPECT_EQ(session.commit(problem), nullptr);
+  session.navigate([](OrbitCamera& o) { o.orbit(0.2, 0.1); });
+  EXPECT_TRUE(session.hasPendingEdits());
+  auto source = session.commit(problem);
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(problem, "");
+  EXPECT_FALSE(session.hasPendingEdits());
+  EXPECT_EQ(session.commit(problem), nullptr);
+  EXPECT_EQ(session.commitCount(), 1u);
+  // An invalid edit is reported and not rendered.
+  session.edits().camera.nearDistance = 0.0;
+  EXPECT_EQ(session.commit(problem), nullptr);
+  EXPECT_NE(problem, "");
+  session.edits().camera.nearDistance = 1.0;  // back to what is rendered: nothing to restart
+  EXPECT_EQ(session.commit(problem), nullptr);
+  EXPECT_EQ(problem, "");
+  session.edits().camera.nearDistance = 2.0;
+  EXPECT_NE(session.commit(problem), nullptr);
+  // What is saved has the meshes and the edits.
+  const Scene edited = session.editedScene();
+  EXPECT_EQ(edited.triangles.size(), session.loaded().triangles.size());
+  EXPECT_EQ(edited.camera.position, session.edits().camera.position);
+}
+
+TEST(SceneSession, DepthOverrideBecomesTheScenesDepth) {
+  RenderSettings settings;
+  settings.maxDepthOverride = 5;
+  SceneSession session(loadParts(), settings);
+  EXPECT_EQ(session.edits().maxRayDepth, 5);
+  EXPECT_EQ(session.settings().maxDepthOverride, -1);
+  EXPECT_EQ(session.editedScene().maxRayDepth, 5);
+}
+
+TEST(SceneSession, ResolutionEditsKeepTheNearPlanesAspect) {
+  SceneSession session(loadParts(), RenderSettings{});  // near plane 1.28 x 0.8, image 480 x 300
+  session.setResolutionKeepingAspect(800, 300, true);
+  EXPECT_EQ(session.edits().camera.width, 800);
+  EXPECT_EQ(session.edits().camera.height, 500);
+  session.setResolutionKeepingAspect(800, 100, false);
+  EXPECT_EQ(session.edits().camera.width, 160);
+  EXPECT_EQ(session.edits().camera.height, 100);
+}
+
+// ------------------------------------------------------------------------------------------ saving
+
+TEST(NumberedFile, NeverOverwritesAndLeavesNoTemporary) {
+  const fs::path directory = freshDirectory("numbered");
+  const std::string scene = (directory / "room.xml").string();
+  writeText(directory / "room_001.png", "someone else's file");
+  Image image(4, 2);
+  image.pixel(1, 1)[0] = 200;
+  const fs::path first = saveFrameNumbered(image, scene);
+  const fs::path second = saveFrameNumbered(image, scene);
+  EXPECT_EQ(first.filename(), "room_002.png");
+  EXPECT_EQ(second.filename(), "room_003.png");
+  std::ifstream untouched(directory / "room_001.png");
+  std::string text;
+  std::getline(untouched, text);
+  EXPECT_EQ(text, "someone else's file");
+  EXPECT_EQ(readImageFile(second).rgb, image.rgb);
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(directory)) {
+    ++files;
+    EXPECT_EQ(entry.path().filename().string().find(".saving"), std::string::npos) << entry.path();
+  }
+  EXPECT_EQ(files, 3);
+}
+
+TEST(NumberedFile, TheDefaultSceneSavesInTheWorkingDirectory) {
+  EXPECT_EQ(numberedFileBase(""), fs::current_path() / "default");
+  EXPECT_EQ(numberedFileBase("/a/b/scene.xml"), fs::path("/a/b/scene"));
+}
+
+// ------------------------------------------------------------------------------ watching and recent files
+
+TEST(FileWatch, SeesAChangeOnceAndNoMoreOftenThanItsInterval) {
+  const fs::path directory = freshDirectory("watch");
+  const fs::path file = directory / "scene.xml";
+  writeText(file, "one");
+  FileWatch watch;
+  watch.watch(file);
+  const auto start = std::chrono::steady_clock::now();
+  EXPECT_FALSE(watch.changed(start + kFileWatchInterval));
+  writeText(file, "two, longer");
+  EXPECT_FALSE(watch.changed(start + kFileWatchInterval + std::chrono::milliseconds(1)));  // too soon to look
+  EXPECT_TRUE(watch.changed(start + 2 * kFileWatchInterval + std::chrono::milliseconds(2)));
+  EXPECT_FALSE(watch.changed(start + 4 * kFileWatchInterval));
+  fs::remove(file);  // an editor replacing the file: a missing file is no change
+  EXPECT_FALSE(watch.changed(start + 6 * kFileWatchInterval));
+  EXPECT_GE(watch.secondsUntilNextLook(start + 6 * kFileWatchInterval), 0.0);
+}
+
+TEST(RecentFiles, NewestFirstWithoutDuplicatesAndPersisted) {
+  const fs::path directory = freshDirectory("recent");
+  const fs::path storage = directory / "config/rayview/recent.txt";
+  {
+    RecentFiles recent(storage);
+    EXPECT_TRUE(recent.paths().empty());
+    for (std::size_t i = 0; i < kMaxRecentFiles + 3; ++i) EXPECT_TRUE(recent.add("/s/" + std::to_string(i) + ".xml"));
+    EXPECT_TRUE(recent.add("/s/5.xml"));
+    EXPECT_EQ(recent.paths().size(), kMaxRecentFiles);
+    EXPECT_EQ(recent.paths().front(), "/s/5.xml");
+  }
+  RecentFiles again(storage);
+  ASSERT_EQ(again.paths().size(), kMaxRecentFiles);
+  EXPECT_EQ(again.paths()[0], "/s/5.xml");
+  EXPECT_EQ(again.paths()[1], "/s/" + std::to_string(kMaxRecentFiles + 2) + ".xml");
+}
+
+}  // namespace
+}  // namespace rayview

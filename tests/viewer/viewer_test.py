@@ -1,0 +1,524 @@
+#!/usr/bin/env python3
+"""The viewer in a real window under Xvfb (CTest label "viewer").
+
+    viewer_test.py CASE --rayview PATH --output DIR
+
+Cases:
+  interaction  real input through xdotool: wait for the final pass, drag to orbit, Ctrl+S before and after,
+               Ctrl+Shift+S ("save scene"), then `rayview render` of the saved scene equals the saved PNG (+-1)
+  script       a --script: material edit, failing load (the error shows, the old scene stays), save-scene
+  reload       the open file changes on disk: the viewer reloads it by itself; F5 reloads too
+  screenshot   the whole window (panels and image) is captured and has both
+  hidpi        on a 192-dpi screen (content scale 2) the window, the text and the panels are twice as big
+  idle-cpu     once the final pass is shown, the process uses (next to) no CPU
+  no-display   without a display: exit code 1 and one line saying how to render headless
+
+Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
+files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
+"""
+
+import argparse
+import ctypes
+import ctypes.util
+import os
+import queue
+import shutil
+import struct
+import subprocess
+import sys
+import threading
+import time
+import zlib
+
+SKIP = 77
+SCREEN = "-screen 0 1600x1000x24"
+# -noreset: the X resources set for the hidpi case must outlive the client that sets them.
+SCREENS = {"hidpi": "-screen 0 2600x1700x24 -noreset"}
+HERE = os.path.dirname(os.path.abspath(__file__))
+SCENE = os.path.join(HERE, "viewer_scene.xml")
+# Where the image area's centre is in the viewer's initial 1280x800 window: right of the 400-pixel panels.
+IMAGE_CENTRE = (840, 400)
+
+
+class Failure(Exception):
+    pass
+
+
+# ---------------------------------------------------------------------------------------------- PNG files
+
+def read_png(path):
+    """(width, height, bytes RGB) of an 8-bit RGB or RGBA, non-interlaced PNG."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        raise Failure(f"{path}: not a PNG file")
+    pos, idat, header = 8, b"", None
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            header = struct.unpack(">IIBBBBB", body)
+        elif kind == b"IDAT":
+            idat += body
+        elif kind == b"IEND":
+            break
+        pos += 12 + length
+    width, height, depth, colour, _, _, interlace = header
+    if depth != 8 or colour not in (2, 6) or interlace:
+        raise Failure(f"{path}: unsupported PNG (depth {depth}, colour type {colour}, interlace {interlace})")
+    channels = 3 if colour == 2 else 4
+    raw = zlib.decompress(idat)
+    stride = width * channels
+    rows, previous = [], bytearray(stride)
+    for y in range(height):
+        start = y * (stride + 1)
+        kind, line = raw[start], bytearray(raw[start + 1:start + 1 + stride])
+        for x in range(stride):
+            a = line[x - channels] if x >= channels else 0
+            b = previous[x]
+            c = previous[x - channels] if x >= channels else 0
+            if kind == 1:
+                line[x] = (line[x] + a) & 255
+            elif kind == 2:
+                line[x] = (line[x] + b) & 255
+            elif kind == 3:
+                line[x] = (line[x] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        previous = line
+    pixels = b"".join(rows)
+    if channels == 4:
+        pixels = bytes(v for i, v in enumerate(pixels) if i % 4 != 3)
+    return width, height, pixels
+
+
+def compare_png(a_path, b_path):
+    """(max channel difference, fraction of pixels that differ at all)."""
+    wa, ha, a = read_png(a_path)
+    wb, hb, b = read_png(b_path)
+    if (wa, ha) != (wb, hb):
+        raise Failure(f"{a_path} is {wa}x{ha} but {b_path} is {wb}x{hb}")
+    worst, differing = 0, 0
+    for i in range(0, len(a), 3):
+        d = max(abs(a[i] - b[i]), abs(a[i + 1] - b[i + 1]), abs(a[i + 2] - b[i + 2]))
+        worst = max(worst, d)
+        differing += d > 0
+    return worst, differing / (wa * ha)
+
+
+def expect_same(a, b, tolerance=1):
+    worst, fraction = compare_png(a, b)
+    if worst > tolerance:
+        raise Failure(f"{a} and {b} differ by up to {worst} per channel ({fraction:.2%} of pixels), allowed {tolerance}")
+    print(f"  same: {os.path.basename(a)} = {os.path.basename(b)} (max difference {worst})")
+
+
+def expect_different(a, b, min_fraction=0.02):
+    worst, fraction = compare_png(a, b)
+    if fraction < min_fraction:
+        raise Failure(f"{a} and {b} should show different images, but only {fraction:.2%} of pixels differ")
+    print(f"  different: {os.path.basename(a)} vs {os.path.basename(b)} ({fraction:.1%} of pixels)")
+
+
+# ------------------------------------------------------------------------------------------ the viewer
+
+class Viewer:
+    """A running `rayview`, its stdout read line by line in the background."""
+
+    def __init__(self, rayview, arguments, workdir):
+        self.command = [rayview] + arguments
+        print("  $ " + " ".join(self.command))
+        self.process = subprocess.Popen(self.command, cwd=workdir, stdout=subprocess.PIPE,
+                                        stderr=subprocess.PIPE, text=True, bufsize=1)
+        self.lines, self.stdout, self.stderr = queue.Queue(), [], []
+        threading.Thread(target=self._read, args=(self.process.stdout, self.stdout, self.lines), daemon=True).start()
+        threading.Thread(target=self._read, args=(self.process.stderr, self.stderr, None), daemon=True).start()
+
+    @staticmethod
+    def _read(stream, store, lines):
+        for line in stream:
+            store.append(line.rstrip("\n"))
+            if lines is not None:
+                lines.put(line.rstrip("\n"))
+
+    def output(self):
+        return "stdout:\n  " + "\n  ".join(self.stdout) + "\nstderr:\n  " + "\n  ".join(self.stderr)
+
+    def wait_for(self, prefix, timeout=60.0, accept=lambda line: True):
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            try:
+                line = self.lines.get(timeout=0.1)
+            except queue.Empty:
+                if self.process.poll() is not None and self.lines.empty():
+                    raise Failure(f"rayview exited ({self.process.returncode}) before printing '{prefix}'\n" +
+                                  self.output())
+                continue
+            if line.startswith(prefix) and accept(line):
+                print("  < " + line)
+                return line
+        raise Failure(f"no '{prefix}' line from rayview within {timeout} s\n" + self.output())
+
+    def wait_final(self, after_generation=0, timeout=60.0):
+        line = self.wait_for("final pass generation", timeout, lambda l: int(l.split()[-1]) > after_generation)
+        return int(line.split()[-1])
+
+    def finish(self, timeout=30.0):
+        try:
+            code = self.process.wait(timeout)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+            raise Failure("rayview did not exit\n" + self.output())
+        time.sleep(0.1)  # let the reader threads drain
+        return code
+
+    def kill(self):
+        if self.process.poll() is None:
+            self.process.kill()
+            self.process.wait()
+
+
+def run(command, **kwargs):
+    print("  $ " + " ".join(command))
+    result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kwargs)
+    if result.returncode != 0:
+        raise Failure(f"{' '.join(command)} failed ({result.returncode}):\n{result.stdout}{result.stderr}")
+    return result.stdout
+
+
+def render_headless(rayview, scene, output):
+    run([rayview, "render", scene, "-o", output, "--quiet"])
+    return output
+
+
+def xdotool(*arguments):
+    if not shutil.which("xdotool"):
+        raise Failure("xdotool is not installed (apt-get install xdotool)")
+    return run(["xdotool"] + [str(a) for a in arguments]).strip()
+
+
+def viewer_window(viewer):
+    """The X window of the viewer process, focused for keyboard input (Xvfb has no window manager)."""
+    window = xdotool("search", "--sync", "--onlyvisible", "--pid", viewer.process.pid).split()[0]
+    xdotool("mousemove", "--window", window, *IMAGE_CENTRE)
+    xdotool("windowfocus", "--sync", window)
+    return window
+
+
+def key(window, keys):
+    xdotool("mousemove", "--window", window, *IMAGE_CENTRE)
+    xdotool("key", "--clearmodifiers", keys)
+
+
+def fresh_directory(output, case):
+    directory = os.path.join(output, case)
+    shutil.rmtree(directory, ignore_errors=True)
+    os.makedirs(directory)
+    return directory
+
+
+def copy_scene(directory, name="scene.xml"):
+    path = os.path.join(directory, name)
+    shutil.copyfile(SCENE, path)
+    return path
+
+
+# ------------------------------------------------------------------------------------------- the cases
+
+def case_interaction(args, work):
+    scene = copy_scene(work)
+    viewer = Viewer(args.rayview, [scene, "--threads", "2"], work)
+    try:
+        generation = viewer.wait_final()
+        window = viewer_window(viewer)
+
+        key(window, "ctrl+s")
+        before = viewer.wait_for("saved ").split(" ", 1)[1]
+        expect_same(before, render_headless(args.rayview, scene, os.path.join(work, "file_camera_reference.png")))
+
+        # Orbit: press on the image, move in steps, release (pauses so each reaches the window as it happens).
+        x, y = IMAGE_CENTRE
+        xdotool("mousemove", "--window", window, x, y)
+        time.sleep(0.2)
+        xdotool("mousedown", 1)
+        for step in range(1, 13):
+            time.sleep(0.05)
+            xdotool("mousemove", "--window", window, x + 14 * step, y + 4 * step)
+        time.sleep(0.2)
+        xdotool("mouseup", 1)
+        generation = viewer.wait_final(after_generation=generation)
+
+        key(window, "ctrl+s")
+        after = viewer.wait_for("saved ").split(" ", 1)[1]
+        if after == before:
+            raise Failure("the second Ctrl+S overwrote the first file")
+        expect_different(before, after)
+
+        key(window, "ctrl+shift+s")
+        saved_scene = viewer.wait_for("saved scene ").split(" ", 2)[2]
+        expect_same(after, render_headless(args.rayview, saved_scene, os.path.join(work, "orbited_reference.png")))
+
+        key(window, "ctrl+q")
+        code = viewer.finish()
+        if code != 0:
+            raise Failure(f"rayview exited with {code} after Ctrl+Q\n" + viewer.output())
+    finally:
+        viewer.kill()
+
+
+def case_script(args, work):
+    scene = copy_scene(work)
+    with open(SCENE) as f:
+        text = f.read()
+    broken = os.path.join(work, "broken.xml")
+    with open(broken, "w") as f:
+        f.write(text[: len(text) * 2 // 3])  # a truncated file: an error, never a partial scene
+    script = os.path.join(work, "edit.rvs")
+    with open(script, "w") as f:
+        f.write(f"""# material edit, failing load, saving
+wait-final
+save-frame {work}/before.png
+set material red diffuse 0.1 0.8 0.9
+set light sun intensity 9000 7000 5000
+wait-final
+save-frame {work}/edited.png
+save-scene {work}/edited.xml
+open {broken}
+expect-error broken.xml:
+wait-final
+save-frame {work}/after_error.png
+print-state
+quit
+""")
+    viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
+    try:
+        code = viewer.finish(timeout=120)
+    finally:
+        viewer.kill()
+    if code != 0:
+        raise Failure(f"the script failed ({code})\n" + viewer.output())
+    print("  " + "\n  ".join(viewer.stdout))
+    state = [line for line in viewer.stdout if line.startswith("state ")]
+    if not state or "error=1" not in state[0] or not state[0].endswith("scene=" + scene):
+        raise Failure("print-state should show the error and the first scene still open\n" + viewer.output())
+    if not any("broken.xml:" in line and "error" in line for line in viewer.stderr):
+        raise Failure("the located load error should also be on stderr\n" + viewer.output())
+    expect_same(f"{work}/before.png", render_headless(args.rayview, scene, f"{work}/before_reference.png"), 0)
+    expect_different(f"{work}/before.png", f"{work}/edited.png")
+    expect_same(f"{work}/edited.png", f"{work}/after_error.png", 0)
+    expect_same(f"{work}/edited.png", render_headless(args.rayview, f"{work}/edited.xml", f"{work}/edited_reference.png"))
+
+    # A script with a mistake fails before any window opens, naming the line.
+    bad = os.path.join(work, "bad.rvs")
+    with open(bad, "w") as f:
+        f.write("wait-final\nset material red diffuse 1 2\n")
+    result = subprocess.run([args.rayview, scene, "--script", bad], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, cwd=work)
+    if result.returncode != 2 or "bad.rvs:2:" not in result.stderr:
+        raise Failure(f"a bad script should fail with exit code 2 and bad.rvs:2, got {result.returncode}: {result.stderr}")
+    print("  bad script: " + result.stderr.strip())
+
+    # A failed expectation exits non-zero with the script line.
+    failing = os.path.join(work, "failing.rvs")
+    with open(failing, "w") as f:
+        f.write("wait-final\nset material nosuch diffuse 1 1 1\nquit\n")
+    result = subprocess.run([args.rayview, scene, "--script", failing], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True, cwd=work, timeout=120)
+    if result.returncode != 1 or "failing.rvs:2:" not in result.stderr or "red" not in result.stderr:
+        raise Failure(f"a failing script should exit 1 naming line 2 and the materials: {result.returncode}: {result.stderr}")
+    print("  failing script: " + result.stderr.strip())
+
+
+def case_reload(args, work):
+    scene = copy_scene(work)
+    viewer = Viewer(args.rayview, [scene, "--threads", "2"], work)
+    try:
+        viewer.wait_for("loaded ")
+        generation = viewer.wait_final()
+        window = viewer_window(viewer)
+        key(window, "ctrl+s")
+        before = viewer.wait_for("saved ").split(" ", 1)[1]
+
+        with open(scene) as f:
+            text = f.read()
+        with open(scene + ".new", "w") as f:
+            f.write(text.replace("<background>40 48 64</background>", "<background>200 120 40</background>"))
+        time.sleep(1.1)  # a modification time the watcher can tell apart, on any file system
+        os.replace(scene + ".new", scene)
+        viewer.wait_for("reloading ", timeout=10)
+        viewer.wait_for("loaded ")
+        generation = viewer.wait_final(after_generation=generation)
+        key(window, "ctrl+s")
+        changed = viewer.wait_for("saved ").split(" ", 1)[1]
+        expect_different(before, changed)
+        expect_same(changed, render_headless(args.rayview, scene, os.path.join(work, "changed_reference.png")))
+
+        key(window, "F5")
+        viewer.wait_for("loaded ")
+        viewer.wait_final(after_generation=generation)
+        key(window, "ctrl+q")
+        if viewer.finish() != 0:
+            raise Failure("rayview did not exit cleanly\n" + viewer.output())
+    finally:
+        viewer.kill()
+
+
+def case_screenshot(args, work):
+    shot = os.path.join(work, "viewer.png")
+    script = os.path.join(work, "screenshot.rvs")
+    with open(script, "w") as f:
+        f.write(f"resize 1280 800\nwait-frames 3\nwait-final\nscreenshot {shot}\nquit\n")
+    # The embedded default scene: what `rayview` alone shows.
+    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
+    try:
+        if viewer.finish(timeout=120) != 0:
+            raise Failure("the screenshot script failed\n" + viewer.output())
+    finally:
+        viewer.kill()
+    width, height, pixels = read_png(shot)
+    if (width, height) != (1280, 800):
+        raise Failure(f"the screenshot is {width}x{height}, expected the 1280x800 window")
+
+    def region_colours(x0, x1, y0, y1):
+        return {pixels[(y * width + x) * 3:(y * width + x) * 3 + 3] for y in range(y0, y1, 2) for x in range(x0, x1, 2)}
+
+    panel = region_colours(10, 390, 10, 790)
+    image = region_colours(420, 1270, 150, 650)
+    if len(panel) < 8:
+        raise Failure(f"the panel column looks empty ({len(panel)} colours)")
+    if len(image) < 200:
+        raise Failure(f"the image area looks empty ({len(image)} colours)")
+    if len(panel & image) > 0.5 * len(panel):
+        raise Failure("the panel column and the image area look alike")
+    print(f"  screenshot {shot}: {len(panel)} colours in the panels, {len(image)} in the image")
+    if os.environ.get("RAYVIEW_UPDATE_DOCS_IMAGES"):
+        target = os.path.join(HERE, "..", "..", "docs", "images", "viewer.png")
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        shutil.copyfile(shot, target)
+        print(f"  copied to {os.path.normpath(target)}")
+
+
+def set_screen_dpi(dpi):
+    """Xft.dpi in the root window's resources, as a desktop sets it: GLFW derives the content scale from it."""
+    libx11 = ctypes.util.find_library("X11")
+    if not libx11:
+        raise Failure("libX11 not found")
+    x = ctypes.cdll.LoadLibrary(libx11)
+    x.XOpenDisplay.restype = ctypes.c_void_p
+    x.XOpenDisplay.argtypes = [ctypes.c_char_p]
+    x.XDefaultRootWindow.restype = ctypes.c_ulong
+    x.XDefaultRootWindow.argtypes = [ctypes.c_void_p]
+    x.XChangeProperty.argtypes = [ctypes.c_void_p, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_ulong, ctypes.c_int,
+                                  ctypes.c_int, ctypes.c_char_p, ctypes.c_int]
+    x.XCloseDisplay.argtypes = [ctypes.c_void_p]
+    display = x.XOpenDisplay(None)
+    if not display:
+        raise Failure("cannot open the X display")
+    resources = f"Xft.dpi:\t{dpi}\n".encode()
+    xa_resource_manager, xa_string, prop_mode_replace = 23, 31, 0  # predefined atoms (X.h, Xatom.h)
+    x.XChangeProperty(display, x.XDefaultRootWindow(display), xa_resource_manager, xa_string, 8, prop_mode_replace,
+                      resources, len(resources))
+    x.XCloseDisplay(display)
+
+
+def case_hidpi(args, work):
+    set_screen_dpi(192)
+    shot = os.path.join(work, "hidpi.png")
+    script = os.path.join(work, "hidpi.rvs")
+    with open(script, "w") as f:
+        f.write(f"wait-final\nscreenshot {shot}\nquit\n")
+    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
+    try:
+        if viewer.finish(timeout=120) != 0:
+            raise Failure("the hidpi script failed\n" + viewer.output())
+    finally:
+        viewer.kill()
+    width, height, pixels = read_png(shot)
+    if (width, height) != (2560, 1600):
+        raise Failure(f"at content scale 2 the 1280x800 window should open at 2560x1600, not {width}x{height}")
+
+    def pixel(x, y):
+        return pixels[(y * width + x) * 3:(y * width + x) * 3 + 3]
+
+    # Below the last panel header the column is empty: panel background out to twice the 400-pixel width.
+    panel = pixel(20, height - 20)
+    if pixel(780, height - 20) != panel or pixel(840, height - 20) == panel:
+        raise Failure("the panel column should be about 800 pixels wide at content scale 2")
+    print(f"  {shot}: 2560x1600, panel column about 800 pixels wide")
+
+
+def cpu_seconds(pid):
+    with open(f"/proc/{pid}/stat") as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    # utime and stime are fields 14 and 15 of the file, 12 and 13 after the command name.
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def case_idle_cpu(args, work):
+    scene = copy_scene(work)
+    viewer = Viewer(args.rayview, [scene, "--threads", "2"], work)
+    try:
+        viewer.wait_final()
+        time.sleep(0.5)  # the frames drawn right after the final pass settle
+        start, used_before = time.monotonic(), cpu_seconds(viewer.process.pid)
+        time.sleep(2.0)
+        used = cpu_seconds(viewer.process.pid) - used_before
+        share = used / (time.monotonic() - start)
+        print(f"  idle: {used * 1000:.0f} ms of CPU in 2 s ({share:.1%} of one core)")
+        if share >= 0.10:
+            raise Failure(f"the idle viewer used {share:.1%} of a core (at most 10% allowed)")
+    finally:
+        viewer.kill()
+
+
+def case_no_display(args, work):
+    env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
+    result = subprocess.run([args.rayview, SCENE], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
+                            timeout=30)
+    lines = result.stderr.strip().splitlines()
+    if result.returncode != 1 or len(lines) != 1 or "no display" not in lines[0] or "rayview render" not in lines[0]:
+        raise Failure(f"without a display: exit code {result.returncode}, stderr {result.stderr!r}")
+    print("  " + lines[0])
+
+
+CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
+         "screenshot": case_screenshot, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
+         "no-display": case_no_display}
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("case", choices=sorted(CASES))
+    parser.add_argument("--rayview", required=True)
+    parser.add_argument("--output", required=True)
+    args = parser.parse_args()
+    args.rayview = os.path.abspath(args.rayview)
+
+    if args.case != "no-display" and not os.environ.get("RAYVIEW_UNDER_XVFB"):
+        xvfb_run = shutil.which("xvfb-run")
+        if not xvfb_run:
+            print("SKIPPED: xvfb-run is not installed (apt-get install xvfb); the viewer tests need a virtual display")
+            return SKIP
+        environment = dict(os.environ, RAYVIEW_UNDER_XVFB="1")
+        screen = SCREENS.get(args.case, SCREEN)
+        return subprocess.call([xvfb_run, "-a", "-s", screen, sys.executable, os.path.abspath(__file__)] + sys.argv[1:],
+                               env=environment)
+
+    work = fresh_directory(os.path.abspath(args.output), args.case)
+    # Recent files and any other settings go to the case's directory, never to the user's ~/.config.
+    os.environ["XDG_CONFIG_HOME"] = os.path.join(work, "config")
+    started = time.monotonic()
+    try:
+        CASES[args.case](args, work)
+    except Failure as failure:
+        print(f"FAILED {args.case}: {failure}")
+        return 1
+    print(f"passed {args.case} in {time.monotonic() - started:.1f} s (files in {work})")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

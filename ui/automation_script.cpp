@@ -1,0 +1,209 @@
+#include "automation_script.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "rayview/render_settings.h"
+
+namespace rayview {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto begin = s.find_first_not_of(" \t\r");
+  if (begin == std::string::npos) return {};
+  return s.substr(begin, s.find_last_not_of(" \t\r") - begin + 1);
+}
+
+// Whitespace-separated words; "double quotes" keep spaces (for ids like "my light").
+std::vector<std::string> tokenize(const std::string& text, std::string& error) {
+  std::vector<std::string> tokens;
+  std::size_t i = 0;
+  while (i < text.size()) {
+    if (text[i] == ' ' || text[i] == '\t' || text[i] == '\r') {
+      ++i;
+      continue;
+    }
+    std::string token;
+    if (text[i] == '"') {
+      const auto close = text.find('"', i + 1);
+      if (close == std::string::npos) {
+        error = "unterminated quote";
+        return {};
+      }
+      token = text.substr(i + 1, close - i - 1);
+      i = close + 1;
+    } else {
+      while (i < text.size() && text[i] != ' ' && text[i] != '\t' && text[i] != '\r') token += text[i++];
+    }
+    tokens.push_back(token);
+  }
+  return tokens;
+}
+
+class LineParser {
+ public:
+  LineParser(ScriptCommand& command, const std::string& file) : command_(command), file_(file) {}
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw ScriptError(command_.where(file_) + ": " + message);
+  }
+
+  double number(const std::string& token) const {
+    double value = 0.0;
+    const char* begin = token.data();
+    if (!token.empty() && token[0] == '+') ++begin;
+    const auto [end, error] = std::from_chars(begin, token.data() + token.size(), value);
+    if (error != std::errc() || end != token.data() + token.size() || !std::isfinite(value))
+      fail("'" + command_.name + "' expects a number, not '" + token + "'");
+    return value;
+  }
+
+  // Takes exactly `count` numbers from tokens[from...] (and nothing after them).
+  void numbers(const std::vector<std::string>& tokens, std::size_t from, std::size_t count, const std::string& usage) {
+    if (tokens.size() != from + count) fail("usage: " + usage);
+    for (std::size_t i = from; i < tokens.size(); ++i) command_.numbers.push_back(number(tokens[i]));
+  }
+
+  void integers(const std::vector<std::string>& tokens, std::size_t from, std::size_t count, const std::string& usage,
+                double low, double high) {
+    numbers(tokens, from, count, usage);
+    for (const double v : command_.numbers)
+      if (v != std::floor(v) || v < low || v > high)
+        fail("'" + command_.name + "' expects whole numbers from " + std::to_string(static_cast<long long>(low)) +
+             " to " + std::to_string(static_cast<long long>(high)) + " (" + usage + ")");
+  }
+
+  void optionalNumber(const std::vector<std::string>& tokens, const std::string& usage) {
+    if (tokens.size() > 1) fail("usage: " + usage);
+    for (const std::string& t : tokens) command_.numbers.push_back(number(t));
+  }
+
+ private:
+  ScriptCommand& command_;
+  const std::string& file_;
+};
+
+void parseSet(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p) {
+  if (t.empty()) p.fail("'set' needs what to set: depth, background, ambient, tri-light, light-samples, ray-start, accel, material, light");
+  const std::string& what = t[0];
+  c.args = {what};
+  if (what == "depth") return p.integers(t, 1, 1, "set depth N", 0, 1000000);
+  if (what == "background" || what == "ambient") return p.numbers(t, 1, 3, "set " + what + " R G B");
+  if (what == "light-samples") return p.integers(t, 1, 1, "set light-samples N", 1, kMaxLightSamples);
+  if (what == "tri-light") {
+    TriangularLightModel model;
+    if (t.size() != 2 || !parseTriangularLightModel(t[1], model)) p.fail("usage: set tri-light area|directional");
+    c.args.push_back(t[1]);
+    return;
+  }
+  if (what == "ray-start") {
+    SecondaryRayStart start;
+    if (t.size() != 2 || !parseSecondaryRayStart(t[1], start)) p.fail("usage: set ray-start offset|exclude-hit");
+    c.args.push_back(t[1]);
+    return;
+  }
+  if (what == "accel") {
+    AccelKind kind;
+    if (t.size() != 2 || !parseAccelKind(t[1], kind)) p.fail("usage: set accel embree|reference");
+    c.args.push_back(t[1]);
+    return;
+  }
+  if (what == "material") {
+    const std::string usage = "set material ID ambient|diffuse|specular|mirror R G B, or set material ID phong|texture-factor X";
+    if (t.size() < 3) p.fail("usage: " + usage);
+    c.args = {what, t[1], t[2]};
+    const std::string& property = t[2];
+    if (property == "ambient" || property == "diffuse" || property == "specular" || property == "mirror")
+      return p.numbers(t, 3, 3, usage);
+    if (property == "phong" || property == "texture-factor") return p.numbers(t, 3, 1, usage);
+    p.fail("unknown material property '" + property + "' (" + usage + ")");
+  }
+  if (what == "light") {
+    const std::string usage = "set light ID position|intensity|vertex1|vertex2|vertex3 X Y Z";
+    if (t.size() < 3) p.fail("usage: " + usage);
+    c.args = {what, t[1], t[2]};
+    const std::string& property = t[2];
+    if (property == "position" || property == "intensity" || property == "vertex1" || property == "vertex2" ||
+        property == "vertex3")
+      return p.numbers(t, 3, 3, usage);
+    p.fail("unknown light property '" + property + "' (" + usage + ")");
+  }
+  p.fail("cannot set '" + what + "'");
+}
+
+void parseCamera(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p) {
+  if (t.empty()) p.fail("'camera' needs an action: orbit, pan, dolly, frame, reset, position, gaze, up, near-plane, near-distance, resolution");
+  const std::string& what = t[0];
+  c.args = {what};
+  if (what == "orbit") return p.numbers(t, 1, 2, "camera orbit YAW_DEGREES PITCH_DEGREES");
+  if (what == "pan") return p.numbers(t, 1, 2, "camera pan RIGHT UP (in view heights)");
+  if (what == "dolly") return p.numbers(t, 1, 1, "camera dolly WHEEL_STEPS");
+  if (what == "frame" || what == "reset") return p.numbers(t, 1, 0, "camera " + what);
+  if (what == "position" || what == "gaze" || what == "up") return p.numbers(t, 1, 3, "camera " + what + " X Y Z");
+  if (what == "near-plane") return p.numbers(t, 1, 4, "camera near-plane L R B T");
+  if (what == "near-distance") return p.numbers(t, 1, 1, "camera near-distance D");
+  if (what == "resolution") return p.integers(t, 1, 2, "camera resolution WIDTH HEIGHT", 1, 16384);
+  p.fail("unknown camera action '" + what + "'");
+}
+
+}  // namespace
+
+Script parseScript(const std::string& text, const std::string& file) {
+  Script script;
+  script.file = file;
+  std::istringstream in(text);
+  std::string raw;
+  int lineNumber = 0;
+  while (std::getline(in, raw)) {
+    ++lineNumber;
+    // Whole-line comments only: paths and expected texts may contain '#'.
+    const std::string line = trim(raw);
+    if (line.empty() || line[0] == '#') continue;
+    ScriptCommand c;
+    c.line = lineNumber;
+    const auto space = line.find_first_of(" \t");
+    c.name = line.substr(0, space);
+    const std::string rest = space == std::string::npos ? std::string() : trim(line.substr(space));
+    LineParser p(c, file);
+
+    // Commands whose argument is a path or free text: the rest of the line, spaces included.
+    if (c.name == "open" || c.name == "screenshot" || c.name == "expect-error") {
+      if (rest.empty()) p.fail("'" + c.name + "' needs " + (c.name == "expect-error" ? "the text to expect" : "a path"));
+      c.args = {rest};
+    } else if (c.name == "save-frame" || c.name == "save-scene") {
+      if (!rest.empty()) c.args = {rest};  // no path: a new numbered file next to the scene
+    } else {
+      std::string error;
+      const std::vector<std::string> tokens = tokenize(rest, error);
+      if (!error.empty()) p.fail(error);
+      if (c.name == "wait-final") p.optionalNumber(tokens, "wait-final [TIMEOUT_SECONDS]");
+      else if (c.name == "wait-frames") p.integers(tokens, 0, 1, "wait-frames N", 0, 1000000);
+      else if (c.name == "sleep") p.numbers(tokens, 0, 1, "sleep SECONDS");
+      else if (c.name == "resize") p.integers(tokens, 0, 2, "resize WIDTH HEIGHT", 64, 16384);
+      else if (c.name == "quit") {
+        if (tokens.size() > 1) p.fail("usage: quit [EXIT_CODE]");
+        if (!tokens.empty()) p.integers(tokens, 0, 1, "quit [EXIT_CODE]", 0, 255);
+      } else if (c.name == "reload" || c.name == "print-state" || c.name == "expect-no-error") {
+        if (!tokens.empty()) p.fail("'" + c.name + "' takes no arguments");
+      } else if (c.name == "set") parseSet(c, tokens, p);
+      else if (c.name == "camera") parseCamera(c, tokens, p);
+      else p.fail("unknown command '" + c.name + "' (see docs/viewer.md)");
+    }
+    if (c.name == "sleep" && c.numbers[0] < 0) p.fail("sleep needs a time that is not negative");
+    if (c.name == "wait-final" && !c.numbers.empty() && c.numbers[0] <= 0) p.fail("wait-final needs a positive timeout");
+    script.commands.push_back(std::move(c));
+  }
+  return script;
+}
+
+Script readScriptFile(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw ScriptError(path.string() + ": cannot read the script");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScript(text.str(), path.string());
+}
+
+}  // namespace rayview

@@ -1,0 +1,37 @@
+#pragma once
+// Dear ImGui on the GLFW window: context, backends, and a font sized for the monitor's content scale.
+
+struct GLFWwindow;
+
+namespace rayview {
+
+// ImGui's built-in font is drawn for this size at content scale 1.
+inline constexpr float kBaseFontPixels = 13.0f;
+
+// Scales: `contentScale` is the monitor's (glfwGetWindowContentScale: 2 on a "200%" screen);
+// `framebufferScale` is framebuffer pixels per window coordinate (1 on X11, 2 where window coordinates are
+// points, as on macOS or scaled Wayland). Fonts are rasterised at contentScale for crisp text; widget sizes,
+// which are in window coordinates, grow by contentScale / framebufferScale.
+class ImGuiLayer {
+ public:
+  ImGuiLayer(GLFWwindow* window, float contentScale, float framebufferScale);
+  ~ImGuiLayer();
+  ImGuiLayer(const ImGuiLayer&) = delete;
+  ImGuiLayer& operator=(const ImGuiLayer&) = delete;
+
+  // Rebuilds the font and widget sizes for a new content scale (the window moved to another monitor).
+  void setScale(float contentScale, float framebufferScale);
+  // How much bigger than at scale 1 things are in window coordinates (for layout).
+  float layoutScale() const { return contentScale_ / framebufferScale_; }
+
+  void beginFrame();
+  // Renders ImGui's draw lists into the bound default framebuffer.
+  void render();
+
+ private:
+  void applyScale();
+  float contentScale_ = 1.0f;
+  float framebufferScale_ = 1.0f;
+};
+
+}  // namespace rayview

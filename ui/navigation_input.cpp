@@ -1,0 +1,66 @@
+#include "navigation_input.h"
+
+#include <algorithm>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+namespace rayview {
+
+void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWantsMouse, bool imguiWantsKeyboard,
+                             double viewHeight, double imageHeight, SceneSession* session, Shortcuts& shortcuts) {
+  const double radiansPerPixel = kOrbitRadiansPerViewportHeight / std::max(viewHeight, 1.0);
+  const double viewsPerPixel = 1.0 / std::max(imageHeight, 1.0);
+  for (const InputEvent& e : events) {
+    switch (e.kind) {
+      case InputEvent::Kind::MouseButton:
+        if (e.pressed && drag_ == Drag::None && !imguiWantsMouse && session) {
+          const bool shift = (e.mods & GLFW_MOD_SHIFT) != 0;
+          if (e.button == GLFW_MOUSE_BUTTON_LEFT) drag_ = shift ? Drag::Pan : Drag::Orbit;
+          else if (e.button == GLFW_MOUSE_BUTTON_MIDDLE) drag_ = Drag::Pan;
+          if (drag_ != Drag::None) {
+            button_ = e.button;
+            lastX_ = e.x;
+            lastY_ = e.y;
+          }
+        } else if (!e.pressed && e.button == button_) {
+          drag_ = Drag::None;
+          button_ = -1;
+        }
+        break;
+      case InputEvent::Kind::CursorMove: {
+        if (drag_ == Drag::None || !session) break;
+        const double dx = e.x - lastX_, dy = e.y - lastY_;
+        lastX_ = e.x;
+        lastY_ = e.y;
+        // Grab the scene: it turns and slides with the cursor.
+        if (drag_ == Drag::Orbit)
+          session->navigate([&](OrbitCamera& o) { o.orbit(-dx * radiansPerPixel, dy * radiansPerPixel); });
+        else
+          session->navigate([&](OrbitCamera& o) { o.pan(-dx * viewsPerPixel, dy * viewsPerPixel); });
+        break;
+      }
+      case InputEvent::Kind::Scroll:
+        if (!imguiWantsMouse && session && e.y != 0.0) session->navigate([&](OrbitCamera& o) { o.dolly(e.y); });
+        break;
+      case InputEvent::Kind::Key:
+        handleKey(e, imguiWantsKeyboard, shortcuts);
+        break;
+    }
+  }
+}
+
+void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Shortcuts& shortcuts) {
+  if (!e.pressed || e.repeat) return;
+  const bool control = (e.mods & GLFW_MOD_CONTROL) != 0;
+  const bool shift = (e.mods & GLFW_MOD_SHIFT) != 0;
+  // Control shortcuts and F5 mean nothing to a text field, so they work while one is focused.
+  if (control && e.key == GLFW_KEY_S) (shift ? shortcuts.saveScene : shortcuts.saveFrame) = true;
+  else if (control && e.key == GLFW_KEY_O) shortcuts.focusOpen = true;
+  else if (control && e.key == GLFW_KEY_Q) shortcuts.quit = true;
+  else if (e.key == GLFW_KEY_F5) shortcuts.reload = true;
+  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
+  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
+}
+
+}  // namespace rayview

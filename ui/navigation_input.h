@@ -1,0 +1,42 @@
+#pragma once
+// Turns the window's mouse and keyboard events into camera navigation and shortcuts, after ImGui has
+// had the first say: a press that ImGui wants never starts a drag, a key typed into a field is no shortcut.
+
+#include <vector>
+
+#include "scene_session.h"
+#include "window.h"
+
+namespace rayview {
+
+struct Shortcuts {
+  bool frameScene = false;   // F
+  bool resetCamera = false;  // R
+  bool reload = false;       // F5
+  bool saveFrame = false;    // Ctrl+S
+  bool saveScene = false;    // Ctrl+Shift+S
+  bool focusOpen = false;    // Ctrl+O
+  bool quit = false;         // Ctrl+Q
+};
+
+class NavigationInput {
+ public:
+  // `viewHeight`: height in window coordinates of the area the image is shown in (orbit speed), and
+  // `imageHeight` of the image itself (so that a pan moves the scene with the cursor).
+  void handle(const std::vector<InputEvent>& events, bool imguiWantsMouse, bool imguiWantsKeyboard, double viewHeight,
+              double imageHeight, SceneSession* session, Shortcuts& shortcuts);
+
+  // A navigation drag is in progress (the render holds its coarse level meanwhile).
+  bool dragging() const { return drag_ != Drag::None; }
+  void cancel() { drag_ = Drag::None; }
+
+ private:
+  enum class Drag { None, Orbit, Pan };
+  void handleKey(const InputEvent& e, bool imguiWantsKeyboard, Shortcuts& shortcuts);
+
+  Drag drag_ = Drag::None;
+  int button_ = -1;
+  double lastX_ = 0.0, lastY_ = 0.0;
+};
+
+}  // namespace rayview

@@ -1,0 +1,30 @@
+#pragma once
+// Saving under a new numbered name next to the scene (scene_001.png, scene_002.png, ...), never
+// overwriting anything and never leaving a partial file under the final name.
+
+#include <filesystem>
+#include <functional>
+#include <string>
+
+#include "rayview/image.h"
+#include "rayview/scene.h"
+
+namespace rayview {
+
+inline constexpr int kMaxNumberedFiles = 9999;
+
+// Where numbered files for the scene at `scenePath` go: its directory, or the current directory for the
+// embedded default scene ("" path), with the scene's stem ("default" for the embedded scene).
+std::filesystem::path numberedFileBase(const std::string& scenePath);
+
+// Writes through `write(temporaryPath)` and then claims `<base>_NNN<extension>` with the first free NNN.
+// The claim is a hard link, which fails rather than replaces when the name exists, so a file that
+// appeared meanwhile is never overwritten. Returns the final path; throws ImageIoError.
+std::filesystem::path writeNumberedFile(const std::filesystem::path& base, const std::string& extension,
+                                        const std::function<void(const std::filesystem::path&)>& write);
+
+// Ctrl+S: the displayed frame as a PNG. Ctrl+Shift+S: the edited scene as XML.
+std::filesystem::path saveFrameNumbered(const Image& image, const std::string& scenePath);
+std::filesystem::path saveSceneNumbered(const Scene& scene, const std::string& scenePath);
+
+}  // namespace rayview

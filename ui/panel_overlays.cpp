@@ -1,0 +1,54 @@
+// Windows that float over the image: the load error and the load progress.
+#include <cfloat>
+
+#include <imgui.h>
+
+#include "panels.h"
+#include "widgets.h"
+
+namespace rayview {
+namespace {
+
+constexpr ImGuiWindowFlags kOverlayFlags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                           ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_AlwaysAutoResize |
+                                           ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing;
+
+}  // namespace
+
+float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width) {
+  if (error.empty()) return y;
+  float below = y;
+  ImGui::SetNextWindowPos(ImVec2(x, y));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, FLT_MAX));
+  ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4(0.35f, 0.06f, 0.06f, 0.94f));
+  ImGui::PushStyleColor(ImGuiCol_TitleBg, ImVec4(0.55f, 0.08f, 0.08f, 1.0f));
+  ImGui::PushStyleColor(ImGuiCol_TitleBgActive, ImVec4(0.55f, 0.08f, 0.08f, 1.0f));
+  if (ImGui::Begin("Could not load the scene", nullptr, kOverlayFlags)) {
+    ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + width - 2.0f * ImGui::GetStyle().WindowPadding.x);
+    ImGui::TextUnformatted(error.c_str());
+    ImGui::PopTextWrapPos();
+    if (!stillShowing.empty()) ImGui::TextDisabled("Still showing %s.", stillShowing.c_str());
+    if (ImGui::Button("Dismiss")) error.clear();
+    below = y + ImGui::GetWindowHeight() + ImGui::GetStyle().ItemSpacing.y;
+  }
+  ImGui::End();
+  ImGui::PopStyleColor(3);
+  return below;
+}
+
+float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width) {
+  if (!progress.busy) return y;
+  float below = y;
+  ImGui::SetNextWindowPos(ImVec2(x, y));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, FLT_MAX));
+  if (ImGui::Begin("##loading", nullptr, kOverlayFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoInputs)) {
+    ImGui::Text("Loading %s", progress.path.empty() ? "the default scene" : progress.path.c_str());
+    ImGui::ProgressBar(progress.building ? static_cast<float>(progress.fraction) : 0.0f, ImVec2(-1.0f, 0.0f),
+                       progress.building ? "building the BVH" : "reading the file");
+    below = y + ImGui::GetWindowHeight() + ImGui::GetStyle().ItemSpacing.y;
+  }
+  ImGui::End();
+  return below;
+}
+
+}  // namespace rayview

@@ -1,0 +1,77 @@
+// The "Scene" and "Save" panels: opening (path field, recent files, reload) and saving.
+#include <algorithm>
+
+#include <imgui.h>
+#include <imgui_stdlib.h>
+
+#include "panels.h"
+#include "widgets.h"
+
+namespace rayview {
+
+void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const SceneInfo& info, const LoadProgress& progress,
+                    PanelActions& actions) {
+  if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::TextWrapped("%s", info.displayName.c_str());
+  if (!info.warnings.empty()) {
+    ImGui::PushID("warnings");
+    if (ImGui::TreeNode("", "%zu warning%s", info.warnings.size(), info.warnings.size() == 1 ? "" : "s")) {
+      const std::size_t listed = std::min(info.warnings.size(), kMaxListedWarnings);
+      for (std::size_t i = 0; i < listed; ++i) ImGui::TextWrapped("%s", info.warnings[i].format().c_str());
+      if (listed < info.warnings.size()) ImGui::TextDisabled("... and %zu more", info.warnings.size() - listed);
+      ImGui::TreePop();
+    }
+    ImGui::PopID();
+  }
+
+  if (state.focusOpenPath) {
+    ImGui::SetKeyboardFocusHere();
+    state.focusOpenPath = false;
+  }
+  ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Open").x - ImGui::GetStyle().ItemSpacing.x -
+                          ImGui::GetStyle().FramePadding.x * 2.0f);
+  const bool entered = ImGui::InputTextWithHint("##open", "scene.xml path (Ctrl+O)", &state.openPath,
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if ((ImGui::Button("Open") || entered) && !state.openPath.empty()) actions.open = state.openPath;
+
+  if (ImGui::BeginCombo("Recent", recent.paths().empty() ? "(none yet)" : "choose a scene...")) {
+    for (const std::string& path : recent.paths())
+      if (ImGui::Selectable(path.c_str())) {
+        state.openPath = path;
+        actions.open = path;
+      }
+    ImGui::EndCombo();
+  }
+  if (ImGui::Button("Reload (F5)")) actions.reload = true;
+  ImGui::SameLine();
+  ImGui::Checkbox("Reload when the file changes", &state.reloadOnChange);
+  hintText("Drop a scene file on the window to open it.");
+
+  if (progress.busy) {
+    const char* what = progress.building ? "building the BVH" : "reading the file";
+    ImGui::ProgressBar(progress.building ? static_cast<float>(progress.fraction) : 0.0f, ImVec2(-1.0f, 0.0f), what);
+  }
+}
+
+void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions) {
+  if (!ImGui::CollapsingHeader("Save", ImGuiTreeNodeFlags_DefaultOpen)) return;
+  ImGui::BeginDisabled(!haveFrame);
+  if (ImGui::Button("Save frame (Ctrl+S)")) actions.saveFrame = true;
+  ImGui::EndDisabled();
+  ImGui::SameLine();
+  if (ImGui::Button("Save scene (Ctrl+Shift+S)")) actions.saveSceneNumbered = true;
+  ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Save scene as").x - ImGui::GetStyle().ItemSpacing.x -
+                          ImGui::GetStyle().FramePadding.x * 2.0f);
+  const bool entered = ImGui::InputTextWithHint("##saveas", "edited.xml", &state.saveScenePath,
+                                                ImGuiInputTextFlags_EnterReturnsTrue);
+  ImGui::SameLine();
+  if ((ImGui::Button("Save scene as") || entered) && !state.saveScenePath.empty()) actions.saveSceneAs = state.saveScenePath;
+  if (!state.lastSaved.empty()) {
+    // Read-only text field: the path can be selected and copied.
+    ImGui::SetNextItemWidth(-1.0f);
+    ImGui::InputText("##saved", &state.lastSaved, ImGuiInputTextFlags_ReadOnly);
+  }
+}
+
+}  // namespace rayview

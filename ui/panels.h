@@ -1,0 +1,86 @@
+#pragma once
+// The viewer's ImGui panels. Each draws one concern and edits only what it is given; requests that
+// need the application (open, save, reload) come back as PanelActions.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rayview/diagnostics.h"
+#include "recent_files.h"
+#include "scene_loader_task.h"
+#include "scene_session.h"
+
+namespace rayview {
+
+struct PanelActions {
+  std::optional<std::string> open;
+  bool reload = false;
+  bool saveFrame = false;
+  bool saveSceneNumbered = false;
+  std::optional<std::string> saveSceneAs;
+  bool frameScene = false;
+  bool resetCamera = false;
+};
+
+// The text fields and toggles of the file panels, kept between frames.
+struct FilePanelState {
+  std::string openPath;
+  std::string saveScenePath;
+  std::string lastSaved;  // "saved /path/scene_001.png", shown under the buttons
+  bool reloadOnChange = true;
+  bool focusOpenPath = false;
+};
+
+struct DisplayOptions {
+  bool showStats = true;  // display only: never restarts the render
+};
+
+struct CameraPanelState {
+  bool keepFieldOfView = true;  // a resolution edit changes the other side, not the near plane
+};
+
+// What the stats panel shows, gathered by the application from the renderer and the loader.
+struct ViewerStats {
+  int stride = 0;                 // of the frame on screen; 1 = full resolution
+  bool final = false;
+  double passMs = 0.0;
+  double megaRaysPerSecond = 0.0;
+  double editToFirstPassMs = -1.0;  // -1: not yet
+  double editToFinalPassMs = -1.0;
+  std::uint64_t generation = 0;
+  int width = 0, height = 0;
+  std::size_t triangles = 0;
+  double readMs = 0.0;
+  double bvhBuildMs = 0.0;
+  AccelKind accel = AccelKind::Embree;
+  int threads = 0;
+};
+
+struct SceneInfo {
+  std::string displayName;  // the path, or "default scene (embedded)"
+  const std::vector<Diagnostic>& warnings;
+};
+
+// A scene with thousands of repaired lines lists this many; the rest are counted.
+inline constexpr std::size_t kMaxListedWarnings = 200;
+
+// The panel column on the left of the window.
+void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const SceneInfo& info, const LoadProgress& progress,
+                    PanelActions& actions);
+void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions);
+void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::string& problem, PanelActions& actions);
+void drawLightsPanel(SceneEdits& edits, double sceneRadius);
+void drawMaterialsPanel(SceneEdits& edits, bool hasTexture);
+void drawRenderSettingsPanel(SceneSession& session, bool& showStats);
+
+// Over the image's bottom-right corner (`right`, `bottom`): preview level, pass time, Mrays/s, latencies, sizes.
+void drawStatsOverlay(const ViewerStats& stats, float right, float bottom);
+
+// Floating over the top of the image, one under the other: the located load error (with a dismiss button)
+// and the load progress. Each returns the y below itself (`y` when it is not shown).
+float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
+float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
+
+}  // namespace rayview

@@ -1,0 +1,84 @@
+#include "scene_session.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace rayview {
+
+SceneSession::SceneSession(LoadedSceneParts parts, RenderSettings settings)
+    : parts_(std::move(parts)), edits_(editsOf(*parts_.scene)), settings_(settings) {
+  if (settings_.maxDepthOverride >= 0) {
+    edits_.maxRayDepth = settings_.maxDepthOverride;
+    settings_.maxDepthOverride = -1;
+  }
+  settings_.accel = parts_.accel;  // what this build could actually build
+  orbit_.setHome(parts_.scene->camera, parts_.bounds);
+  committedEdits_ = edits_;
+  committedSettings_ = settings_;
+  committed_ = makeSnapshot();
+}
+
+std::shared_ptr<const Scene> SceneSession::makeSnapshot() const {
+  // Parameters only: the tracer reads the meshes from the geometry's own scene, so an edit costs the same
+  // on a 1M-triangle scene as on a cube. A render may still use the previous snapshot: it is never changed.
+  auto snapshot = std::make_shared<Scene>(parametersOf(*parts_.scene));
+  applyEdits(committedEdits_, *snapshot);
+  return snapshot;
+}
+
+Scene SceneSession::editedScene() const {
+  Scene scene = *parts_.scene;
+  applyEdits(committedEdits_, scene);
+  return scene;
+}
+
+void SceneSession::setResolutionKeepingAspect(int width, int height, bool widthChanged) {
+  Camera& c = edits_.camera;
+  const double planeAspect = std::abs(c.right - c.left) / std::abs(c.top - c.bottom);  // width / height
+  if (!(planeAspect > 0.0) || !std::isfinite(planeAspect)) {
+    c.width = width;
+    c.height = height;
+    return;
+  }
+  if (widthChanged) {
+    c.width = std::clamp(width, 1, kMaxViewerImageSide);
+    c.height = std::clamp(static_cast<int>(std::lround(c.width / planeAspect)), 1, kMaxViewerImageSide);
+  } else {
+    c.height = std::clamp(height, 1, kMaxViewerImageSide);
+    c.width = std::clamp(static_cast<int>(std::lround(c.height * planeAspect)), 1, kMaxViewerImageSide);
+  }
+}
+
+std::shared_ptr<const PixelSource> SceneSession::commit(std::string& problem) {
+  // Numeric camera fields win over navigation: the pivot follows them.
+  if (!sameCamera(edits_.camera, orbit_.camera())) orbit_.setCamera(edits_.camera);
+
+  problem = editProblem(edits_, settings_);
+  if (!problem.empty()) return nullptr;
+  RenderSettings renderSettings = settings_;
+  renderSettings.accel = committedSettings_.accel;  // the back-end is changed by replaceGeometry()
+  if (classifyEdit(committedEdits_, committedSettings_, edits_, renderSettings) != EditEffect::Restart) return nullptr;
+  committedEdits_ = edits_;
+  committedSettings_ = renderSettings;
+  committed_ = makeSnapshot();
+  ++commits_;
+  return currentSource();
+}
+
+std::shared_ptr<const PixelSource> SceneSession::currentSource() {
+  return std::make_shared<TracedImage>(committed_, parts_.geometry, committedSettings_);
+}
+
+void SceneSession::replaceGeometry(std::shared_ptr<const PreparedGeometry> geometry, AccelKind accel) {
+  parts_.geometry = std::move(geometry);
+  parts_.accel = accel;
+  committedSettings_.accel = accel;
+}
+
+bool SceneSession::hasPendingEdits() const {
+  RenderSettings renderSettings = settings_;
+  renderSettings.accel = committedSettings_.accel;
+  return classifyEdit(committedEdits_, committedSettings_, edits_, renderSettings) != EditEffect::None;
+}
+
+}  // namespace rayview

@@ -1,0 +1,83 @@
+#pragma once
+// The scene on screen: what was loaded, its prepared geometry, the user's edits and navigation, and the
+// snapshot the running render uses. Widgets, input and scripts change `edits()`, `settings()` and
+// `orbit()`; once per UI frame commit() compares them with what the render shows and, when they differ,
+// hands back a new PixelSource to restart with. UI thread only.
+
+#include <memory>
+#include <string>
+
+#include "orbit_camera.h"
+#include "rayview/pixel_source.h"
+#include "rayview/prepared_scene.h"
+#include "rayview/render_settings.h"
+#include "scene_edits.h"
+
+namespace rayview {
+
+struct LoadedSceneParts {
+  std::shared_ptr<const Scene> scene;
+  std::shared_ptr<const PreparedGeometry> geometry;
+  Bounds bounds;
+  AccelKind accel = AccelKind::Embree;  // what the geometry was built with
+};
+
+class SceneSession {
+ public:
+  // `settings.maxDepthOverride`, when set, becomes the scene's own depth so that the depth field, the
+  // render and "Save scene as" agree.
+  SceneSession(LoadedSceneParts parts, RenderSettings settings);
+
+  SceneEdits& edits() { return edits_; }
+  const SceneEdits& edits() const { return edits_; }
+  RenderSettings& settings() { return settings_; }
+  const RenderSettings& settings() const { return settings_; }
+  const Scene& loaded() const { return *parts_.scene; }
+  const PreparedGeometry& geometry() const { return *parts_.geometry; }
+  const Bounds& bounds() const { return parts_.bounds; }
+
+  // Navigation: the orbit camera changes position, gaze and up; the camera fields follow at once.
+  template <typename Move>
+  void navigate(Move&& move) {
+    move(orbit_);
+    edits_.camera = orbit_.camera();
+  }
+  const OrbitCamera& orbit() const { return orbit_; }
+
+  // Resolution edit that keeps the near plane's aspect (square pixels): the other side follows.
+  void setResolutionKeepingAspect(int width, int height, bool widthChanged);
+
+  // Once per frame, after input, script and widgets. Returns the source to restart with when something the
+  // image depends on changed and is valid; nullptr otherwise. `problem` says why an edit is not rendered.
+  std::shared_ptr<const PixelSource> commit(std::string& problem);
+  // The source for what is currently committed (first display, or after new geometry).
+  std::shared_ptr<const PixelSource> currentSource();
+
+  // The traversal back-end the settings ask for differs from the one the geometry was built with.
+  bool needsRebuild() const { return settings_.accel != parts_.accel; }
+  void replaceGeometry(std::shared_ptr<const PreparedGeometry> geometry, AccelKind accel);
+
+  // The whole scene, meshes included, with the committed edits: what is rendered, what "Save scene as"
+  // writes. A copy: for saving, not for every frame.
+  Scene editedScene() const;
+  // The loaded scene (meshes included) shared, for preparing its geometry again.
+  std::shared_ptr<const Scene> loadedShared() const { return parts_.scene; }
+  bool hasPendingEdits() const;
+
+  // Counts edits that restarted the render (for stats and tests).
+  std::uint64_t commitCount() const { return commits_; }
+
+ private:
+  std::shared_ptr<const Scene> makeSnapshot() const;
+
+  LoadedSceneParts parts_;
+  SceneEdits edits_;
+  RenderSettings settings_;
+  OrbitCamera orbit_;
+  SceneEdits committedEdits_;
+  RenderSettings committedSettings_;
+  std::shared_ptr<const Scene> committed_;
+  std::uint64_t commits_ = 0;
+};
+
+}  // namespace rayview

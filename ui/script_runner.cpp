@@ -1,0 +1,230 @@
+#include "script_runner.h"
+
+#include <cstdio>
+#include <utility>
+
+#include "scene_session.h"
+
+namespace rayview {
+namespace {
+
+constexpr double kRadiansPerDegree = 3.14159265358979323846 / 180.0;
+
+glm::dvec3 vec3(const std::vector<double>& n) { return {n[0], n[1], n[2]}; }
+Color color(const std::vector<double>& n) {
+  return {static_cast<float>(n[0]), static_cast<float>(n[1]), static_cast<float>(n[2])};
+}
+
+template <typename T>
+std::string idList(const std::vector<T>& items) {
+  std::string list;
+  for (const T& item : items) list += (list.empty() ? "" : ", ") + item.id;
+  return list.empty() ? "none" : list;
+}
+
+std::chrono::steady_clock::duration seconds(double s) {
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+}
+
+}  // namespace
+
+void ScriptRunner::fail(const std::string& message) {
+  failure_ = (current_ ? current_->where(script_.file) : script_.file) + ": " + message;
+}
+
+void ScriptRunner::step(ScriptHost& host) {
+  if (!running()) return;
+  // The script starts once the scene named on the command line is on screen (or has failed to load).
+  if (!initialLoadSeen_) {
+    if (host.loading()) return;
+    initialLoadSeen_ = true;
+  }
+  if (wait_ != Wait::None) {
+    if (!waitIsOver(host)) return;
+    const Wait finished = std::exchange(wait_, Wait::None);
+    // A failed open fails the script, unless the very next command is the expect-error that checks it.
+    if (finished == Wait::Load && !host.loadError().empty() &&
+        (next_ >= script_.commands.size() || script_.commands[next_].name != "expect-error"))
+      return fail("open failed: " + host.loadError());
+  }
+  if (next_ >= script_.commands.size()) return;
+  current_ = &script_.commands[next_++];
+  try {
+    start(*current_, host);
+  } catch (const std::exception& error) {
+    fail(error.what());
+  }
+}
+
+bool ScriptRunner::waitIsOver(ScriptHost& host) {
+  const bool late = Clock::now() >= deadline_;
+  switch (wait_) {
+    case Wait::None:
+      return true;
+    case Wait::Final:
+      if (const std::string problem = host.editProblem(); !problem.empty()) {
+        fail("the edits cannot be rendered: " + problem);
+        return false;
+      }
+      if (host.finalFrameShown() && !host.loading()) return true;
+      if (late) fail("no final pass within " + std::to_string(current_->numbers.empty() ? kDefaultWaitFinalSeconds
+                                                                                          : current_->numbers[0]) +
+                     " s");
+      return false;
+    case Wait::Load:
+      if (!host.loading()) return true;
+      if (late) fail("the scene did not load within " + std::to_string(kDefaultLoadSeconds) + " s");
+      return false;
+    case Wait::Frames:
+      return framesLeft_ == 0 || --framesLeft_ == 0;
+    case Wait::Until:
+      return late;
+  }
+  return true;
+}
+
+void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
+  const std::string& name = c.name;
+  if (name == "wait-final") {
+    wait_ = Wait::Final;
+    deadline_ = Clock::now() + seconds(c.numbers.empty() ? kDefaultWaitFinalSeconds : c.numbers[0]);
+  } else if (name == "wait-frames") {
+    wait_ = Wait::Frames;
+    framesLeft_ = static_cast<std::uint64_t>(c.numbers[0]);
+  } else if (name == "sleep") {
+    wait_ = Wait::Until;
+    deadline_ = Clock::now() + seconds(c.numbers[0]);
+  } else if (name == "open" || name == "reload") {
+    pathBeforeOpen_ = host.scenePath();
+    serialBeforeOpen_ = host.sceneSerial();
+    if (name == "open") host.open(c.args[0]);
+    else host.reload();
+    wait_ = Wait::Load;
+    deadline_ = Clock::now() + seconds(kDefaultLoadSeconds);
+  } else if (name == "expect-error") {
+    checkExpectedError(c, host);
+  } else if (name == "expect-no-error") {
+    if (!host.loadError().empty()) fail("expected no error, the error panel shows: " + host.loadError());
+  } else if (name == "set") {
+    applySet(c, host);
+  } else if (name == "camera") {
+    applyCamera(c, host);
+  } else if (name == "save-frame") {
+    host.saveFrame(c.args.empty() ? std::string() : c.args[0]);
+  } else if (name == "save-scene") {
+    host.saveScene(c.args.empty() ? std::string() : c.args[0]);
+  } else if (name == "screenshot") {
+    host.screenshot(c.args[0]);
+  } else if (name == "print-state") {
+    std::printf("%s\n", host.stateLine().c_str());
+    std::fflush(stdout);
+  } else if (name == "resize") {
+    host.resizeWindow(static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1]));
+  } else if (name == "quit") {
+    host.quit(c.numbers.empty() ? 0 : static_cast<int>(c.numbers[0]));
+  } else {
+    fail("unknown command '" + name + "'");  // parseScript lets none through
+  }
+}
+
+void ScriptRunner::checkExpectedError(const ScriptCommand& c, ScriptHost& host) {
+  const std::string error = host.loadError();
+  if (error.empty()) return fail("expected an error containing '" + c.args[0] + "', but no error is shown");
+  if (error.find(c.args[0]) == std::string::npos)
+    return fail("expected an error containing '" + c.args[0] + "', the error panel shows: " + error);
+  // The failed load must have left the previous scene on screen.
+  if (host.scenePath() != pathBeforeOpen_ || host.sceneSerial() != serialBeforeOpen_)
+    return fail("the failed load replaced the scene on screen");
+}
+
+void ScriptRunner::applySet(const ScriptCommand& c, ScriptHost& host) {
+  SceneSession* session = host.session();
+  if (!session) return fail("no scene is loaded");
+  SceneEdits& edits = session->edits();
+  RenderSettings& settings = session->settings();
+  const std::string& what = c.args[0];
+  const std::vector<double>& n = c.numbers;
+  if (what == "depth") {
+    edits.maxRayDepth = static_cast<int>(n[0]);
+  } else if (what == "background") {
+    edits.background = color(n);
+  } else if (what == "ambient") {
+    edits.ambientLight = color(n);
+  } else if (what == "light-samples") {
+    settings.lightSamples = static_cast<int>(n[0]);
+  } else if (what == "tri-light") {
+    parseTriangularLightModel(c.args[1], settings.triangularLightModel);
+  } else if (what == "ray-start") {
+    parseSecondaryRayStart(c.args[1], settings.secondaryRayStart);
+  } else if (what == "accel") {
+    parseAccelKind(c.args[1], settings.accel);
+    settings.accel = availableAccel(settings.accel);
+  } else if (what == "material") {
+    const int index = findMaterial(edits, c.args[1]);
+    if (index < 0) return fail("no material '" + c.args[1] + "' (materials: " + idList(edits.materials) + ")");
+    Material& m = edits.materials[static_cast<std::size_t>(index)];
+    const std::string& property = c.args[2];
+    if (property == "ambient") m.ambient = color(n);
+    else if (property == "diffuse") m.diffuse = color(n);
+    else if (property == "specular") m.specular = color(n);
+    else if (property == "mirror") m.mirror = color(n);
+    else if (property == "phong") m.phongExponent = static_cast<float>(n[0]);
+    else if (property == "texture-factor") m.textureFactor = static_cast<float>(n[0]);
+  } else if (what == "light") {
+    const std::string& id = c.args[1];
+    const std::string& property = c.args[2];
+    const int point = findPointLight(edits, id);
+    const int triangular = findTriangularLight(edits, id);
+    if (point >= 0 && (property == "position" || property == "intensity")) {
+      PointLight& light = edits.pointLights[static_cast<std::size_t>(point)];
+      if (property == "position") light.position = vec3(n);
+      else light.intensity = color(n);
+    } else if (triangular >= 0 && property != "position") {
+      TriangularLight& light = edits.triangularLights[static_cast<std::size_t>(triangular)];
+      if (property == "vertex1") light.vertex1 = vec3(n);
+      else if (property == "vertex2") light.vertex2 = vec3(n);
+      else if (property == "vertex3") light.vertex3 = vec3(n);
+      else light.intensity = color(n);
+    } else {
+      return fail("no light '" + id + "' with a " + property + " (point lights: " + idList(edits.pointLights) +
+                  "; triangular lights: " + idList(edits.triangularLights) + ")");
+    }
+  }
+}
+
+void ScriptRunner::applyCamera(const ScriptCommand& c, ScriptHost& host) {
+  SceneSession* session = host.session();
+  if (!session) return fail("no scene is loaded");
+  Camera& camera = session->edits().camera;
+  const std::string& what = c.args[0];
+  const std::vector<double>& n = c.numbers;
+  if (what == "orbit") {
+    session->navigate([&](OrbitCamera& o) { o.orbit(n[0] * kRadiansPerDegree, n[1] * kRadiansPerDegree); });
+  } else if (what == "pan") {
+    session->navigate([&](OrbitCamera& o) { o.pan(n[0], n[1]); });
+  } else if (what == "dolly") {
+    session->navigate([&](OrbitCamera& o) { o.dolly(n[0]); });
+  } else if (what == "frame") {
+    session->navigate([&](OrbitCamera& o) { o.frame(session->bounds()); });
+  } else if (what == "reset") {
+    session->navigate([](OrbitCamera& o) { o.reset(); });
+  } else if (what == "position") {
+    camera.position = vec3(n);
+  } else if (what == "gaze") {
+    camera.gaze = vec3(n);
+  } else if (what == "up") {
+    camera.up = vec3(n);
+  } else if (what == "near-plane") {
+    camera.left = n[0];
+    camera.right = n[1];
+    camera.bottom = n[2];
+    camera.top = n[3];
+  } else if (what == "near-distance") {
+    camera.nearDistance = n[0];
+  } else if (what == "resolution") {
+    camera.width = static_cast<int>(n[0]);
+    camera.height = static_cast<int>(n[1]);
+  }
+}
+
+}  // namespace rayview

@@ -1,0 +1,73 @@
+#pragma once
+// Runs an automation script from the UI loop: at most one command per UI frame, and a waiting command
+// (wait-final, open, sleep, wait-frames) holds the script until its condition is met or its time is up.
+// The viewer is reached only through ScriptHost, the same operations its keys and panels use.
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+
+#include "automation_script.h"
+
+namespace rayview {
+
+class SceneSession;
+
+class ScriptHost {
+ public:
+  virtual ~ScriptHost() = default;
+  virtual SceneSession* session() = 0;  // null until a scene has loaded
+  virtual void open(const std::string& path) = 0;
+  virtual void reload() = 0;
+  virtual bool loading() const = 0;
+  virtual std::string loadError() const = 0;  // what the error panel shows ("" when nothing)
+  virtual std::string scenePath() const = 0;  // the scene on screen ("" for the embedded default)
+  virtual std::uint64_t sceneSerial() const = 0;  // increases whenever another scene (or reload) goes on screen
+  // The final pass of the current edits is on screen and nothing is pending.
+  virtual bool finalFrameShown() const = 0;
+  virtual std::string editProblem() const = 0;  // why the current edits are not rendered ("" when they are)
+  virtual std::filesystem::path saveFrame(const std::string& path) = 0;  // "" = numbered; throws on failure
+  virtual std::filesystem::path saveScene(const std::string& path) = 0;  // "" = numbered; throws on failure
+  virtual void screenshot(const std::string& path) = 0;  // taken when this frame has been drawn
+  virtual std::string stateLine() const = 0;
+  virtual void resizeWindow(int width, int height) = 0;
+  virtual void quit(int exitCode) = 0;
+};
+
+class ScriptRunner {
+ public:
+  explicit ScriptRunner(Script script) : script_(std::move(script)) {}
+
+  // Runs the next command if the previous one is done. Call once per UI frame.
+  void step(ScriptHost& host);
+
+  // True until the last command has finished (including its wait) or one has failed.
+  bool running() const { return !failed() && (next_ < script_.commands.size() || wait_ != Wait::None); }
+  bool failed() const { return !failure_.empty(); }
+  const std::string& failure() const { return failure_; }  // "FILE:LINE: message"
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  enum class Wait { None, Final, Load, Frames, Until };
+
+  void start(const ScriptCommand& command, ScriptHost& host);
+  bool waitIsOver(ScriptHost& host);
+  void fail(const std::string& message);
+  void applySet(const ScriptCommand& command, ScriptHost& host);
+  void applyCamera(const ScriptCommand& command, ScriptHost& host);
+  void checkExpectedError(const ScriptCommand& command, ScriptHost& host);
+
+  Script script_;
+  std::size_t next_ = 0;
+  const ScriptCommand* current_ = nullptr;
+  Wait wait_ = Wait::None;
+  Clock::time_point deadline_{};
+  std::uint64_t framesLeft_ = 0;
+  std::string pathBeforeOpen_;
+  std::uint64_t serialBeforeOpen_ = 0;
+  bool initialLoadSeen_ = false;
+  std::string failure_;
+};
+
+}  // namespace rayview

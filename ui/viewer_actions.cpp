@@ -1,0 +1,180 @@
+// The viewer's actions, shared by keys, panels and scripts: open, reload, adopt a loaded scene, save.
+#include <cstdio>
+#include <filesystem>
+
+#include "numbered_file.h"
+#include "rayview/scene_writer.h"
+#include "viewer_app.h"
+
+namespace rayview {
+namespace {
+
+std::string describe(const std::string& path) { return path.empty() ? std::string("the default scene") : path; }
+
+// "Save scene as" starts with scene_edited.xml beside the scene, written the way the user named the scene.
+std::string suggestedSaveAsPath(const std::string& scenePath) {
+  const std::filesystem::path scene = std::filesystem::path(scenePath.empty() ? "default.xml" : scenePath);
+  return (scene.parent_path() / (scene.stem().string() + "_edited.xml")).string();
+}
+
+}  // namespace
+
+void ViewerApp::open(const std::string& path) { requestLoad(path, path == scenePath_ && session_ != nullptr); }
+
+void ViewerApp::reload() { requestLoad(scenePath_, session_ != nullptr); }
+
+void ViewerApp::quit(int exitCode) {
+  exitCode_ = exitCode;
+  quit_ = true;
+}
+
+void ViewerApp::requestLoad(const std::string& path, bool isReload) {
+  LoadRequest request;
+  request.path = path;
+  request.options = LoadOptions{command_.strict, true};
+  request.accel = session_ ? session_->settings().accel : command_.settings.accel;
+  loadError_.clear();  // the error panel shows the outcome of the newest attempt
+  awaitedLoad_ = loader_.request(std::move(request));
+  awaitedIsReload_ = isReload;
+  rebuildRequested_.reset();
+}
+
+bool ViewerApp::pollLoader() {
+  std::optional<LoadOutcome> outcome = loader_.takeOutcome();
+  if (!outcome || outcome->id != awaitedLoad_) return false;
+  awaitedLoad_ = 0;
+  if (!outcome->ok) {
+    // The scene on screen stays; the located error goes to the error panel (and stderr, for logs).
+    loadError_ = outcome->error.empty() ? "cannot load " + describe(outcome->request.path) : outcome->error;
+    std::fprintf(stderr, "rayview: %s\n", loadError_.c_str());
+    return true;
+  }
+  if (outcome->request.rebuildOf) {
+    if (session_) {
+      session_->replaceGeometry(outcome->parts.geometry, outcome->parts.accel);
+      stats_.bvhBuildMs = outcome->buildMs;
+      stats_.accel = outcome->parts.accel;
+      restartRender(session_->currentSource());
+    }
+    return true;
+  }
+  adoptScene(*outcome);
+  return true;
+}
+
+void ViewerApp::adoptScene(LoadOutcome& outcome) {
+  RenderSettings settings = command_.settings;
+  std::optional<Camera> keptCamera;
+  if (session_) {
+    // Later scenes keep the user's render settings; the depth is each scene's own.
+    settings = session_->settings();
+    settings.maxDepthOverride = -1;
+    // A reload keeps the user's view unless the file's own camera changed.
+    if (awaitedIsReload_ && sameCamera(session_->loaded().camera, outcome.parts.scene->camera))
+      keptCamera = session_->edits().camera;
+  }
+  navigation_.cancel();
+  session_ = std::make_unique<SceneSession>(std::move(outcome.parts), settings);
+  if (keptCamera) session_->edits().camera = *keptCamera;
+  scenePath_ = outcome.request.path;
+  warnings_ = std::move(outcome.warnings);
+  ++sceneSerial_;
+  loadError_.clear();
+  rebuildRequested_.reset();
+  editProblem_.clear();
+
+  stats_.triangles = session_->loaded().triangles.size();
+  stats_.readMs = outcome.readMs;
+  stats_.bvhBuildMs = outcome.buildMs;
+  stats_.accel = session_->settings().accel;
+
+  // The same file again (a reload) keeps its watch: the stamp it took when it saw the change predates this
+  // read, so a change made while the file was being read still triggers another reload.
+  if (watch_.path() != std::filesystem::path(scenePath_)) watch_.watch(scenePath_);
+  if (!scenePath_.empty()) recent_.add(scenePath_);
+  filePanel_.openPath = scenePath_;
+  if (filePanel_.saveScenePath.empty() || !awaitedIsReload_)
+    filePanel_.saveScenePath = suggestedSaveAsPath(scenePath_);
+  window_.setTitle("rayview - " + (scenePath_.empty() ? std::string("default scene") : scenePath_));
+
+  std::printf("loaded %s (%zu triangles, %zu warnings)\n", describe(scenePath_).c_str(), stats_.triangles,
+              warnings_.size());
+  std::fflush(stdout);
+  // A kept camera is committed before the first restart, so the file's view never flashes up.
+  std::shared_ptr<const PixelSource> source = session_->commit(editProblem_);
+  restartRender(source ? std::move(source) : session_->currentSource());
+}
+
+bool ViewerApp::pollFileWatch(Clock::time_point now) {
+  if (!filePanel_.reloadOnChange || loading() || !watch_.changed(now)) return false;
+  std::printf("reloading %s (changed on disk)\n", scenePath_.c_str());
+  std::fflush(stdout);
+  reload();
+  return true;
+}
+
+std::filesystem::path ViewerApp::saveFrame(const std::string& path) {
+  if (!haveFrame_) throw ImageIoError("no frame to save yet");
+  std::filesystem::path saved = path;
+  if (path.empty()) saved = saveFrameNumbered(frame_.image, scenePath_);
+  else writeImageFile(path, frame_.image);
+  filePanel_.lastSaved = "saved " + saved.string();
+  std::printf("saved %s\n", saved.string().c_str());
+  std::fflush(stdout);
+  return saved;
+}
+
+std::filesystem::path ViewerApp::saveScene(const std::string& path) {
+  if (!session_) throw ImageIoError("no scene to save yet");
+  // What is on screen: the committed edits (identical to the fields unless a field holds an invalid value).
+  const Scene scene = session_->editedScene();
+  std::filesystem::path saved = path;
+  if (path.empty()) saved = saveSceneNumbered(scene, scenePath_);
+  else writeSceneFile(path, scene);
+  filePanel_.lastSaved = "saved scene " + saved.string();
+  std::printf("saved scene %s\n", saved.string().c_str());
+  std::fflush(stdout);
+  return saved;
+}
+
+void ViewerApp::saveFrameReporting() {
+  try {
+    saveFrame({});
+  } catch (const std::exception& error) {
+    filePanel_.lastSaved = std::string("not saved: ") + error.what();
+    std::fprintf(stderr, "rayview: %s\n", filePanel_.lastSaved.c_str());
+  }
+}
+
+void ViewerApp::saveSceneReporting(const std::string& path) {
+  try {
+    saveScene(path);
+  } catch (const std::exception& error) {
+    filePanel_.lastSaved = std::string("not saved: ") + error.what();
+    std::fprintf(stderr, "rayview: %s\n", filePanel_.lastSaved.c_str());
+  }
+}
+
+std::string ViewerApp::stateLine() const {
+  auto vector = [](const glm::dvec3& v) {
+    return formatNumber(v.x) + "," + formatNumber(v.y) + "," + formatNumber(v.z);
+  };
+  std::string line = "state generation=" + std::to_string(generation_) +
+                     " stride=" + std::to_string(haveFrame_ ? frame_.stride : 0) +
+                     " final=" + (finalFrameShown() ? "1" : "0");
+  if (session_) {
+    const Camera& c = session_->edits().camera;
+    line += " position=" + vector(c.position) + " gaze=" + vector(c.gaze) + " up=" + vector(c.up) +
+            " resolution=" + std::to_string(c.width) + "x" + std::to_string(c.height) +
+            " depth=" + std::to_string(session_->edits().maxRayDepth);
+  }
+  char timings[96];
+  std::snprintf(timings, sizeof timings, " first_pass_ms=%.1f final_pass_ms=%.1f", stats_.editToFirstPassMs,
+                stats_.editToFinalPassMs);
+  line += timings;
+  line += " error=" + std::string(loadError_.empty() ? "0" : "1");
+  line += " scene=" + describe(scenePath_);
+  return line;
+}
+
+}  // namespace rayview

@@ -1,0 +1,238 @@
+// The viewer's UI loop: wait for events, pick up what the background threads produced, draw one frame.
+#include "viewer_app.h"
+
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <utility>
+
+#include <GL/gl.h>
+#include <imgui.h>
+
+#include "window_capture.h"
+
+namespace rayview {
+
+ViewerApp::ViewerApp(const CommandLine& command, std::optional<Script> script)
+    : command_(command),
+      window_("rayview", kInitialWindowWidth, kInitialWindowHeight),
+      imgui_(window_.handle(), window_.contentScale(), window_.framebufferScale()),
+      renderer_(command.threads),
+      recent_(RecentFiles::defaultStorage()) {
+  if (script) script_.emplace(std::move(*script));
+  stats_.threads = renderer_.threads();
+}
+
+ViewerApp::~ViewerApp() {
+  renderer_.restart(nullptr);  // stop the pass in flight now rather than let the renderer finish it on exit
+}
+
+int ViewerApp::run() {
+  requestLoad(command_.scenePath, false);
+  double waitSeconds = 0.0;
+  while (!quit_) {
+    window_.waitEvents(waitSeconds);
+    if (window_.shouldClose()) break;
+    const Clock::time_point now = Clock::now();
+
+    bool changed = window_.takeActivity();
+    if (window_.takeContentScaleChange()) imgui_.setScale(window_.contentScale(), window_.framebufferScale());
+    if (const std::vector<std::string> dropped = window_.takeDroppedPaths(); !dropped.empty()) open(dropped.front());
+    changed |= pollLoader();
+    changed |= pollFileWatch(now);
+    // Read before taking the frame: when the renderer was idle, its last pass is certainly taken below.
+    const bool rendererIdle = renderer_.idle();
+    changed |= takeNewFrame();
+
+    const bool scriptActive = script_ && script_->running();
+    if (changed || framesToDraw_ > 0 || scriptActive || loading() || !pendingScreenshot_.empty()) {
+      drawFrame();
+      framesToDraw_ = changed ? kSettleFrames : std::max(0, framesToDraw_ - 1);
+    }
+    if (script_ && script_->failed()) {
+      std::fprintf(stderr, "rayview: script failed: %s\n", script_->failure().c_str());
+      return 1;
+    }
+    waitSeconds = nextWaitSeconds(Clock::now(), rendererIdle);
+  }
+  return exitCode_;
+}
+
+double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) const {
+  if (framesToDraw_ > 0 || !pendingScreenshot_.empty()) return 0.0;
+  double wait = kIdleWaitSeconds;
+  if (watch_.active() && filePanel_.reloadOnChange) wait = std::min(wait, watch_.secondsUntilNextLook(now) + 0.001);
+  if (loading()) wait = std::min(wait, kLoadingPollSeconds);
+  // A pass in flight, or a script condition to check: look again soon (the renderer cannot wake us).
+  if (!rendererIdle || (script_ && script_->running())) wait = std::min(wait, kRenderingPollSeconds);
+  return wait;
+}
+
+bool ViewerApp::takeNewFrame() {
+  if (!renderer_.takeFrameIfNewer(seenVersion_, incoming_)) return false;
+  seenVersion_ = incoming_.version;
+  // A pass that was published just before the latest restart belongs to the old edits: never show it.
+  if (incoming_.generation < generation_) return false;
+  std::swap(frame_, incoming_);
+  haveFrame_ = true;
+  stats_.generation = frame_.generation;
+  stats_.editToFirstPassMs = frame_.firstPassMsSinceRestart;
+  stats_.editToFinalPassMs = frame_.final ? frame_.msSinceRestart : -1.0;
+  stats_.stride = frame_.stride;
+  stats_.final = frame_.final;
+  stats_.passMs = frame_.passMs;
+  stats_.megaRaysPerSecond = frame_.megaRaysPerSecond;
+  stats_.width = frame_.image.width;
+  stats_.height = frame_.image.height;
+  return true;
+}
+
+void ViewerApp::restartRender(std::shared_ptr<const PixelSource> source) {
+  generation_ = renderer_.restart(std::move(source));
+}
+
+void ViewerApp::commitEdits() {
+  if (!session_) return;
+  if (std::shared_ptr<const PixelSource> source = session_->commit(editProblem_)) restartRender(std::move(source));
+  // Another traversal back-end was chosen: prepare the geometry again in the background.
+  if (session_->needsRebuild() && !loading() && rebuildRequested_ != session_->settings().accel) {
+    rebuildRequested_ = session_->settings().accel;
+    LoadRequest request;
+    request.path = scenePath_;
+    request.accel = session_->settings().accel;
+    request.rebuildOf = session_->loadedShared();
+    awaitedLoad_ = loader_.request(std::move(request));
+    awaitedIsReload_ = false;
+  }
+}
+
+ViewerApp::Layout ViewerApp::layout() const {
+  const ImGuiIO& io = ImGui::GetIO();
+  Layout l;
+  l.panelWidth = std::min(kPanelWidth * imgui_.layoutScale(), io.DisplaySize.x * kMaxPanelShare);
+  l.viewX = l.panelWidth;
+  l.viewWidth = std::max(io.DisplaySize.x - l.panelWidth, 1.0f);
+  l.viewHeight = std::max(io.DisplaySize.y, 1.0f);
+  if (!texture_.empty()) {
+    // Fit the image in the view, keeping its aspect; its pixels are square.
+    const float scale = std::min(l.viewWidth / texture_.width(), l.viewHeight / texture_.height());
+    l.imageWidth = texture_.width() * scale;
+    l.imageHeight = texture_.height() * scale;
+    l.imageX = l.viewX + 0.5f * (l.viewWidth - l.imageWidth);
+    l.imageY = l.viewY + 0.5f * (l.viewHeight - l.imageHeight);
+  }
+  return l;
+}
+
+void ViewerApp::drawFrame() {
+  if (haveFrame_) texture_.update(frame_.image, frame_.version);
+  imgui_.beginFrame();
+  const ImGuiIO& io = ImGui::GetIO();
+  const Layout l = layout();
+
+  Shortcuts shortcuts;
+  navigation_.handle(window_.takeInput(), io.WantCaptureMouse, io.WantCaptureKeyboard, l.viewHeight,
+                     l.imageHeight > 0.0f ? l.imageHeight : l.viewHeight, session_.get(), shortcuts);
+  if (script_ && script_->running()) script_->step(*this);
+
+  PanelActions actions;
+  drawPanels(l, actions);
+  apply(actions, shortcuts);
+
+  // Hold the coarse level while the user drags the view or a value.
+  const bool dragging = navigation_.dragging() || (ImGui::IsAnyItemActive() && io.MouseDown[0]);
+  if (dragging != interactive_) {
+    interactive_ = dragging;
+    renderer_.setInteractive(dragging);
+  }
+  commitEdits();
+
+  if (!texture_.empty()) {
+    ImGui::GetBackgroundDrawList()->AddImage(
+        reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture_.id())), ImVec2(l.imageX, l.imageY),
+        ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight));
+  }
+
+  int framebufferWidth = 0, framebufferHeight = 0;
+  window_.framebufferSize(framebufferWidth, framebufferHeight);
+  glViewport(0, 0, framebufferWidth, framebufferHeight);
+  glClearColor(0.09f, 0.09f, 0.1f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT);
+  imgui_.render();
+  if (!pendingScreenshot_.empty()) {
+    const std::string path = std::exchange(pendingScreenshot_, {});
+    try {
+      writeImageFile(path, readWindowPixels(framebufferWidth, framebufferHeight));
+      std::printf("screenshot %s\n", path.c_str());
+      std::fflush(stdout);
+    } catch (const ImageIoError& error) {
+      filePanel_.lastSaved = std::string("screenshot failed: ") + error.what();
+      std::fprintf(stderr, "rayview: %s\n", error.what());
+    }
+  }
+  window_.swapBuffers();
+  afterSwap();
+}
+
+void ViewerApp::afterSwap() {
+  if (!haveFrame_) return;
+  shownVersion_ = frame_.version;
+  if (finalFrameShown() && announcedFinal_ != frame_.generation) {
+    announcedFinal_ = frame_.generation;
+    // Tests and tools driving the window wait for this line.
+    std::printf("final pass generation %llu\n", static_cast<unsigned long long>(frame_.generation));
+    std::fflush(stdout);
+  }
+}
+
+bool ViewerApp::finalFrameShown() const {
+  return session_ && haveFrame_ && frame_.final && frame_.generation == generation_ && shownVersion_ == frame_.version &&
+         !session_->hasPendingEdits() && !session_->needsRebuild() && editProblem_.empty();
+}
+
+void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
+  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+  ImGui::SetNextWindowSize(ImVec2(l.panelWidth, l.viewHeight));
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
+                                 ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBringToFrontOnFocus;
+  if (ImGui::Begin("rayview", nullptr, flags)) {
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // room for the labels on the right
+    const SceneInfo info{scenePath_.empty() ? (session_ ? "default scene (embedded)" : "no scene yet") : scenePath_,
+                         warnings_};
+    drawScenePanel(filePanel_, recent_, info, loader_.progress(), actions);
+    drawSavePanel(filePanel_, haveFrame_, actions);
+    if (session_) {
+      drawCameraPanel(*session_, cameraPanel_, editProblem_, actions);
+      drawRenderSettingsPanel(*session_, display_.showStats);
+      drawLightsPanel(session_->edits(), session_->bounds().radius());
+      drawMaterialsPanel(session_->edits(), session_->loaded().texture.has_value());
+    }
+    ImGui::PopItemWidth();
+  }
+  ImGui::End();
+
+  const float margin = ImGui::GetStyle().WindowPadding.x;
+  if (display_.showStats && haveFrame_)
+    drawStatsOverlay(stats_, l.viewX + l.viewWidth - margin, l.viewY + l.viewHeight - margin);
+  const std::string stillShowing =
+      session_ ? (scenePath_.empty() ? std::string("the default scene") : scenePath_) : std::string();
+  const float belowError =
+      drawErrorOverlay(loadError_, stillShowing, l.viewX + margin, l.viewY + margin, l.viewWidth - 2.0f * margin);
+  drawLoadingOverlay(loader_.progress(), l.viewX + margin, belowError,
+                     std::min(l.viewWidth - 2.0f * margin, 480.0f * imgui_.layoutScale()));
+}
+
+void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
+  if (actions.open) open(*actions.open);
+  if (actions.reload || shortcuts.reload) reload();
+  if (actions.saveFrame || shortcuts.saveFrame) saveFrameReporting();
+  if (actions.saveSceneNumbered || shortcuts.saveScene) saveSceneReporting({});
+  if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
+  if (shortcuts.focusOpen) filePanel_.focusOpenPath = true;
+  if (shortcuts.quit) quit(0);
+  if (session_ && (actions.frameScene || shortcuts.frameScene))
+    session_->navigate([&](OrbitCamera& o) { o.frame(session_->bounds()); });
+  if (session_ && (actions.resetCamera || shortcuts.resetCamera)) session_->navigate([](OrbitCamera& o) { o.reset(); });
+}
+
+}  // namespace rayview

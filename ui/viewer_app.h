@@ -1,0 +1,141 @@
+#pragma once
+// The viewer: one UI thread that sleeps until something happens, draws the newest complete pass and the
+// panels, turns input into edits and edits into restarts. It never renders, never builds a BVH and never
+// waits for either: the ProgressiveRenderer and the SceneLoaderTask do that on their own threads.
+
+#include <chrono>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "command_line.h"
+#include "file_watch.h"
+#include "image_texture.h"
+#include "imgui_layer.h"
+#include "navigation_input.h"
+#include "panels.h"
+#include "rayview/progressive_renderer.h"
+#include "recent_files.h"
+#include "scene_loader_task.h"
+#include "scene_session.h"
+#include "script_runner.h"
+#include "window.h"
+
+namespace rayview {
+
+// Frame pacing (seconds): how long the UI sleeps in each state when nothing arrives.
+inline constexpr double kRenderingPollSeconds = 1.0 / 120.0;  // passes in flight: pick them up promptly
+inline constexpr double kLoadingPollSeconds = 1.0 / 30.0;     // progress bar
+inline constexpr double kIdleWaitSeconds = 10.0;              // final image, nothing to watch
+// Frames drawn after the last event so ImGui's hover and focus state settles.
+inline constexpr int kSettleFrames = 2;
+// The panel column's width at content scale 1, and at most this share of the window.
+inline constexpr float kPanelWidth = 400.0f;
+inline constexpr float kMaxPanelShare = 0.45f;
+inline constexpr int kInitialWindowWidth = 1280;
+inline constexpr int kInitialWindowHeight = 800;
+
+class ViewerApp final : public ScriptHost {
+ public:
+  // Throws DisplayUnavailable when no window can be opened.
+  ViewerApp(const CommandLine& command, std::optional<Script> script);
+  ~ViewerApp() override;
+
+  // Runs until the window closes, Ctrl+Q, or the script quits or fails. Returns the exit code.
+  int run();
+
+  // ScriptHost: what automation (and the keys and panels) can do.
+  SceneSession* session() override { return session_.get(); }
+  void open(const std::string& path) override;
+  void reload() override;
+  bool loading() const override { return awaitedLoad_ != 0; }
+  std::string loadError() const override { return loadError_; }
+  std::string scenePath() const override { return scenePath_; }
+  std::uint64_t sceneSerial() const override { return sceneSerial_; }
+  bool finalFrameShown() const override;
+  std::string editProblem() const override { return editProblem_; }
+  std::filesystem::path saveFrame(const std::string& path) override;
+  std::filesystem::path saveScene(const std::string& path) override;
+  void screenshot(const std::string& path) override { pendingScreenshot_ = path; }
+  std::string stateLine() const override;
+  void resizeWindow(int width, int height) override { window_.setSize(width, height); }
+  void quit(int exitCode) override;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  struct Layout {
+    float panelWidth = 0.0f;
+    float viewX = 0.0f, viewY = 0.0f, viewWidth = 0.0f, viewHeight = 0.0f;      // the area for the image
+    float imageX = 0.0f, imageY = 0.0f, imageWidth = 0.0f, imageHeight = 0.0f;  // the image, aspect kept
+  };
+
+  // Loading
+  void requestLoad(const std::string& path, bool isReload);
+  bool pollLoader();
+  void adoptScene(LoadOutcome& outcome);
+  bool pollFileWatch(Clock::time_point now);
+
+  // Rendering
+  void restartRender(std::shared_ptr<const PixelSource> source);
+  bool takeNewFrame();
+  void commitEdits();
+
+  // One UI frame
+  void drawFrame();
+  Layout layout() const;
+  void drawPanels(const Layout& layout, PanelActions& actions);
+  void apply(const PanelActions& actions, const Shortcuts& shortcuts);
+  void afterSwap();
+  double nextWaitSeconds(Clock::time_point now, bool rendererIdle) const;
+
+  // Saving with a message for the user (panel and stdout) instead of an exception.
+  void saveFrameReporting();
+  void saveSceneReporting(const std::string& path);
+
+  CommandLine command_;
+  Window window_;
+  ImGuiLayer imgui_;
+  ImageTexture texture_;
+  ProgressiveRenderer renderer_;
+  SceneLoaderTask loader_;
+  RecentFiles recent_;
+  FileWatch watch_;
+  NavigationInput navigation_;
+  std::optional<ScriptRunner> script_;
+
+  // The scene on screen.
+  std::unique_ptr<SceneSession> session_;
+  std::string scenePath_;
+  std::vector<Diagnostic> warnings_;
+  std::uint64_t sceneSerial_ = 0;
+
+  // The load in progress.
+  std::uint64_t awaitedLoad_ = 0;
+  bool awaitedIsReload_ = false;
+  std::optional<AccelKind> rebuildRequested_;
+  std::string loadError_;
+
+  // The render.
+  std::uint64_t generation_ = 0;  // of the latest restart
+  ProgressiveFrame frame_;        // the newest pass of generation_ (or the last one before it): what is shown
+  ProgressiveFrame incoming_;     // scratch for takeFrameIfNewer
+  std::uint64_t seenVersion_ = 0;
+  bool haveFrame_ = false;
+  std::uint64_t shownVersion_ = 0;
+  std::uint64_t announcedFinal_ = 0;
+  bool interactive_ = false;
+  std::string editProblem_;
+  ViewerStats stats_;
+
+  FilePanelState filePanel_;
+  CameraPanelState cameraPanel_;
+  DisplayOptions display_;
+  std::string pendingScreenshot_;
+  int framesToDraw_ = kSettleFrames;
+  bool quit_ = false;
+  int exitCode_ = 0;
+};
+
+}  // namespace rayview

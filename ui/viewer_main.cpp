@@ -1,0 +1,41 @@
+// runViewer(): from the command line to a running window, or one clear line when there is no display.
+#include "viewer_main.h"
+
+#include <cstdio>
+
+#include "automation_script.h"
+#include "viewer_app.h"
+
+namespace rayview {
+namespace {
+
+int noDisplay(const CommandLine& command, const std::string& why) {
+  const std::string scene = command.scenePath.empty() ? "SCENE" : command.scenePath;
+  std::fprintf(stderr, "rayview: no display (%s); to render without a window: rayview render %s -o out.png\n",
+               why.c_str(), scene.c_str());
+  return kExitIoFailure;
+}
+
+}  // namespace
+
+int runViewer(const CommandLine& command) {
+  // The script is read and checked first: a typo fails before any window opens.
+  std::optional<Script> script;
+  if (!command.scriptPath.empty()) {
+    try {
+      script = readScriptFile(command.scriptPath);
+    } catch (const ScriptError& error) {
+      std::fprintf(stderr, "rayview: error: %s\n", error.what());
+      return kExitBadInput;
+    }
+  }
+  if (const std::string problem = Window::displayProblem(); !problem.empty()) return noDisplay(command, problem);
+  try {
+    ViewerApp app(command, std::move(script));
+    return app.run();
+  } catch (const DisplayUnavailable& error) {
+    return noDisplay(command, error.what());
+  }
+}
+
+}  // namespace rayview

@@ -1,0 +1,51 @@
+#include "widgets.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+
+#include <imgui.h>
+
+namespace rayview {
+namespace {
+
+constexpr const char* kNumberFormat = "%.6g";
+constexpr ImGuiSliderFlags kExact = ImGuiSliderFlags_NoRoundToFormat;
+
+// Drag speed proportional to the value's size, so tiny and huge scenes both drag comfortably.
+float radianceSpeed(const Color& c) { return std::max(0.5f, 0.004f * std::max({c.x, c.y, c.z})); }
+
+}  // namespace
+
+bool editPoint(const char* label, glm::dvec3& value, double speed) {
+  return ImGui::DragScalarN(label, ImGuiDataType_Double, &value.x, 3, static_cast<float>(speed), nullptr, nullptr,
+                            kNumberFormat, kExact);
+}
+
+bool editDoubles(const char* label, double* values, int count, double speed, double minimum, double maximum) {
+  return ImGui::DragScalarN(label, ImGuiDataType_Double, values, count, static_cast<float>(speed), &minimum, &maximum,
+                            kNumberFormat, kExact | ImGuiSliderFlags_AlwaysClamp);
+}
+
+bool editRadiance(const char* label, Color& value) {
+  return ImGui::DragFloat3(label, &value.x, radianceSpeed(value), 0.0f, FLT_MAX, "%.5g", kExact);
+}
+
+bool editCoefficient(const char* label, Color& value) {
+  return ImGui::ColorEdit3(label, &value.x, ImGuiColorEditFlags_Float | ImGuiColorEditFlags_HDR);
+}
+
+void problemText(const std::string& problem) {
+  if (problem.empty()) return;
+  ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+  ImGui::TextWrapped("%s", problem.c_str());
+  ImGui::PopStyleColor();
+}
+
+void hintText(const char* text) {
+  ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+  ImGui::TextWrapped("%s", text);
+  ImGui::PopStyleColor();
+}
+
+}  // namespace rayview

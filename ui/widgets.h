@@ -1,0 +1,24 @@
+#pragma once
+// Small ImGui building blocks for the panels: vectors and colours of the scene format, in its units.
+
+#include <string>
+
+#include <glm/vec3.hpp>
+
+#include "rayview/scene.h"
+
+namespace rayview {
+
+// Drag to change, double-click (or Ctrl+click) to type. Full precision kept (no rounding to the display).
+bool editPoint(const char* label, glm::dvec3& value, double speed);
+bool editDoubles(const char* label, double* values, int count, double speed, double minimum, double maximum);
+// A colour in radiance units (0..255 and beyond, lights and background).
+bool editRadiance(const char* label, Color& value);
+// A reflectance coefficient (0..1 typically, more allowed): a swatch plus three numbers.
+bool editCoefficient(const char* label, Color& value);
+// The red text under a field that explains why an edit is not rendered.
+void problemText(const std::string& problem);
+// A grey hint line.
+void hintText(const char* text);
+
+}  // namespace rayview
