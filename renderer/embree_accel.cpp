@@ -7,7 +7,15 @@
 #include <stdexcept>
 #include <string>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include <glm/common.hpp>
+
 #include "accel_backends.h"
+#include "watertight_triangle.h"
 
 namespace rayview {
 namespace {
@@ -56,6 +64,62 @@ bool relayProgress(void* ptr, double fraction) {
   return relay->callback(relay->user, fraction);
 }
 
+// Triangles as user primitives: Embree's BVH and traversal, the watertight test of watertight_triangle.h
+// in double on the camera-relative double vertices (Embree 3's own robust test misses some rays through
+// shared vertices; see docs/numerics.md).
+struct TriangleData {
+  std::vector<glm::dvec3> vertices;  // relative to the origin, in double
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+
+void triangleBounds(const RTCBoundsFunctionArguments* args) {
+  const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
+  const auto& t = data.triangles[args->primID];
+  glm::vec3 lower(INFINITY), upper(-INFINITY);
+  for (int k = 0; k < 3; ++k) {
+    lower = glm::min(lower, glm::vec3(data.vertices[t[k]]));
+    upper = glm::max(upper, glm::vec3(data.vertices[t[k]]));
+  }
+  // Embree's traversal of user geometry is not conservative at box corners; a margin keeps every ray
+  // through a vertex.
+  const float margin = 0x1p-20f * std::max({std::fabs(lower.x), std::fabs(lower.y), std::fabs(lower.z),
+                                           std::fabs(upper.x), std::fabs(upper.y), std::fabs(upper.z)});
+  lower -= margin;
+  upper += margin;
+  *args->bounds_o = RTCBounds{lower.x, lower.y, lower.z, 0.0f, upper.x, upper.y, upper.z, 0.0f};
+}
+
+template <typename Args>
+bool testTriangle(const Args* args, const RTCRay& ray, TriangleHit& hit) {
+  const auto* context = reinterpret_cast<const ExcludingContext*>(args->context);
+  if (args->primID == context->excludedTriangle) return false;
+  const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
+  const auto& t = data.triangles[args->primID];
+  const WatertightRay w = prepareWatertightRay(glm::dvec3(ray.org_x, ray.org_y, ray.org_z),
+                                               glm::dvec3(ray.dir_x, ray.dir_y, ray.dir_z));
+  return intersectWatertight(w, data.vertices[t[0]], data.vertices[t[1]], data.vertices[t[2]], ray.tnear, ray.tfar,
+                             hit);
+}
+
+void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  TriangleHit hit;
+  if (!testTriangle(args, rayHit->ray, hit)) return;
+  rayHit->ray.tfar = static_cast<float>(hit.t);
+  rayHit->hit.u = static_cast<float>(hit.b1);
+  rayHit->hit.v = static_cast<float>(hit.b2);
+  rayHit->hit.primID = args->primID;
+  rayHit->hit.geomID = args->geomID;
+}
+
+void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
+  if (!args->valid[0]) return;
+  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
+  TriangleHit hit;
+  if (testTriangle(args, *ray, hit)) ray->tfar = -INFINITY;
+}
+
 class EmbreeAccel final : public Accel {
  public:
   EmbreeAccel(const Scene& scene, const glm::dvec3& origin, BuildProgress progress, void* progressUser)
@@ -71,20 +135,16 @@ class EmbreeAccel final : public Accel {
     if (progress) rtcSetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
 
     if (!scene.triangles.empty()) {
-      RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-      auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-          geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), scene.vertices.size()));
-      auto* indices = static_cast<unsigned*>(rtcSetNewGeometryBuffer(
-          geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), scene.triangles.size()));
-      if (!vertices || !indices) throw std::runtime_error("Embree: cannot allocate the geometry buffers");
-      for (std::size_t i = 0; i < scene.vertices.size(); ++i) {
-        const glm::dvec3 relative = scene.vertices[i] - origin;  // in double, before it becomes float
-        vertices[3 * i + 0] = static_cast<float>(relative.x);
-        vertices[3 * i + 1] = static_cast<float>(relative.y);
-        vertices[3 * i + 2] = static_cast<float>(relative.z);
-      }
-      for (std::size_t i = 0; i < scene.triangles.size(); ++i)
-        for (int k = 0; k < 3; ++k) indices[3 * i + k] = scene.triangles[i].vertex[k];
+      data_.vertices.reserve(scene.vertices.size());
+      for (const glm::dvec3& v : scene.vertices) data_.vertices.push_back(v - origin);
+      data_.triangles.reserve(scene.triangles.size());
+      for (const Triangle& t : scene.triangles) data_.triangles.push_back({t.vertex[0], t.vertex[1], t.vertex[2]});
+      RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+      rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(scene.triangles.size()));
+      rtcSetGeometryUserData(geometry, &data_);
+      rtcSetGeometryBoundsFunction(geometry, triangleBounds, nullptr);
+      rtcSetGeometryIntersectFunction(geometry, intersectTriangle);
+      rtcSetGeometryOccludedFunction(geometry, occludeTriangle);
       rtcCommitGeometry(geometry);
       rtcAttachGeometry(scene_, geometry);
       rtcReleaseGeometry(geometry);
@@ -143,6 +203,7 @@ class EmbreeAccel final : public Accel {
   }
 
   RTCScene scene_ = nullptr;
+  TriangleData data_;
 };
 
 }  // namespace

@@ -1,0 +1,96 @@
+#pragma once
+// Watertight ray/triangle intersection (Woop, Benthin and Wald, "Watertight Ray/Triangle Intersection",
+// JCGT 2(1), 2013), in double precision.
+//
+// The ray is moved to a frame where it starts at the origin and runs along +z: translate by the ray
+// origin, permute the axes so that z is the largest direction component, then shear x and y so that the
+// direction becomes (0, 0, 1). In that frame the test is two-dimensional: the signs of the three edge
+// functions of the projected vertices about the origin. The transformation is the same for every triangle
+// a ray meets, so a vertex shared by two triangles lands on exactly the same sheared coordinates in both.
+//
+// Tie rule. An edge function is evaluated with its two vertices in a canonical (lexicographic) order and
+// negated when the triangle lists them the other way round. Two triangles sharing an edge therefore get
+// exactly opposite values for it, whatever the compiler does with the products (fused multiply-add or
+// not): a ray through the shared edge is inside exactly one of them, or exactly on the edge (value zero),
+// and zero counts as inside for both. Never neither. The paper's fallback (recompute in double when an
+// edge function is exactly zero in float) is not needed: everything here is already double.
+
+#include <glm/vec3.hpp>
+
+namespace rayview {
+
+// A ray prepared for the watertight test: its origin and the permutation and shear that map it onto +z.
+struct WatertightRay {
+  glm::dvec3 origin{0.0};
+  int kx = 0, ky = 1, kz = 2;
+  double shearX = 0.0, shearY = 0.0, shearZ = 1.0;
+};
+
+// `direction` must be finite and non-zero.
+inline WatertightRay prepareWatertightRay(const glm::dvec3& origin, const glm::dvec3& direction) {
+  WatertightRay r;
+  r.origin = origin;
+  const glm::dvec3 a(direction.x < 0 ? -direction.x : direction.x, direction.y < 0 ? -direction.y : direction.y,
+                     direction.z < 0 ? -direction.z : direction.z);
+  r.kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+  r.kx = (r.kz + 1) % 3;
+  r.ky = (r.kx + 1) % 3;
+  // Keep the winding (the sign of the edge functions) independent of the direction's sign.
+  if (direction[r.kz] < 0.0) {
+    const int swap = r.kx;
+    r.kx = r.ky;
+    r.ky = swap;
+  }
+  r.shearX = direction[r.kx] / direction[r.kz];
+  r.shearY = direction[r.ky] / direction[r.kz];
+  r.shearZ = 1.0 / direction[r.kz];
+  return r;
+}
+
+struct TriangleHit {
+  double t = 0.0;              // in units of |direction|
+  double b1 = 0.0, b2 = 0.0;   // weights of vertex 1 and 2 (Embree's u, v)
+};
+
+namespace watertight_detail {
+
+struct Projected {
+  double x, y;
+};
+
+// Twice the signed area of (origin, p, q): p.x q.y - p.y q.x, evaluated in a canonical order of p and q
+// so that edge(p, q) == -edge(q, p) holds bit for bit.
+inline double edgeFunction(const Projected& p, const Projected& q) {
+  const bool ordered = p.x < q.x || (p.x == q.x && p.y < q.y);
+  if (ordered) return p.x * q.y - p.y * q.x;
+  return -(q.x * p.y - q.y * p.x);
+}
+
+}  // namespace watertight_detail
+
+// Intersects the ray with triangle (v0, v1, v2); reports a hit with tNear <= t <= tFar. No back-face culling.
+inline bool intersectWatertight(const WatertightRay& ray, const glm::dvec3& v0, const glm::dvec3& v1,
+                                const glm::dvec3& v2, double tNear, double tFar, TriangleHit& hit) {
+  using watertight_detail::Projected;
+  const glm::dvec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
+  const Projected pa{a[ray.kx] - ray.shearX * a[ray.kz], a[ray.ky] - ray.shearY * a[ray.kz]};
+  const Projected pb{b[ray.kx] - ray.shearX * b[ray.kz], b[ray.ky] - ray.shearY * b[ray.kz]};
+  const Projected pc{c[ray.kx] - ray.shearX * c[ray.kz], c[ray.ky] - ray.shearY * c[ray.kz]};
+
+  // u, v, w: the edge functions opposite vertex 0, 1, 2 (so, scaled, their barycentric weights).
+  const double u = watertight_detail::edgeFunction(pc, pb);
+  const double v = watertight_detail::edgeFunction(pa, pc);
+  const double w = watertight_detail::edgeFunction(pb, pa);
+  if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
+  const double det = u + v + w;
+  if (det == 0.0) return false;  // the ray lies in the triangle's plane, or the triangle is degenerate
+
+  const double t = (u * (ray.shearZ * a[ray.kz]) + v * (ray.shearZ * b[ray.kz]) + w * (ray.shearZ * c[ray.kz])) / det;
+  if (!(t >= tNear && t <= tFar)) return false;  // also rejects NaN
+  hit.t = t;
+  hit.b1 = v / det;
+  hit.b2 = w / det;
+  return true;
+}
+
+}  // namespace rayview

@@ -1,0 +1,256 @@
+// Embree against the reference BVH on every conformance scene: random rays, same closest triangle except
+// documented ties, hit distances within a stated tolerance.
+//
+// Rays (deterministic seed): half from the camera toward uniform points of the scene's bounding box, half
+// between two uniform points of the box (as a closest-hit ray, and as an occlusion segment between them).
+//
+// Outcomes of a closest-hit ray:
+//   agree      same miss, or same triangle with |tEmbree - tReference| <= tolerance(t);
+//   tie        different triangles hit within tolerance(t) of each other: a shared edge or vertex, or
+//              coplanar overlapping triangles; either answer is right;
+//   rounding   a disagreement that the reference test itself reproduces on Embree's input: Embree works on
+//              the vertices rounded to float (relative to the camera), and a ray that grazes a silhouette
+//              edge by less than that rounding can hit in one geometry and miss in the other. Checked by
+//              running the watertight test in double on the float-rounded vertices of the triangles
+//              involved: Embree's triangle must be hit there at Embree's distance, and the reference's
+//              triangle must be missed there (or hit no closer);
+//   unexplained  anything else: must be zero.
+// tolerance(t) = kRelativeTolerance * t + kScaleTolerance * sceneScale, sceneScale the largest coordinate
+// magnitude of the scene relative to the camera (what Embree's float rounding is relative to).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+
+#include "rayview/accel.h"
+#include "rayview/scene_loader.h"
+#include "support/conformance_scenes.h"
+#include "watertight_triangle.h"
+
+namespace rayview {
+namespace {
+
+constexpr std::uint64_t kSeed = 0x5eed477aULL;
+constexpr int kRaysPerScene = 200000;  // x 16 scenes = 3.2 M closest-hit rays, plus 1.6 M occlusion segments
+constexpr double kRelativeTolerance = 1e-5;
+constexpr double kScaleTolerance = 1e-6;
+
+// SplitMix64: the same numbers on every platform and standard library.
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : state_(seed) {}
+  double uniform() {
+    std::uint64_t z = (state_ += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return static_cast<double>((z ^ (z >> 31)) >> 11) * 0x1p-53;
+  }
+
+ private:
+  std::uint64_t state_;
+};
+
+std::uint64_t fnv1a(const std::string& text) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (unsigned char c : text) h = (h ^ c) * 0x100000001b3ULL;
+  return h;
+}
+
+struct Tally {
+  long rays = 0, agree = 0, ties = 0, rounding = 0, unexplained = 0;
+  long roundingDistance = 0;  // of `rounding`: same triangle, distance beyond tolerance
+  long segments = 0, occlusionAgree = 0, occlusionRounding = 0, occlusionUnexplained = 0;
+  double maxRelativeError = 0.0;  // |tEmbree - tReference| / t, same-triangle hits at t >= sceneScale / 100
+  double maxToleranceUse = 0.0;   // |tEmbree - tReference| / tolerance(t), same-triangle hits
+};
+
+class Agreement {
+ public:
+  Agreement(const Scene& scene, const Accel& embree, const Accel& reference)
+      : scene_(scene), embree_(embree), reference_(reference) {
+    const glm::dvec3 origin = reference.origin();
+    for (const glm::dvec3& v : scene.vertices) {
+      exact_.push_back(v - origin);
+      rounded_.push_back(glm::dvec3(glm::vec3(v - origin)));  // what Embree is given
+      lower_ = glm::min(lower_, v);
+      upper_ = glm::max(upper_, v);
+      sceneScale_ = std::max(sceneScale_, std::max({std::fabs(v.x - origin.x), std::fabs(v.y - origin.y),
+                                                    std::fabs(v.z - origin.z)}));
+    }
+  }
+
+  const glm::dvec3& lower() const { return lower_; }
+  const glm::dvec3& upper() const { return upper_; }
+
+  double tolerance(double t) const { return kRelativeTolerance * t + kScaleTolerance * sceneScale_; }
+
+  void closestHit(const Ray& ray, Tally& tally) {
+    ++tally.rays;
+    const std::optional<Hit> e = embree_.closestHit(ray), r = reference_.closestHit(ray);
+    if (!e && !r) {
+      ++tally.agree;
+      return;
+    }
+    if (e && r && e->triangle == r->triangle) {
+      const double error = std::fabs(double(e->t) - double(r->t));
+      if (r->t >= 0.01 * sceneScale_) tally.maxRelativeError = std::max(tally.maxRelativeError, error / r->t);
+      tally.maxToleranceUse = std::max(tally.maxToleranceUse, error / tolerance(r->t));
+      if (error <= tolerance(r->t)) {
+        ++tally.agree;
+        return;
+      }
+      if (explainedByRounding(ray, e, r)) {
+        ++tally.rounding;
+        ++tally.roundingDistance;
+        return;
+      }
+    } else if (e && r && std::fabs(double(e->t) - double(r->t)) <= tolerance(r->t)) {
+      ++tally.ties;
+      return;
+    }
+    if (explainedByRounding(ray, e, r)) {
+      ++tally.rounding;
+    } else {
+      ++tally.unexplained;
+      if (tally.unexplained <= 5) report(ray, e, r);
+    }
+  }
+
+  void occlusion(const Ray& segment, Tally& tally) {
+    ++tally.segments;
+    const bool e = embree_.occluded(segment), r = reference_.occluded(segment);
+    if (e == r) {
+      ++tally.occlusionAgree;
+      return;
+    }
+    // Explained when the nearest hit lies within tolerance of the segment's end or start, or when the
+    // closest-hit answers themselves differ only by rounding.
+    Ray open = segment;
+    open.tFar = INFINITY;
+    const std::optional<Hit> ce = embree_.closestHit(open), cr = reference_.closestHit(open);
+    const double end = segment.tFar;
+    auto nearEnd = [&](const std::optional<Hit>& h) { return h && std::fabs(h->t - end) <= tolerance(end); };
+    if (nearEnd(ce) || nearEnd(cr) || explainedByRounding(open, ce, cr)) {
+      ++tally.occlusionRounding;
+    } else {
+      ++tally.occlusionUnexplained;
+    }
+  }
+
+ private:
+  // The watertight test in double on one triangle, with its exact or float-rounded vertices.
+  std::optional<double> test(const Ray& ray, std::uint32_t triangle, bool rounded) const {
+    const std::vector<glm::dvec3>& v = rounded ? rounded_ : exact_;
+    const Triangle& t = scene_.triangles[triangle];
+    const WatertightRay w = prepareWatertightRay(glm::dvec3(ray.origin), glm::dvec3(ray.direction));
+    TriangleHit hit;
+    if (!intersectWatertight(w, v[t.vertex[0]], v[t.vertex[1]], v[t.vertex[2]], ray.tNear, INFINITY, hit))
+      return std::nullopt;
+    return hit.t;
+  }
+
+  bool explainedByRounding(const Ray& ray, const std::optional<Hit>& e, const std::optional<Hit>& r) const {
+    if (e) {
+      const std::optional<double> t = test(ray, e->triangle, true);
+      if (!t || std::fabs(*t - e->t) > tolerance(e->t)) return false;
+    }
+    if (r) {
+      const std::optional<double> t = test(ray, r->triangle, true);
+      if (t && (!e || *t < e->t - tolerance(e->t))) return false;
+    }
+    return true;
+  }
+
+  void report(const Ray& ray, const std::optional<Hit>& e, const std::optional<Hit>& r) const {
+    auto describe = [](const std::optional<Hit>& h) {
+      char text[96];
+      if (!h) return std::string("miss");
+      std::snprintf(text, sizeof text, "triangle %u at t=%.9g (b1 %.6g, b2 %.6g)", h->triangle, h->t, h->b1, h->b2);
+      return std::string(text);
+    };
+    ADD_FAILURE() << "unexplained disagreement: ray from (" << ray.origin.x << ", " << ray.origin.y << ", "
+                  << ray.origin.z << ") along (" << ray.direction.x << ", " << ray.direction.y << ", "
+                  << ray.direction.z << "): Embree " << describe(e) << ", reference " << describe(r);
+  }
+
+  const Scene& scene_;
+  const Accel& embree_;
+  const Accel& reference_;
+  std::vector<glm::dvec3> exact_, rounded_;
+  glm::dvec3 lower_{INFINITY}, upper_{-INFINITY};
+  double sceneScale_ = 0.0;
+};
+
+class AccelAgreement : public ::testing::TestWithParam<std::filesystem::path> {
+ public:
+  static void TearDownTestSuite() {
+    if (total.rays == 0) return;
+    std::printf("[ figures  ] all scenes: %ld rays, %.4f %% agree, %ld ties, %ld rounding, %ld unexplained; "
+                "%ld segments, %ld unexplained occlusion answers\n",
+                total.rays, 100.0 * total.agree / total.rays, total.ties, total.rounding, total.unexplained,
+                total.segments, total.occlusionUnexplained);
+  }
+  static inline Tally total;  // over the scenes run in this process
+};
+
+TEST_P(AccelAgreement, SameClosestTriangleAndDistance) {
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
+  const auto start = std::chrono::steady_clock::now();
+  const Scene scene = loadSceneFile(GetParam()).scene;
+  const glm::dvec3 origin = scene.camera.position;
+  const std::unique_ptr<Accel> embree = buildAccel(scene, AccelKind::Embree, origin);
+  const std::unique_ptr<Accel> reference = buildAccel(scene, AccelKind::Reference, origin);
+  ASSERT_TRUE(embree && reference);
+  Agreement agreement(scene, *embree, *reference);
+
+  Random random(kSeed ^ fnv1a(GetParam().filename().string()));
+  auto pointInBox = [&] {
+    const glm::dvec3 f(random.uniform(), random.uniform(), random.uniform());
+    return agreement.lower() + f * (agreement.upper() - agreement.lower()) - origin;
+  };
+  Tally tally;
+  for (int k = 0; k < kRaysPerScene; ++k) {
+    const bool fromCamera = k % 2 == 0;
+    const glm::dvec3 a = fromCamera ? glm::dvec3(0.0) : pointInBox();
+    const glm::dvec3 b = pointInBox();
+    const double length = glm::length(b - a);
+    if (!(length > 0.0)) continue;
+    const Ray ray{glm::vec3(a), glm::vec3((b - a) / length), 0.0f, INFINITY};
+    agreement.closestHit(ray, tally);
+    if (!fromCamera) agreement.occlusion(Ray{ray.origin, ray.direction, 0.0f, static_cast<float>(length)}, tally);
+  }
+
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("[ figures  ] %s: %ld rays, %.4f %% agree, %ld ties, %ld rounding (%ld of them distance only), "
+              "%ld unexplained; max |dt|/t %.1e, max |dt| %.2f x tolerance; %ld segments: %ld occlusion answers "
+              "differ (%ld rounding, %ld unexplained); %.1f s\n",
+              GetParam().stem().string().c_str(), tally.rays, 100.0 * tally.agree / tally.rays, tally.ties,
+              tally.rounding, tally.roundingDistance, tally.unexplained, tally.maxRelativeError, tally.maxToleranceUse,
+              tally.segments, tally.segments - tally.occlusionAgree, tally.occlusionRounding,
+              tally.occlusionUnexplained, seconds);
+  total.rays += tally.rays;
+  total.agree += tally.agree;
+  total.ties += tally.ties;
+  total.rounding += tally.rounding;
+  total.unexplained += tally.unexplained;
+  total.segments += tally.segments;
+  total.occlusionUnexplained += tally.occlusionUnexplained;
+  EXPECT_EQ(tally.unexplained, 0);
+  EXPECT_EQ(tally.occlusionUnexplained, 0);
+  EXPECT_EQ(tally.agree + tally.ties + tally.rounding + tally.unexplained, tally.rays);
+}
+
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(AccelAgreement);
+INSTANTIATE_TEST_SUITE_P(Conformance, AccelAgreement, ::testing::ValuesIn(testing::conformanceScenePaths()),
+                         [](const auto& info) { return info.param.stem().string(); });
+
+}  // namespace
+}  // namespace rayview
