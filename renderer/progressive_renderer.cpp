@@ -45,6 +45,11 @@ std::uint64_t ProgressiveRenderer::restart(std::shared_ptr<const PixelSource> so
   return generation;
 }
 
+void ProgressiveRenderer::setFrameListener(std::function<void()> listener) {
+  std::lock_guard lock(mutex_);
+  frameListener_ = std::move(listener);
+}
+
 void ProgressiveRenderer::setInteractive(bool interactive) {
   {
     std::lock_guard lock(mutex_);
@@ -171,13 +176,18 @@ void ProgressiveRenderer::publish(const PixelSource& source, std::uint64_t gener
       for (int x = 0; x < width; ++x) std::memcpy(row + 3 * x, sourceRow + 3 * (x - x % stride), 3);
     }
   }
-  std::lock_guard lock(mutex_);
-  if (generation_.load() != generation) return;  // stale: an edit arrived while this pass finished
-  frame.version = published_.version + 1;
-  frame.msSinceRestart = msBetween(restartTime, Clock::now());
-  if (published_.generation != generation) firstPassMs_ = frame.msSinceRestart;
-  frame.firstPassMsSinceRestart = firstPassMs_;
-  published_ = std::move(frame);
+  std::function<void()> listener;
+  {
+    std::lock_guard lock(mutex_);
+    if (generation_.load() != generation) return;  // stale: an edit arrived while this pass finished
+    frame.version = published_.version + 1;
+    frame.msSinceRestart = msBetween(restartTime, Clock::now());
+    if (published_.generation != generation) firstPassMs_ = frame.msSinceRestart;
+    frame.firstPassMsSinceRestart = firstPassMs_;
+    published_ = std::move(frame);
+    listener = frameListener_;
+  }
+  if (listener) listener();
 }
 
 void ProgressiveRenderer::adaptFirstStride(int stride, double passMs) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include <GL/gl.h>
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "window_capture.h"
@@ -21,6 +22,8 @@ ViewerApp::ViewerApp(const CommandLine& command, std::optional<Script> script)
       recent_(RecentFiles::defaultStorage()) {
   if (script) script_.emplace(std::move(*script));
   stats_.threads = renderer_.threads();
+  // Wake the UI loop when a pass is published, so it can sleep while passes render.
+  renderer_.setFrameListener([] { glfwPostEmptyEvent(); });
 }
 
 ViewerApp::~ViewerApp() {
@@ -63,8 +66,9 @@ double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) cons
   double wait = kIdleWaitSeconds;
   if (watch_.active() && filePanel_.reloadOnChange) wait = std::min(wait, watch_.secondsUntilNextLook(now) + 0.001);
   if (loading()) wait = std::min(wait, kLoadingPollSeconds);
-  // A pass in flight, or a script condition to check: look again soon (the renderer cannot wake us).
-  if (!rendererIdle || (script_ && script_->running())) wait = std::min(wait, kRenderingPollSeconds);
+  // A script condition to check: look again soon. A pass in flight wakes us when it is published.
+  if (script_ && script_->running()) wait = std::min(wait, kRenderingPollSeconds);
+  if (!rendererIdle) wait = std::min(wait, kRenderingFallbackSeconds);
   return wait;
 }
 

@@ -26,7 +26,10 @@
 namespace rayview {
 
 // Frame pacing (seconds): how long the UI sleeps in each state when nothing arrives.
-inline constexpr double kRenderingPollSeconds = 1.0 / 120.0;  // passes in flight: pick them up promptly
+// A pass in flight wakes the loop itself (the renderer's frame listener posts an empty event); this is
+// only the fallback, and the rate at which a running script's conditions are checked.
+inline constexpr double kRenderingPollSeconds = 1.0 / 120.0;
+inline constexpr double kRenderingFallbackSeconds = 0.25;
 inline constexpr double kLoadingPollSeconds = 1.0 / 30.0;     // progress bar
 inline constexpr double kIdleWaitSeconds = 10.0;              // final image, nothing to watch
 // Frames drawn after the last event so ImGui's hover and focus state settles.

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -51,6 +52,10 @@ class ProgressiveRenderer {
   // Cancels the running render (without waiting) and starts `source` from its first pass.
   // Returns the new generation. A null source just cancels.
   std::uint64_t restart(std::shared_ptr<const PixelSource> source);
+
+  // Called on the renderer's thread after each publication (the viewer posts an empty event to wake its
+  // UI loop, so it can sleep while a pass renders). Must be cheap and thread-safe. Set it before restart().
+  void setFrameListener(std::function<void()> listener);
 
   // While true (the user is dragging), only the first pass of each restart is rendered.
   void setInteractive(bool interactive);
@@ -93,6 +98,7 @@ class ProgressiveRenderer {
   Image samples_;
   ProgressiveFrame published_;  // guarded by mutex_
   double firstPassMs_ = 0.0;     // of the generation being rendered; guarded by mutex_
+  std::function<void()> frameListener_;  // guarded by mutex_
   std::uint64_t finalGeneration_ = 0;  // guarded by mutex_
 
   std::thread controller_;
