@@ -25,18 +25,14 @@ float justBefore(float distance) { return distance * (1.0f - 1e-6f); }
 ShadingGeometry prepareShadingGeometry(const Scene& scene, const glm::dvec3& origin) {
   ShadingGeometry g;
   g.vertices.reserve(scene.vertices.size());
-  for (const glm::dvec3& v : scene.vertices) g.vertices.push_back(toFloat(v - origin));
+  for (const glm::dvec3& v : scene.vertices) g.vertices.push_back(v - origin);
   g.faceNormals.reserve(scene.triangles.size());
-  g.coordinateScale.reserve(scene.triangles.size());
   for (const Triangle& t : scene.triangles) {
-    // Normal in double from the world positions: exact whatever the origin.
+    // Normal from the world positions: exact whatever the origin.
     const glm::dvec3& a = scene.vertices[t.vertex[0]];
     const glm::dvec3 n = glm::cross(scene.vertices[t.vertex[1]] - a, scene.vertices[t.vertex[2]] - a);
     const double length = glm::length(n);
-    g.faceNormals.push_back(length > 0.0 ? toFloat(n / length) : glm::vec3(0.0f, 0.0f, 1.0f));
-    g.coordinateScale.push_back(std::max({maxAbsComponent(g.vertices[t.vertex[0]]),
-                                          maxAbsComponent(g.vertices[t.vertex[1]]),
-                                          maxAbsComponent(g.vertices[t.vertex[2]])}));
+    g.faceNormals.push_back(length > 0.0 ? n / length : glm::dvec3(0.0, 0.0, 1.0));
   }
   return g;
 }
@@ -98,12 +94,13 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
   const Triangle& triangle = meshes_.triangles[hit.triangle];
   const Material& material = scene_.materials[triangle.material];
   const float b0 = 1.0f - hit.b1 - hit.b2;
-  const glm::vec3& a = geometry_.vertices[triangle.vertex[0]];
-  const glm::vec3& b = geometry_.vertices[triangle.vertex[1]];
-  const glm::vec3& c = geometry_.vertices[triangle.vertex[2]];
-  // The point from the barycentrics lies on the triangle to within rounding, wherever the ray came from.
-  const glm::vec3 p = b0 * a + hit.b1 * b + hit.b2 * c;
-  const glm::vec3& ng = geometry_.faceNormals[hit.triangle];
+  const glm::dvec3& a = geometry_.vertices[triangle.vertex[0]];
+  // In double from the barycentrics: on the triangle's plane to double rounding, whatever the ray was.
+  const glm::dvec3 pExact = a + double(hit.b1) * (geometry_.vertices[triangle.vertex[1]] - a) +
+                            double(hit.b2) * (geometry_.vertices[triangle.vertex[2]] - a);
+  const glm::dvec3& ngExact = geometry_.faceNormals[hit.triangle];
+  const glm::vec3 p = toFloat(pExact);
+  const glm::vec3 ng = toFloat(ngExact);
   glm::vec3 n = ng;
   if (triangle.hasNormals()) {
     const glm::vec3 interpolated = b0 * meshes_.normals[triangle.normal[0]] + hit.b1 * meshes_.normals[triangle.normal[1]] +
@@ -113,15 +110,14 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
   }
   const glm::vec3 d = glm::normalize(ray.direction);
   const glm::vec3 toEye = -d;
-  const float scale = std::max(geometry_.coordinateScale[hit.triangle], maxAbsComponent(p));
   const bool excludeHit = settings_.secondaryRayStart == SecondaryRayStart::ExcludeHitTriangle;
   const bool fixedEpsilon = scene_.shadowRayEpsilon.has_value();
-  const float epsilon = fixedEpsilon ? static_cast<float>(*scene_.shadowRayEpsilon) : 0.0f;
+  const double epsilon = fixedEpsilon ? *scene_.shadowRayEpsilon : 0.0;
   // A secondary ray leaving the surface along `direction`.
   auto secondaryRay = [&](const glm::vec3& direction) {
     if (excludeHit) return Ray{p, direction, 0.0f, kInfinity, hit.triangle};
-    const glm::vec3 origin = fixedEpsilon ? p + epsilon * ng : offsetRayOrigin(p, ng, direction, scale);
-    return Ray{origin, direction, 0.0f, kInfinity};
+    const glm::dvec3 origin = fixedEpsilon ? pExact + epsilon * ngExact : offsetRayOrigin(pExact, ngExact, direction);
+    return Ray{toFloat(origin), direction, 0.0f, kInfinity};
   };
 
   Color color = material.ambient * scene_.ambientLight;

@@ -128,8 +128,10 @@ TEST(NumericsPictures, RelativeOffsetAgainstAFixedEpsilon) {
                 "epsilon 1e-3 %.3f %%\n",
                 scale, withinOne(robust, unitScale), withinOne(fixed, unitScale));
     EXPECT_GE(withinOne(robust, unitScale), 99.9);
+    // The fixed epsilon misses the bar the relative offset clears: badly at 1e-4 (light leaks under the
+    // cube), mildly at 1e4 (acne where the float ray origin rounds back below the floor).
     if (scale != 1.0) {
-      EXPECT_LT(withinOne(fixed, unitScale), 99.0) << "the fixed epsilon no longer fails at " << scale;
+      EXPECT_LT(withinOne(fixed, unitScale), 99.9) << "the fixed epsilon no longer fails at " << scale;
     }
     fixedRow.push_back(fixed);
     robustRow.push_back(robust);

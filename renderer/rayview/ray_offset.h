@@ -9,25 +9,25 @@
 
 namespace rayview {
 
-// Secondary rays start this far off the surface, relative to the magnitude of the coordinates involved
-// (hit point and triangle vertices, all relative to the camera). A float carries ~6e-8 relative precision
-// and a hit point computed from a triangle is off by a few ulps of its largest coordinate: 2^-15 keeps a
-// margin of ~250 ulps, so no fixed epsilon breaks at 1e-4 or 1e4 scene scale.
-inline constexpr float kRelativeRayOffset = 1.0f / 32768.0f;
+// Secondary rays start this far off the surface, relative to the magnitude of the hit point (relative to
+// the camera). The hit point is computed in double on the exact plane of its triangle, and triangles are
+// tested in double (both traversals), so what the offset must cover is the rounding of the ray's float
+// origin: half an ulp, ~6e-8 of the magnitude. 2^-15 keeps a margin of ~500, and scales with the scene,
+// so no fixed epsilon breaks at 1e-4 or 1e4 scene scale.
+inline constexpr double kRelativeRayOffset = 1.0 / 32768.0;
 
 // Below this, magnitudes are treated as this (keeps the offset out of float's denormal range).
-inline constexpr float kSmallestOffsetScale = 1e-30f;
+inline constexpr double kSmallestOffsetScale = 1e-30;
 
-// Start a secondary ray from hit point `p` on a surface with geometric normal `ng`, on the side that
-// `direction` leaves to. `coordinateScale` is the largest |coordinate| of the hit point and its triangle.
-inline glm::vec3 offsetRayOrigin(const glm::vec3& p, const glm::vec3& ng, const glm::vec3& direction,
-                                 float coordinateScale) {
-  const float offset = kRelativeRayOffset * std::max(coordinateScale, kSmallestOffsetScale);
-  return glm::dot(ng, direction) >= 0.0f ? p + offset * ng : p - offset * ng;
+inline double maxAbsComponent(const glm::dvec3& a) {
+  return std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z)));
 }
 
-inline float maxAbsComponent(const glm::vec3& a) {
-  return std::max(std::fabs(a.x), std::max(std::fabs(a.y), std::fabs(a.z)));
+// Start a secondary ray from hit point `p` on a surface with geometric normal `ng`, on the side that
+// `direction` leaves to.
+inline glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& ng, const glm::vec3& direction) {
+  const double offset = kRelativeRayOffset * std::max(maxAbsComponent(p), kSmallestOffsetScale);
+  return glm::dot(glm::vec3(ng), direction) >= 0.0f ? p + offset * ng : p - offset * ng;
 }
 
 }  // namespace rayview

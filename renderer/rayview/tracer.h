@@ -28,11 +28,10 @@ struct RayCounts {
   }
 };
 
-// Geometry in float relative to the accelerator's origin, computed once per scene load.
+// Geometry relative to the accelerator's origin, computed once per scene load.
 struct ShadingGeometry {
-  std::vector<glm::vec3> vertices;     // scene vertices minus origin
-  std::vector<glm::vec3> faceNormals;  // normalize((v2-v1) x (v3-v1)), never flipped
-  std::vector<float> coordinateScale;  // per triangle: largest |coordinate| of its vertices
+  std::vector<glm::dvec3> vertices;    // scene vertices minus origin, in double: hit points lie on the plane
+  std::vector<glm::dvec3> faceNormals; // normalize((v2-v1) x (v3-v1)), never flipped
 };
 
 ShadingGeometry prepareShadingGeometry(const Scene& scene, const glm::dvec3& origin);
