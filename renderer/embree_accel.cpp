@@ -41,22 +41,22 @@ struct ProgressRelay {
   void* user;
 };
 
-// An intersect context that remembers one triangle to ignore (the one a secondary ray leaves).
-struct ExcludingContext {
+// The ray in double travels with the query: Embree traverses its float boxes with a float copy, and
+// every candidate triangle is tested against the double ray. The closest hit so far is kept here too.
+struct QueryContext {
   RTCIntersectContext context;  // first member: Embree hands back a pointer to it
-  unsigned excludedTriangle;
+  const Ray* ray;
+  WatertightRay prepared;
+  double tFar;                  // the ray's tFar, then the closest hit so far plus the tie band
+  TriangleHit hit;
+  unsigned triangle = RTC_INVALID_GEOMETRY_ID;
 };
 
-void skipExcludedTriangle(const RTCFilterFunctionNArguments* args) {
-  const auto* self = reinterpret_cast<const ExcludingContext*>(args->context);
-  for (unsigned i = 0; i < args->N; ++i)
-    if (args->valid[i] != 0 && RTCHitN_primID(args->hit, args->N, i) == self->excludedTriangle) args->valid[i] = 0;
-}
-
-void initContext(ExcludingContext& c, std::uint32_t excludedTriangle) {
+void initContext(QueryContext& c, const Ray& ray) {
   rtcInitIntersectContext(&c.context);
-  c.excludedTriangle = excludedTriangle;
-  if (excludedTriangle != kNoTriangle) c.context.filter = skipExcludedTriangle;
+  c.ray = &ray;
+  c.prepared = prepareWatertightRay(ray.origin, ray.direction);
+  c.tFar = ray.tFar;
 }
 
 bool relayProgress(void* ptr, double fraction) {
@@ -90,34 +90,37 @@ void triangleBounds(const RTCBoundsFunctionArguments* args) {
 }
 
 template <typename Args>
-bool testTriangle(const Args* args, const RTCRay& ray, TriangleHit& hit) {
-  const auto* context = reinterpret_cast<const ExcludingContext*>(args->context);
-  if (args->primID == context->excludedTriangle) return false;
+bool testTriangle(const Args* args, TriangleHit& hit) {
+  const auto* query = reinterpret_cast<const QueryContext*>(args->context);
+  if (args->primID == query->ray->excludedTriangle) return false;
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const auto& t = data.triangles[args->primID];
-  const WatertightRay w = prepareWatertightRay(glm::dvec3(ray.org_x, ray.org_y, ray.org_z),
-                                               glm::dvec3(ray.dir_x, ray.dir_y, ray.dir_z));
-  return intersectWatertight(w, data.vertices[t[0]], data.vertices[t[1]], data.vertices[t[2]], ray.tnear, ray.tfar,
-                             hit);
+  return intersectWatertight(query->prepared, data.vertices[t[0]], data.vertices[t[1]], data.vertices[t[2]],
+                             query->ray->tNear, query->tFar, hit);
 }
 
 void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   if (!args->valid[0]) return;
-  auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  auto* query = reinterpret_cast<QueryContext*>(args->context);
   TriangleHit hit;
-  if (!testTriangle(args, rayHit->ray, hit)) return;
-  rayHit->ray.tfar = static_cast<float>(hit.t);
-  rayHit->hit.u = static_cast<float>(hit.b1);
-  rayHit->hit.v = static_cast<float>(hit.b2);
+  if (!testTriangle(args, hit)) return;
+  if (query->triangle != RTC_INVALID_GEOMETRY_ID &&
+      !replacesClosestHit(hit.t, args->primID, query->hit.t, query->triangle))
+    return;
+  query->hit = hit;
+  query->triangle = args->primID;
+  query->tFar = std::min(query->ray->tFar, tieSearchLimit(hit.t));
+  // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
+  auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
+  rayHit->ray.tfar = std::nextafter(static_cast<float>(query->tFar), INFINITY);
   rayHit->hit.primID = args->primID;
   rayHit->hit.geomID = args->geomID;
 }
 
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   if (!args->valid[0]) return;
-  auto* ray = reinterpret_cast<RTCRay*>(args->ray);
   TriangleHit hit;
-  if (testTriangle(args, *ray, hit)) ray->tfar = -INFINITY;
+  if (testTriangle(args, hit)) reinterpret_cast<RTCRay*>(args->ray)->tfar = -INFINITY;
 }
 
 class EmbreeAccel final : public Accel {
@@ -128,8 +131,7 @@ class EmbreeAccel final : public Accel {
     scene_ = rtcNewScene(device);
     // ROBUST: watertight triangle tests (SPEC section 6). MEDIUM build quality: the viewer must show
     // a freshly loaded 1M-triangle scene quickly; HIGH builds take several times longer for ~10 % faster rays.
-    // CONTEXT_FILTER_FUNCTION: lets a ray ignore the triangle it leaves (SecondaryRayStart::ExcludeHitTriangle).
-    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
+    rtcSetSceneFlags(scene_, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     ProgressRelay relay{progress, progressUser};
     if (progress) rtcSetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
@@ -164,38 +166,39 @@ class EmbreeAccel final : public Accel {
   bool valid() const { return scene_ != nullptr; }
 
   std::optional<Hit> closestHit(const Ray& ray) const override {
-    ExcludingContext context;
-    initContext(context, ray.excludedTriangle);
+    QueryContext query;
+    initContext(query, ray);
     RTCRayHit rayHit;
     fill(rayHit.ray, ray);
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &context.context, &rayHit);
-    if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    return Hit{rayHit.ray.tfar, rayHit.hit.primID, rayHit.hit.u, rayHit.hit.v};
+    rtcIntersect1(scene_, &query.context, &rayHit);
+    if (query.triangle == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    return Hit{query.hit.t, query.triangle, query.hit.b1, query.hit.b2};
   }
 
   bool occluded(const Ray& ray) const override {
-    ExcludingContext context;
-    initContext(context, ray.excludedTriangle);
+    QueryContext query;
+    initContext(query, ray);
     RTCRay r;
     fill(r, ray);
-    rtcOccluded1(scene_, &context.context, &r);
+    rtcOccluded1(scene_, &query.context, &r);
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
   }
 
   AccelKind kind() const override { return AccelKind::Embree; }
 
  private:
+  // The float copy Embree traverses its boxes with; the interval rounded outward.
   static void fill(RTCRay& out, const Ray& ray) {
-    out.org_x = ray.origin.x;
-    out.org_y = ray.origin.y;
-    out.org_z = ray.origin.z;
-    out.dir_x = ray.direction.x;
-    out.dir_y = ray.direction.y;
-    out.dir_z = ray.direction.z;
-    out.tnear = ray.tNear;
-    out.tfar = ray.tFar;
+    out.org_x = static_cast<float>(ray.origin.x);
+    out.org_y = static_cast<float>(ray.origin.y);
+    out.org_z = static_cast<float>(ray.origin.z);
+    out.dir_x = static_cast<float>(ray.direction.x);
+    out.dir_y = static_cast<float>(ray.direction.y);
+    out.dir_z = static_cast<float>(ray.direction.z);
+    out.tnear = std::max(0.0f, std::nextafter(static_cast<float>(ray.tNear), -INFINITY));
+    out.tfar = std::nextafter(static_cast<float>(ray.tFar), INFINITY);
     out.time = 0.0f;
     out.mask = std::numeric_limits<unsigned>::max();
     out.id = 0;

@@ -8,7 +8,7 @@
 namespace rayview {
 namespace {
 
-bool isFinite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 class ReferenceAccel final : public Accel {
  public:
@@ -19,8 +19,7 @@ class ReferenceAccel final : public Accel {
     if (!toBvhRay(ray, r)) return std::nullopt;
     BvhHit hit;
     if (!bvh_->closestHit(r, hit)) return std::nullopt;
-    return Hit{static_cast<float>(hit.hit.t), hit.triangle, static_cast<float>(hit.hit.b1),
-               static_cast<float>(hit.hit.b2)};
+    return Hit{hit.hit.t, hit.triangle, hit.hit.b1, hit.hit.b2};
   }
 
   bool occluded(const Ray& ray) const override {
@@ -34,8 +33,8 @@ class ReferenceAccel final : public Accel {
   // False for a ray that cannot hit anything: zero or non-finite direction, NaN or empty interval.
   static bool toBvhRay(const Ray& ray, BvhRay& out) {
     if (!isFinite(ray.origin) || !isFinite(ray.direction)) return false;
-    if (ray.direction == glm::vec3(0.0f) || !(ray.tNear <= ray.tFar)) return false;
-    out = {glm::dvec3(ray.origin), glm::dvec3(ray.direction), ray.tNear, ray.tFar, ray.excludedTriangle};
+    if (ray.direction == glm::dvec3(0.0) || !(ray.tNear <= ray.tFar)) return false;
+    out = {ray.origin, ray.direction, ray.tNear, ray.tFar, ray.excludedTriangle};
     return true;
   }
 

@@ -55,7 +55,7 @@ bool ReferenceBvh::traverse(const BvhRay& ray, BvhHit* out) const {
   if (nodes_.empty()) return false;
   const WatertightRay triangleRay = prepareWatertightRay(ray.origin, ray.direction);
   const BoxRay boxRay = prepareBoxRay(ray);
-  double tFar = ray.tFar;  // shrinks to the closest hit so far
+  double tFar = ray.tFar;  // shrinks to the closest hit so far (plus the tie band, see watertight_triangle.h)
   bool found = false;
 
   struct Entry {
@@ -93,11 +93,11 @@ bool ReferenceBvh::traverse(const BvhRay& ray, BvhHit* out) const {
         if constexpr (kAnyHit) {
           return true;
         } else {
-          if (found && !(hit.t < tFar)) continue;  // an exact tie keeps the first triangle found
+          if (found && !replacesClosestHit(hit.t, tri.id, out->hit.t, out->triangle)) continue;
           found = true;
-          tFar = hit.t;
           out->hit = hit;
           out->triangle = tri.id;
+          tFar = std::min(ray.tFar, tieSearchLimit(hit.t));
         }
       }
     }

@@ -13,12 +13,12 @@
 namespace rayview {
 namespace {
 
-constexpr float kInfinity = std::numeric_limits<float>::infinity();
+constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 glm::vec3 toFloat(const glm::dvec3& v) { return glm::vec3(v); }
 
 // Shadow rays stop just short of the light: "up to (but not including) it".
-float justBefore(float distance) { return distance * (1.0f - 1e-6f); }
+double justBefore(double distance) { return distance * (1.0 - 1e-6); }
 
 }  // namespace
 
@@ -56,17 +56,17 @@ Tracer::Tracer(const Scene& scene, const Scene& meshes, const Accel& accel, cons
   maxDepth_ = settings.maxDepthOverride >= 0 ? settings.maxDepthOverride : scene.maxRayDepth;
   basis_ = cameraBasis(scene.camera);
   eyeRelative_ = scene.camera.position - accel.origin();
-  for (const PointLight& light : scene.pointLights) pointLightPositions_.push_back(toFloat(light.position - accel.origin()));
+  for (const PointLight& light : scene.pointLights) pointLightPositions_.push_back(light.position - accel.origin());
   for (const TriangularLight& light : scene.triangularLights) {
     TriangularLightFrame f;
-    f.v1 = toFloat(light.vertex1 - accel.origin());
-    f.v2 = toFloat(light.vertex2 - accel.origin());
-    f.v3 = toFloat(light.vertex3 - accel.origin());
-    f.centroid = toFloat((light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - accel.origin());
+    f.v1 = light.vertex1 - accel.origin();
+    f.v2 = light.vertex2 - accel.origin();
+    f.v3 = light.vertex3 - accel.origin();
+    f.centroid = (light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - accel.origin();
     const glm::dvec3 n = glm::cross(light.vertex1 - light.vertex2, light.vertex1 - light.vertex3);
     const double length = glm::length(n);
     if (!(length > 0.0)) continue;  // a degenerate light emits nothing
-    f.normal = toFloat(n / length);
+    f.normal = n / length;
     f.intensity = light.intensity;
     triangularLights_.push_back(f);
   }
@@ -76,7 +76,7 @@ Tracer::Tracer(const Scene& scene, const Scene& meshes, const Accel& accel, cons
 
 Color Tracer::tracePixel(int i, int j, RayCounts& counts) const {
   const glm::dvec3 direction = glm::normalize(pixelDirection(scene_.camera, basis_, i, j));
-  Ray ray{toFloat(eyeRelative_), toFloat(direction), 0.0f, kInfinity};
+  const Ray ray{eyeRelative_, direction, 0.0, kInfinity};
   const std::uint32_t seed = hash32(static_cast<std::uint32_t>(j) * 0x9E3779B1U + static_cast<std::uint32_t>(i));
   ++counts.camera;
   if (std::optional<Hit> hit = accel_.closestHit(ray)) return shadeHit(ray, *hit, 0, seed, counts);
@@ -93,31 +93,31 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
                        RayCounts& counts) const {
   const Triangle& triangle = meshes_.triangles[hit.triangle];
   const Material& material = scene_.materials[triangle.material];
-  const float b0 = 1.0f - hit.b1 - hit.b2;
+  const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
+  const float b0 = 1.0f - b1 - b2;
   const glm::dvec3& a = geometry_.vertices[triangle.vertex[0]];
   // In double from the barycentrics: on the triangle's plane to double rounding, whatever the ray was.
-  const glm::dvec3 pExact = a + double(hit.b1) * (geometry_.vertices[triangle.vertex[1]] - a) +
-                            double(hit.b2) * (geometry_.vertices[triangle.vertex[2]] - a);
+  const glm::dvec3 pExact = a + hit.b1 * (geometry_.vertices[triangle.vertex[1]] - a) +
+                            hit.b2 * (geometry_.vertices[triangle.vertex[2]] - a);
   const glm::dvec3& ngExact = geometry_.faceNormals[hit.triangle];
-  const glm::vec3 p = toFloat(pExact);
   const glm::vec3 ng = toFloat(ngExact);
   glm::vec3 n = ng;
   if (triangle.hasNormals()) {
-    const glm::vec3 interpolated = b0 * meshes_.normals[triangle.normal[0]] + hit.b1 * meshes_.normals[triangle.normal[1]] +
-                                   hit.b2 * meshes_.normals[triangle.normal[2]];
+    const glm::vec3 interpolated = b0 * meshes_.normals[triangle.normal[0]] + b1 * meshes_.normals[triangle.normal[1]] +
+                                   b2 * meshes_.normals[triangle.normal[2]];
     const float length = glm::length(interpolated);
     if (length > 0.0f && std::isfinite(length)) n = interpolated / length;
   }
-  const glm::vec3 d = glm::normalize(ray.direction);
-  const glm::vec3 toEye = -d;
+  const glm::dvec3 dExact = glm::normalize(ray.direction);
+  const glm::vec3 toEye = -toFloat(dExact);
   const bool excludeHit = settings_.secondaryRayStart == SecondaryRayStart::ExcludeHitTriangle;
   const bool fixedEpsilon = scene_.shadowRayEpsilon.has_value();
   const double epsilon = fixedEpsilon ? *scene_.shadowRayEpsilon : 0.0;
   // A secondary ray leaving the surface along `direction`.
-  auto secondaryRay = [&](const glm::vec3& direction) {
-    if (excludeHit) return Ray{p, direction, 0.0f, kInfinity, hit.triangle};
-    const glm::dvec3 origin = fixedEpsilon ? pExact + epsilon * ngExact : offsetRayOrigin(pExact, ngExact, direction);
-    return Ray{toFloat(origin), direction, 0.0f, kInfinity};
+  auto secondaryRay = [&](const glm::dvec3& direction) {
+    if (excludeHit) return Ray{pExact, direction, 0.0, kInfinity, hit.triangle};
+    const glm::dvec3 origin = fixedEpsilon ? pExact + epsilon * ngExact : offsetRayOrigin(pExact, eyeRelative_, ngExact, direction);
+    return Ray{origin, direction, 0.0, kInfinity};
   };
 
   Color color = material.ambient * scene_.ambientLight;
@@ -130,12 +130,12 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
     return diffuse + material.specular * irradiance * specular;
   };
   // Shadow ray from the surface toward `target` (stopping just before it), or along `l` without end.
-  auto visible = [&](const glm::vec3& l, const glm::vec3* target) {
+  auto visible = [&](const glm::dvec3& l, const glm::dvec3* target) {
     Ray shadow = secondaryRay(l);
     if (target) {
-      const glm::vec3 toTarget = *target - shadow.origin;
-      const float length = glm::length(toTarget);
-      if (!(length > 0.0f)) return true;
+      const glm::dvec3 toTarget = *target - shadow.origin;
+      const double length = glm::length(toTarget);
+      if (!(length > 0.0)) return true;
       shadow.direction = toTarget / length;
       shadow.tFar = justBefore(length);
     }
@@ -144,20 +144,20 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
   };
 
   for (std::size_t k = 0; k < pointLightPositions_.size(); ++k) {
-    const glm::vec3 toLight = pointLightPositions_[k] - p;
-    const float distanceSquared = glm::dot(toLight, toLight);
-    if (!(distanceSquared > 0.0f)) continue;
-    const float distance = std::sqrt(distanceSquared);
-    const glm::vec3 l = toLight / distance;
-    const Color contribution = reflectedLight(l, scene_.pointLights[k].intensity / distanceSquared);
+    const glm::dvec3 toLight = pointLightPositions_[k] - pExact;
+    const double distanceSquared = glm::dot(toLight, toLight);
+    if (!(distanceSquared > 0.0)) continue;
+    const glm::dvec3 l = toLight / std::sqrt(distanceSquared);
+    const Color contribution =
+        reflectedLight(toFloat(l), scene_.pointLights[k].intensity / static_cast<float>(distanceSquared));
     if (contribution == Color(0.0f)) continue;  // no shadow ray for light that would add nothing
     if (visible(l, &pointLightPositions_[k])) color += contribution;
   }
 
   for (const TriangularLightFrame& light : triangularLights_) {
     if (settings_.triangularLightModel == TriangularLightModel::Directional) {
-      const glm::vec3 l = -light.normal;
-      const Color contribution = reflectedLight(l, light.intensity);
+      const glm::dvec3 l = -light.normal;
+      const Color contribution = reflectedLight(toFloat(l), light.intensity);
       if (contribution != Color(0.0f) && visible(l, nullptr)) color += contribution;
       continue;
     }
@@ -165,23 +165,23 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
     const Color perSample = light.intensity / static_cast<float>(samples);
     for (int s = 0; s < samples; ++s) {
       const glm::vec2 w = triangleSample(s, samples, pixelSeed);
-      const glm::vec3 y = samples == 1 ? light.centroid
-                                       : light.v1 + w.x * (light.v2 - light.v1) + w.y * (light.v3 - light.v1);
-      const glm::vec3 toLight = y - p;
-      const float distanceSquared = glm::dot(toLight, toLight);
-      if (!(distanceSquared > 0.0f)) continue;
-      const float distance = std::sqrt(distanceSquared);
-      const glm::vec3 l = toLight / distance;
-      const float cosine = glm::dot(light.normal, -l);  // n_L . omega, omega from the light to x
-      if (!(cosine > 0.0f)) continue;
-      const Color contribution = reflectedLight(l, perSample * (cosine / distanceSquared));
+      const glm::dvec3 y = samples == 1 ? light.centroid
+                                        : light.v1 + double(w.x) * (light.v2 - light.v1) + double(w.y) * (light.v3 - light.v1);
+      const glm::dvec3 toLight = y - pExact;
+      const double distanceSquared = glm::dot(toLight, toLight);
+      if (!(distanceSquared > 0.0)) continue;
+      const glm::dvec3 l = toLight / std::sqrt(distanceSquared);
+      const double cosine = glm::dot(light.normal, -l);  // n_L . omega, omega from the light to x
+      if (!(cosine > 0.0)) continue;
+      const Color contribution = reflectedLight(toFloat(l), perSample * static_cast<float>(cosine / distanceSquared));
       if (contribution == Color(0.0f)) continue;
       if (visible(l, &y)) color += contribution;
     }
   }
 
   if (material.isMirror() && depth < maxDepth_) {
-    const glm::vec3 r = glm::normalize(d - 2.0f * glm::dot(d, n) * n);
+    const glm::dvec3 nExact(n);
+    const glm::dvec3 r = glm::normalize(dExact - 2.0 * glm::dot(dExact, nExact) * nExact);
     const Ray reflected = secondaryRay(r);
     color += material.mirror * trace(reflected, depth + 1, pixelSeed, counts);
   }
@@ -197,9 +197,10 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
 // convention: v = 0 is the bottom row of the image); repeat wrap; nearest texel.
 Color Tracer::sampleTexture(const Triangle& triangle, const Hit& hit) const {
   const Texture& texture = *meshes_.texture;
-  const float b0 = 1.0f - hit.b1 - hit.b2;
-  const glm::vec2 uv = b0 * meshes_.texCoords[triangle.texCoord[0]] + hit.b1 * meshes_.texCoords[triangle.texCoord[1]] +
-                       hit.b2 * meshes_.texCoords[triangle.texCoord[2]];
+  const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
+  const float b0 = 1.0f - b1 - b2;
+  const glm::vec2 uv = b0 * meshes_.texCoords[triangle.texCoord[0]] + b1 * meshes_.texCoords[triangle.texCoord[1]] +
+                       b2 * meshes_.texCoords[triangle.texCoord[2]];
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return Color(0.0f);
   const float u = uv.x - std::floor(uv.x);
   const float v = uv.y - std::floor(uv.y);

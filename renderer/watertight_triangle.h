@@ -15,6 +15,8 @@
 // and zero counts as inside for both. Never neither. The paper's fallback (recompute in double when an
 // edge function is exactly zero in float) is not needed: everything here is already double.
 
+#include <cstdint>
+
 #include <glm/vec3.hpp>
 
 namespace rayview {
@@ -91,6 +93,21 @@ inline bool intersectWatertight(const WatertightRay& ray, const glm::dvec3& v0, 
   hit.b1 = v / det;
   hit.b2 = w / det;
   return true;
+}
+
+// The closest-hit rule both traversals share. Hits whose distances agree to kHitTieTolerance (relative)
+// are a tie (coincident or duplicated faces, a shared edge), won by the lower triangle index: so which
+// triangle a ray sees does not depend on traversal order, nor on the rounding that moving or scaling
+// the scene changes.
+inline constexpr double kHitTieTolerance = 1e-9;
+
+// How far a search must still look once a hit at tBest is known: ties lie slightly beyond it.
+inline double tieSearchLimit(double tBest) { return tBest * (1.0 + kHitTieTolerance); }
+
+// Whether a hit (t, id) replaces the closest one so far (tBest, idBest).
+inline bool replacesClosestHit(double t, std::uint32_t id, double tBest, std::uint32_t idBest) {
+  if (t < tBest * (1.0 - kHitTieTolerance)) return true;
+  return t <= tieSearchLimit(tBest) && id < idBest;
 }
 
 }  // namespace rayview

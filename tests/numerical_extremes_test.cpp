@@ -49,6 +49,12 @@ class ConformanceScene : public ::testing::TestWithParam<std::filesystem::path> 
     if (left > 0)
       std::printf("[ figures  ] %s: %zu duplicated faces; %ld pixels see one and are left out\n",
                   GetParam().stem().string().c_str(), testing::countDuplicatedFaces(scene), static_cast<long>(left));
+    const std::vector<bool> onEdges = testing::boundaryEdgePixels(scene);
+    const auto edgePixels = std::count(onEdges.begin(), onEdges.end(), true);
+    if (edgePixels > 0)
+      std::printf("[ figures  ] %s: %ld pixels' rays pass exactly through a boundary edge and are left out\n",
+                  GetParam().stem().string().c_str(), static_cast<long>(edgePixels));
+    for (std::size_t p = 0; p < onEdges.size(); ++p) coincident_[p] = coincident_[p] || onEdges[p];
     return scene;
   }
   // Compares with `expected`, prints the figure, writes difference images when below the threshold.

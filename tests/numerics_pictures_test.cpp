@@ -53,6 +53,20 @@ double withinOne(const Image& a, const Image& b) { return testing::compareImages
 
 // ---- Camera-relative coordinates ---------------------------------------------------------------------
 
+// What a float pipeline in world coordinates stores: every position rounded to float.
+Scene roundedToFloat(Scene scene) {
+  auto round = [](glm::dvec3& v) { v = glm::dvec3(glm::vec3(v)); };
+  for (glm::dvec3& v : scene.vertices) round(v);
+  round(scene.camera.position);
+  for (PointLight& light : scene.pointLights) round(light.position);
+  for (TriangularLight& light : scene.triangularLights) {
+    round(light.vertex1);
+    round(light.vertex2);
+    round(light.vertex3);
+  }
+  return scene;
+}
+
 TEST(NumericsPictures, TranslationNeedsCameraRelativeCoordinates) {
   Scene base = loadSceneFile(testing::sharedDirectory() / "conformance/ceng477/monkey.xml").scene;
   testing::reduceResolution(base, 8);  // 128 x 128
@@ -63,7 +77,7 @@ TEST(NumericsPictures, TranslationNeedsCameraRelativeCoordinates) {
     Scene moved = base;
     testing::translateScene(moved, glm::dvec3(distance));
     const Image relative = testing::renderChecked(moved, accel).image;
-    const Image world = testing::renderCheckedWithOrigin(moved, accel, glm::dvec3(0.0)).image;
+    const Image world = testing::renderCheckedWithOrigin(roundedToFloat(moved), accel, glm::dvec3(0.0)).image;
     std::printf("[ figures  ] monkey moved by %g on each axis: camera-relative %.3f %% within +-1, "
                 "world coordinates in float %.3f %%\n",
                 distance, withinOne(relative, still), withinOne(world, still));
@@ -71,8 +85,8 @@ TEST(NumericsPictures, TranslationNeedsCameraRelativeCoordinates) {
       EXPECT_GE(withinOne(relative, still), 99.9);
     }
     if (distance >= 1e5) panels.push_back(world);
-    if (distance == 1e5) {
-      EXPECT_LT(withinOne(world, still), 99.0) << "world-space float no longer breaks at 1e5: update the docs";
+    if (distance == 1e6) {
+      EXPECT_LT(withinOne(world, still), 99.0) << "world-space float no longer breaks at 1e6: update the docs";
     }
     if (distance == 1e7) panels.push_back(relative);
   }
@@ -128,10 +142,10 @@ TEST(NumericsPictures, RelativeOffsetAgainstAFixedEpsilon) {
                 "epsilon 1e-3 %.3f %%\n",
                 scale, withinOne(robust, unitScale), withinOne(fixed, unitScale));
     EXPECT_GE(withinOne(robust, unitScale), 99.9);
-    // The fixed epsilon misses the bar the relative offset clears: badly at 1e-4 (light leaks under the
-    // cube), mildly at 1e4 (acne where the float ray origin rounds back below the floor).
-    if (scale != 1.0) {
-      EXPECT_LT(withinOne(fixed, unitScale), 99.9) << "the fixed epsilon no longer fails at " << scale;
+    // At 1e-4 the fixed epsilon lifts shadow rays above the cube: light leaks under it. (At 1e4 it works
+    // only because rays and hit points are double; in a float pipeline it gave acne there.)
+    if (scale < 1.0) {
+      EXPECT_LT(withinOne(fixed, unitScale), 99.0) << "the fixed epsilon no longer fails at " << scale;
     }
     fixedRow.push_back(fixed);
     robustRow.push_back(robust);

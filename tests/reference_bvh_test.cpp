@@ -44,20 +44,18 @@ Scene triangleSoup(int count, Lcg& random) {
   return scene;
 }
 
-// The closest hit by testing every triangle, with the same watertight test.
+// The closest hit by testing every triangle, with the same watertight test and the same tie rule.
 std::optional<Hit> bruteForce(const Scene& scene, const Ray& ray) {
-  const WatertightRay w = prepareWatertightRay(glm::dvec3(ray.origin), glm::dvec3(ray.direction));
+  const WatertightRay w = prepareWatertightRay(ray.origin, ray.direction);
   std::optional<Hit> best;
-  double tBest = ray.tFar;
   for (std::size_t i = 0; i < scene.triangles.size(); ++i) {
     const Triangle& t = scene.triangles[i];
     TriangleHit h;
+    const auto id = static_cast<std::uint32_t>(i);
     if (intersectWatertight(w, scene.vertices[t.vertex[0]], scene.vertices[t.vertex[1]], scene.vertices[t.vertex[2]],
-                            ray.tNear, tBest, h) &&
-        (!best || h.t < tBest)) {
-      tBest = h.t;
-      best = Hit{static_cast<float>(h.t), static_cast<std::uint32_t>(i), static_cast<float>(h.b1), static_cast<float>(h.b2)};
-    }
+                            ray.tNear, ray.tFar, h) &&
+        (!best || replacesClosestHit(h.t, id, best->t, best->triangle)))
+      best = Hit{h.t, id, h.b1, h.b2};
   }
   return best;
 }
@@ -70,13 +68,14 @@ TEST(ReferenceBvh, SameClosestHitAsTestingEveryTriangle) {
   int hits = 0;
   for (int k = 0; k < 10000; ++k) {
     const glm::dvec3 from = random.point(40.0), to = random.point(20.0);
-    const Ray ray{glm::vec3(from), glm::vec3(to - from), 0.0f, k % 3 == 0 ? 0.7f : INFINITY};
+    const Ray ray{from, to - from, 0.0, k % 3 == 0 ? 0.7 : INFINITY};
     const std::optional<Hit> expected = bruteForce(scene, ray), actual = accel->closestHit(ray);
     ASSERT_EQ(actual.has_value(), expected.has_value()) << "ray " << k;
     EXPECT_EQ(accel->occluded(ray), expected.has_value()) << "ray " << k;
     if (!expected) continue;
     ++hits;
-    EXPECT_EQ(actual->t, expected->t) << "ray " << k;  // ties at exactly equal t may pick either triangle
+    EXPECT_EQ(actual->t, expected->t) << "ray " << k;
+    EXPECT_EQ(actual->triangle, expected->triangle) << "ray " << k;  // ties go to the lower index in both
   }
   std::printf("[ figures  ] %d of 10000 rays hit; all equal to testing every triangle\n", hits);
   EXPECT_GT(hits, 1000);

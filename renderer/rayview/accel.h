@@ -17,18 +17,21 @@ namespace rayview {
 
 inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
 
+// Rays are double end to end: both back-ends test triangles in double, so a ray's answer does not depend
+// on which point its coordinates are relative to (the viewer's camera moves away from the origin the
+// structure was built at; its final pass must still equal a headless render from the new camera).
 struct Ray {
-  glm::vec3 origin{0.0f};     // relative to Accel::origin()
-  glm::vec3 direction{0.0f};  // need not be normalised; t is measured in units of |direction|
-  float tNear = 0.0f;
-  float tFar = 0.0f;
+  glm::dvec3 origin{0.0};     // relative to Accel::origin()
+  glm::dvec3 direction{0.0};  // need not be normalised; t is measured in units of |direction|
+  double tNear = 0.0;
+  double tFar = 0.0;
   std::uint32_t excludedTriangle = kNoTriangle;  // never reported as a hit (the triangle a ray leaves)
 };
 
 struct Hit {
-  float t = 0.0f;
+  double t = 0.0;
   std::uint32_t triangle = 0;  // index into Scene::triangles
-  float b1 = 0.0f, b2 = 0.0f;  // barycentric weights of vertex 1 and 2 (vertex 0 gets 1 - b1 - b2)
+  double b1 = 0.0, b2 = 0.0;   // barycentric weights of vertex 1 and 2 (vertex 0 gets 1 - b1 - b2)
 };
 
 class Accel {

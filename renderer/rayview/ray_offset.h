@@ -10,10 +10,10 @@
 namespace rayview {
 
 // Secondary rays start this far off the surface, relative to the magnitude of the hit point (relative to
-// the camera). The hit point is computed in double on the exact plane of its triangle, and triangles are
-// tested in double (both traversals), so what the offset must cover is the rounding of the ray's float
-// origin: half an ulp, ~6e-8 of the magnitude. 2^-15 keeps a margin of ~500, and scales with the scene,
-// so no fixed epsilon breaks at 1e-4 or 1e4 scene scale.
+// the camera). Rays, hit points and triangle tests are all double, so the error to cover is tiny; the
+// offset is far larger than it (3e-5 of the distance) because it also covers what float-precision data
+// feeds in (barycentrics, normals) and keeps shadow rays clear of grazing neighbours, while staying
+// invisible. It scales with the scene, so no fixed epsilon breaks at 1e-4 or 1e4 scene scale.
 inline constexpr double kRelativeRayOffset = 1.0 / 32768.0;
 
 // Below this, magnitudes are treated as this (keeps the offset out of float's denormal range).
@@ -24,10 +24,12 @@ inline double maxAbsComponent(const glm::dvec3& a) {
 }
 
 // Start a secondary ray from hit point `p` on a surface with geometric normal `ng`, on the side that
-// `direction` leaves to.
-inline glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& ng, const glm::vec3& direction) {
-  const double offset = kRelativeRayOffset * std::max(maxAbsComponent(p), kSmallestOffsetScale);
-  return glm::dot(glm::vec3(ng), direction) >= 0.0f ? p + offset * ng : p - offset * ng;
+// `direction` leaves to. The offset's scale is the point's distance from the eye (largest component), so
+// the same scene seen from the same camera gets the same offsets whatever origin the coordinates use.
+inline glm::dvec3 offsetRayOrigin(const glm::dvec3& p, const glm::dvec3& eye, const glm::dvec3& ng,
+                                  const glm::dvec3& direction) {
+  const double offset = kRelativeRayOffset * std::max(maxAbsComponent(p - eye), kSmallestOffsetScale);
+  return glm::dot(ng, direction) >= 0.0 ? p + offset * ng : p - offset * ng;
 }
 
 }  // namespace rayview

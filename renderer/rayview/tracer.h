@@ -57,7 +57,7 @@ class Tracer {
 
  private:
   struct TriangularLightFrame {
-    glm::vec3 v1, v2, v3, centroid, normal;  // normal = n_L, the side the light leaves
+    glm::dvec3 v1, v2, v3, centroid, normal;  // normal = n_L, the side the light leaves
     Color intensity;
   };
 
@@ -75,7 +75,7 @@ class Tracer {
   int maxDepth_ = 0;
   CameraBasis basis_;
   glm::dvec3 eyeRelative_{0.0};
-  std::vector<glm::vec3> pointLightPositions_;
+  std::vector<glm::dvec3> pointLightPositions_;
   std::vector<TriangularLightFrame> triangularLights_;
   bool useTexture_ = false;
 };

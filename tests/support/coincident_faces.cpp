@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <map>
 
 #include <glm/geometric.hpp>
@@ -43,7 +44,7 @@ std::vector<bool> coincidentFacePixels(const Scene& scene) {
   const CameraBasis basis = cameraBasis(camera);
   for (int j = 0; j < camera.height; ++j)
     for (int i = 0; i < camera.width; ++i) {
-      Ray ray{glm::vec3(0.0f), glm::vec3(glm::normalize(pixelDirection(camera, basis, i, j))), 0.0f, INFINITY};
+      Ray ray{glm::dvec3(0.0), glm::normalize(pixelDirection(camera, basis, i, j)), 0.0, INFINITY};
       for (int depth = 0; depth <= scene.maxRayDepth; ++depth) {
         const std::optional<Hit> hit = accel->closestHit(ray);
         if (!hit) break;
@@ -57,9 +58,44 @@ std::vector<bool> coincidentFacePixels(const Scene& scene) {
         const glm::dvec3 b = scene.vertices[t.vertex[1]] - accel->origin();
         const glm::dvec3 c = scene.vertices[t.vertex[2]] - accel->origin();
         const glm::dvec3 n = glm::normalize(glm::cross(b - a, c - a));
-        const glm::dvec3 d = glm::normalize(glm::dvec3(ray.direction));
-        const glm::dvec3 p = (1.0 - hit->b1 - hit->b2) * a + double(hit->b1) * b + double(hit->b2) * c;
-        ray = Ray{glm::vec3(p), glm::vec3(d - 2.0 * glm::dot(d, n) * n), 0.0f, INFINITY, hit->triangle};
+        const glm::dvec3 d = glm::normalize(ray.direction);
+        const glm::dvec3 p = (1.0 - hit->b1 - hit->b2) * a + hit->b1 * b + hit->b2 * c;
+        ray = Ray{p, d - 2.0 * glm::dot(d, n) * n, 0.0, INFINITY, hit->triangle};
+      }
+    }
+  return mask;
+}
+
+std::vector<bool> boundaryEdgePixels(const Scene& scene) {
+  const Camera& camera = scene.camera;
+  std::vector<bool> mask(static_cast<std::size_t>(camera.width) * camera.height, false);
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> edgeUse;
+  for (const Triangle& t : scene.triangles)
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = t.vertex[k], b = t.vertex[(k + 1) % 3];
+      ++edgeUse[{std::min(a, b), std::max(a, b)}];
+    }
+  std::vector<std::pair<glm::dvec3, glm::dvec3>> boundary;  // relative to the camera
+  for (const auto& [edge, uses] : edgeUse)
+    if (uses == 1) boundary.emplace_back(scene.vertices[edge.first] - camera.position, scene.vertices[edge.second] - camera.position);
+  const CameraBasis basis = cameraBasis(camera);
+  for (int j = 0; j < camera.height; ++j)
+    for (int i = 0; i < camera.width; ++i) {
+      const glm::dvec3 d = glm::normalize(pixelDirection(camera, basis, i, j));
+      for (const auto& [a, b] : boundary) {
+        // The ray passes through the edge's line where the triple product of (a, b, d) vanishes.
+        const glm::dvec3 e = b - a;
+        const double volume = glm::dot(glm::cross(a, e), d);
+        const double scale = glm::length(glm::cross(a, e)) + glm::length(glm::cross(e, d)) * glm::length(a);
+        if (!(std::fabs(volume) <= 1e-9 * scale)) continue;
+        // ... and within the segment, in front of the eye: the point of the edge closest to the ray.
+        const glm::dvec3 n = glm::cross(d, glm::cross(e, d));
+        const double denominator = glm::dot(e, n);
+        if (denominator == 0.0) continue;
+        const double s = -glm::dot(a, n) / denominator;
+        if (s < -1e-9 || s > 1.0 + 1e-9 || glm::dot(a + s * e, d) <= 0.0) continue;
+        mask[static_cast<std::size_t>(j) * camera.width + i] = true;
+        break;
       }
     }
   return mask;

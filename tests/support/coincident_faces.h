@@ -18,6 +18,13 @@ std::size_t countDuplicatedFaces(const Scene& scene);
 // scene's depth, first meets a duplicated face. Traced with the reference traversal.
 std::vector<bool> coincidentFacePixels(const Scene& scene);
 
+// One flag per pixel: the pixel's camera ray passes through a boundary edge of a mesh (an edge of only
+// one triangle), exactly in exact arithmetic (to a relative 1e-9). Whether such a ray hits the closed
+// triangle is decided by rounding, and changes when the scene is scaled or moved. It happens when a
+// scene's edge lines up with the pixel grid: dragon_lowres's mirror floor ends at z = -1, y = 0.055,
+// exactly on the rays of one pixel row.
+std::vector<bool> boundaryEdgePixels(const Scene& scene);
+
 // Copies `expected` into `actual` where `mask` is set, so that a comparison skips those pixels.
 void copyMaskedPixels(Image& actual, const Image& expected, const std::vector<bool>& mask);
 
