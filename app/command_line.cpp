@@ -6,7 +6,7 @@
 namespace rayview {
 namespace {
 
-enum Applies : unsigned { kRender = 1u, kView = 2u, kBoth = kRender | kView };
+enum Applies : unsigned { kRender = 1u, kView = 2u, kBoth = kRender | kView, kBench = 4u, kAll = kBoth | kBench };
 
 struct OptionSpec {
   const char* name;
@@ -25,11 +25,33 @@ int parseInt(const std::string& option, const std::string& text, int low, int hi
   return value;
 }
 
+double parsePositive(const std::string& option, const std::string& text, double high) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !(value > 0.0) || value > high)
+    throw UsageError(option + " expects a number above 0 and at most " + std::to_string(static_cast<int>(high)) +
+                     ", not '" + text + "'");
+  return value;
+}
+
+const char* modeName(unsigned mode) {
+  return mode == kRender ? "'rayview render'" : (mode == kBench ? "'rayview bench'" : "the viewer");
+}
+
+// " [render]", " [render, bench]"; nothing for an option every mode takes.
+std::string whereTag(unsigned applies) {
+  if ((applies & kAll) == kAll) return "";
+  std::string tag;
+  for (auto [bit, name] : {std::pair{kRender, "render"}, std::pair{kView, "viewer"}, std::pair{kBench, "bench"}})
+    if (applies & bit) tag += (tag.empty() ? "" : ", ") + std::string(name);
+  return " [" + tag + "]";
+}
+
 const std::vector<OptionSpec>& optionTable() {
   static const std::vector<OptionSpec> table = {
       {"-o", "OUT.png|OUT.ppm", kRender, "image to write (written whole: a temporary file renamed into place)",
        [](CommandLine& c, const std::string& v) { c.outputPath = v; }},
-      {"--threads", "N", kBoth, "render threads (default: one per hardware thread)",
+      {"--threads", "N", kAll, "render threads (default: one per hardware thread)",
        [](CommandLine& c, const std::string& v) { c.threads = parseInt("--threads", v, 1, 1024); }},
       {"--depth", "N", kBoth, "maximum mirror recursion depth (default: the scene's <maxraytracedepth>)",
        [](CommandLine& c, const std::string& v) { c.settings.maxDepthOverride = parseInt("--depth", v, 0, 1000000); }},
@@ -54,12 +76,16 @@ const std::vector<OptionSpec>& optionTable() {
          if (!parseSecondaryRayStart(v, c.settings.secondaryRayStart))
            throw UsageError("--ray-start expects 'offset' or 'exclude-hit', not '" + v + "'");
        }},
-      {"--strict", nullptr, kBoth, "treat every repaired typo and unknown element as an error",
+      {"--strict", nullptr, kAll, "treat every repaired typo and unknown element as an error",
        [](CommandLine& c, const std::string&) { c.strict = true; }},
-      {"--quiet", nullptr, kRender, "print only errors",
+      {"--quiet", nullptr, kRender | kBench, "print only errors",
        [](CommandLine& c, const std::string&) { c.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",
        [](CommandLine& c, const std::string& v) { c.scriptPath = v; }},
+      {"--out", "DIR", kBench, "directory for tradeoff.csv and the plots (created when missing)",
+       [](CommandLine& c, const std::string& v) { c.outputDirectory = v; }},
+      {"--scale", "F", kBench, "render at F times the camera's resolution (0 < F <= 4; default 1)",
+       [](CommandLine& c, const std::string& v) { c.resolutionScale = parsePositive("--scale", v, 4.0); }},
   };
   return table;
 }
@@ -74,8 +100,15 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
     i = 1;
   } else if (!arguments.empty() && arguments[0] == "view") {
     i = 1;
+  } else if (!arguments.empty() && arguments[0] == "bench") {
+    command.kind = CommandKind::Bench;
+    if (arguments.size() < 2 || arguments[1] != "tradeoff")
+      throw UsageError("'rayview bench' expects a benchmark name: tradeoff");
+    command.benchName = arguments[1];
+    i = 2;
   }
-  const unsigned mode = command.kind == CommandKind::Render ? kRender : kView;
+  const unsigned mode =
+      command.kind == CommandKind::Render ? kRender : (command.kind == CommandKind::Bench ? kBench : kView);
   for (; i < arguments.size(); ++i) {
     const std::string& arg = arguments[i];
     if (arg == "--help" || arg == "-h" || arg == "--version") {
@@ -96,8 +129,7 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
         if (name == s.name) spec = &s;
       if (!spec) throw UsageError("unknown option '" + name + "' (see rayview --help)");
       if (!(spec->applies & mode))
-        throw UsageError("option '" + name + "' does not apply to " +
-                         (mode == kRender ? "'rayview render'" : "the viewer"));
+        throw UsageError("option '" + name + "' does not apply to " + modeName(mode));
       if (spec->valueName && !hasInlineValue) {
         if (i + 1 >= arguments.size()) throw UsageError("option '" + name + "' expects " + spec->valueName);
         value = arguments[++i];
@@ -107,11 +139,19 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       spec->apply(command, value);
       continue;
     }
+    if (command.kind == CommandKind::Bench) {
+      command.scenePaths.push_back(arg);
+      continue;
+    }
     if (!command.scenePath.empty()) throw UsageError("more than one scene given: '" + command.scenePath + "' and '" + arg + "'");
     command.scenePath = arg;
   }
   if (command.kind == CommandKind::Render) {
     if (command.outputPath.empty()) throw UsageError("'rayview render' needs -o OUT.png or -o OUT.ppm");
+  }
+  if (command.kind == CommandKind::Bench) {
+    if (command.scenePaths.empty()) throw UsageError("'rayview bench tradeoff' needs at least one SCENE");
+    if (command.outputDirectory.empty()) throw UsageError("'rayview bench tradeoff' needs --out DIR");
   }
   return command;
 }
@@ -123,6 +163,9 @@ std::string helpText() {
       "usage:\n"
       "  rayview [SCENE] [options]               open the viewer (the embedded default scene without SCENE)\n"
       "  rayview render [SCENE] -o OUT [options] render headless to PNG or PPM and print timings\n"
+      "  rayview bench tradeoff SCENE... --out DIR [options]\n"
+      "                                          time and error of every knob setting: DIR/tradeoff.csv and\n"
+      "                                          DIR/<scene>_tradeoff.png (see docs/tradeoff.md)\n"
       "  rayview --help | --version\n"
       "\n"
       "options:\n";
@@ -130,8 +173,7 @@ std::string helpText() {
     std::string left = std::string("  ") + s.name + (s.valueName ? std::string(" ") + s.valueName : "");
     if (left.size() < 32) left.resize(32, ' ');
     else left += "  ";
-    const char* where = s.applies == kBoth ? "" : (s.applies == kRender ? " [render]" : " [viewer]");
-    text += left + s.help + where + "\n";
+    text += left + s.help + whereTag(s.applies) + "\n";
   }
   text +=
       "\n"

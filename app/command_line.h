@@ -20,7 +20,7 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class CommandKind { Help, Version, Render, View };
+enum class CommandKind { Help, Version, Render, View, Bench };
 
 struct CommandLine {
   CommandKind kind = CommandKind::View;
@@ -31,6 +31,10 @@ struct CommandLine {
   bool quiet = false;
   RenderSettings settings;
   std::string scriptPath;  // view: --script FILE (automation, see docs/viewer.md)
+  std::string benchName;                // bench: the benchmark to run ("tradeoff")
+  std::vector<std::string> scenePaths;  // bench: every SCENE given
+  std::string outputDirectory;          // bench: --out DIR
+  double resolutionScale = 1.0;         // bench: --scale F
 };
 
 // Throws UsageError with a one-line message for anything it cannot take.

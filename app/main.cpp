@@ -3,6 +3,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_command.h"
 #include "command_line.h"
 #include "render_command.h"
 
@@ -28,6 +29,8 @@ int main(int argc, char** argv) {
       return kExitOk;
     case CommandKind::Render:
       return runRenderCommand(command);
+    case CommandKind::Bench:
+      return runBenchCommand(command);
     case CommandKind::View:
 #ifdef RAYVIEW_HAVE_VIEWER
       return runViewer(command);

@@ -1,0 +1,106 @@
+#include "bench_command.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <set>
+
+#include "rayview/plot.h"
+#include "rayview/tradeoff.h"
+#include "scene_source.h"
+
+namespace rayview {
+namespace {
+
+// File stems, made unique ("scene2", "scene2_2") so two scenes never share a plot.
+std::vector<std::string> uniqueNames(const std::vector<std::string>& paths) {
+  std::vector<std::string> names;
+  std::set<std::string> taken;
+  for (const std::string& path : paths) {
+    const std::string stem = std::filesystem::path(path).stem().string();
+    std::string name = stem;
+    for (int n = 2; taken.count(name); ++n) name = stem + "_" + std::to_string(n);
+    taken.insert(name);
+    names.push_back(name);
+  }
+  return names;
+}
+
+void printTable(const TradeoffReport& report) {
+  std::printf("%s: %dx%d, %d threads, measured in %.1f s (BVH build: embree %.1f ms, reference %.1f ms)\n",
+              report.sceneName.c_str(), report.width, report.height, report.threads, report.totalMs / 1000.0,
+              report.embreeBuildMs, report.referenceBuildMs);
+  for (const std::string& note : report.notes) std::printf("  note: %s\n", note.c_str());
+  const double referenceMs = report.points.empty() ? 0.0 : report.points.front().timeMs;
+  std::printf("  %-13s %-32s %10s %8s %9s %8s %8s %12s\n", "knob", "setting", "time ms", "x ref", "rmse", "psnr dB",
+              "% off>1", "rays");
+  for (const TradeoffPoint& p : report.points) {
+    char psnr[16];
+    if (std::isinf(p.error.psnrDb)) std::snprintf(psnr, sizeof psnr, "inf");
+    else std::snprintf(psnr, sizeof psnr, "%.2f", p.error.psnrDb);
+    std::printf("  %-13s %-32s %10.2f %8.2f %9.4f %8s %8.3f %12llu\n", std::string(toString(p.setting.knob)).c_str(),
+                p.setting.label.c_str(), p.timeMs, p.timeMs > 0.0 ? referenceMs / p.timeMs : 0.0, p.error.rmse, psnr,
+                p.error.pctOffByMoreThan1, static_cast<unsigned long long>(p.rays));
+  }
+}
+
+}  // namespace
+
+int runBenchCommand(const CommandLine& command) {
+  // Every scene is read before anything is measured or written: a bad scene costs nothing.
+  std::vector<std::shared_ptr<const Scene>> scenes;
+  for (const std::string& path : command.scenePaths) {
+    try {
+      LoadedScene loaded = loadSceneOrDefault(path, LoadOptions{command.strict, true});
+      if (!command.quiet)
+        for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
+      scenes.push_back(std::make_shared<const Scene>(std::move(loaded.scene)));
+    } catch (const SceneError& error) {
+      std::fprintf(stderr, "%s\n", error.what());
+      return kExitBadInput;
+    }
+  }
+
+  const std::filesystem::path directory = command.outputDirectory;
+  std::error_code error;
+  std::filesystem::create_directories(directory, error);
+  if (error) {
+    std::fprintf(stderr, "rayview: error: cannot create %s: %s\n", directory.c_str(), error.message().c_str());
+    return kExitIoFailure;
+  }
+
+  ThreadPool pool(command.threads);
+  TradeoffOptions options;
+  options.resolutionScale = command.resolutionScale;
+  const bool showProgress = !command.quiet && isatty(fileno(stderr));
+  const std::vector<std::string> names = uniqueNames(command.scenePaths);
+  std::string csv = tradeoffCsvHeader();
+  for (std::size_t i = 0; i < scenes.size(); ++i) {
+    const TradeoffProgressFn progress = [&](const TradeoffProgress& p) {
+      std::fprintf(stderr, "\r\033[K%s: [%d/%d] %s", names[i].c_str(), p.rendersDone, p.rendersPlanned, p.what.c_str());
+    };
+    TradeoffReport report = measureTradeoff(scenes[i], options, pool, nullptr, showProgress ? progress : nullptr);
+    if (showProgress) std::fputs("\r\033[K", stderr);
+    report.sceneName = names[i];
+    csv += tradeoffCsvRows(report);
+    const std::filesystem::path plotPath = directory / (names[i] + "_tradeoff.png");
+    try {
+      // The CSV is rewritten after every scene, so a long run keeps what it has measured.
+      writeFileAtomically(directory / "tradeoff.csv", csv);
+      writeImageFile(plotPath, plotTradeoff(report));
+    } catch (const ImageIoError& e) {
+      std::fprintf(stderr, "rayview: error: %s\n", e.what());
+      return kExitIoFailure;
+    }
+    if (!command.quiet) {
+      printTable(report);
+      std::printf("  wrote %s\n\n", std::filesystem::absolute(plotPath).c_str());
+    }
+  }
+  if (!command.quiet) std::printf("wrote %s\n", std::filesystem::absolute(directory / "tradeoff.csv").c_str());
+  return kExitOk;
+}
+
+}  // namespace rayview

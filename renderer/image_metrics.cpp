@@ -1,0 +1,42 @@
+#include "rayview/image_metrics.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace rayview {
+
+double psnrFromRmse(double rmse) {
+  if (rmse <= 0.0) return std::numeric_limits<double>::infinity();
+  return 20.0 * std::log10(kMaxChannelValue / rmse);
+}
+
+ImageError compareToReference(const Image& image, const Image& reference) {
+  if (image.width != reference.width || image.height != reference.height)
+    throw std::invalid_argument("cannot compare a " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height) + " image with a " + std::to_string(reference.width) +
+                                "x" + std::to_string(reference.height) + " reference");
+  ImageError error;
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  if (pixels == 0) return error;
+  // Integer sums: exact whatever the image size (255^2 * 3 * 2^32 pixels still fits in 64 bits).
+  std::uint64_t sumSquares = 0;
+  std::size_t offPixels = 0;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c) {
+      const int d = std::abs(int(image.rgb[3 * p + c]) - int(reference.rgb[3 * p + c]));
+      sumSquares += static_cast<std::uint64_t>(d * d);
+      if (d > worst) worst = d;
+    }
+    if (worst > 1) ++offPixels;
+    if (worst > error.maxChannelDifference) error.maxChannelDifference = worst;
+  }
+  error.rmse = std::sqrt(static_cast<double>(sumSquares) / (3.0 * static_cast<double>(pixels)));
+  error.psnrDb = psnrFromRmse(error.rmse);
+  error.pctOffByMoreThan1 = 100.0 * static_cast<double>(offPixels) / static_cast<double>(pixels);
+  return error;
+}
+
+}  // namespace rayview

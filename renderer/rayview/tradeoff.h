@@ -1,0 +1,120 @@
+#pragma once
+// The speed-for-accuracy trade, measured (issue 4, item 2). For each setting of each knob, varied alone from a
+// baseline, render the scene, time it and compare it with the highest-quality image. No GL: `rayview bench
+// tradeoff` and the viewer both use this.
+//
+// The knobs, each varied alone; the others stay at the baseline (full resolution, depth = the scene's
+// <maxraytracedepth>, 1 light sample, Embree):
+//   preview       pixel strides 16, 8, 4, 2, 1 (labelled 1/16 .. 1). The image is the blocky upscale the viewer
+//                 shows (every pixel shows the sample at the top-left of its stride block); the time is that
+//                 pass rendered alone from scratch, every pixel of its grid, not the incremental pass the
+//                 progressive renderer runs after coarser ones.
+//   depth         0 .. the scene's maximum (every value up to kMaxDepthsListed, then powers of two and the
+//                 maximum). Without mirrors depth changes nothing: only 0 and the maximum are listed.
+//   light_samples 1, 2, 4 .. maxLightSamples, area model; only when the scene has triangular lights.
+//   accel         Embree and the reference BVH (only the reference when built without Embree).
+// The highest-quality image ("reference" row): full resolution, the scene's maximum depth, referenceLightSamples
+// (when the scene has triangular lights), the reference BVH.
+//
+// Time: the median of `timedRuns` renders of the setting (more for fast settings, one for very slow ones: see
+// TradeoffOptions), on the same thread pool, interleaved round by round over all settings so that a change of
+// machine load hits every setting alike. Only the render is timed (not the BVH build, reported once per
+// accelerator, nor the upscale). A run that other processes slowed (its threads got well under their share of
+// the CPU) is repeated, and the report's notes say how often that happened. Settings that coincide (the
+// baseline is the stride-1 preview, the maximum depth, 1 sample and Embree) are rendered and timed once and
+// share their figures.
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rayview/image_metrics.h"
+#include "rayview/render_settings.h"
+#include "rayview/scene.h"
+#include "rayview/thread_pool.h"
+
+namespace rayview {
+
+enum class TradeoffKnob { Reference, Preview, Depth, LightSamples, Accel };
+
+// "reference", "preview", "depth", "light_samples", "accel" (the CSV's knob column).
+std::string_view toString(TradeoffKnob knob);
+
+inline constexpr int kPreviewStrides[] = {16, 8, 4, 2, 1};
+inline constexpr int kMaxDepthsListed = 10;  // deeper scenes list 0, 1, 2, 4, 8 .. and their maximum
+
+struct TradeoffOptions {
+  double resolutionScale = 1.0;     // the camera resolution is multiplied by this (rounded, at least 1 pixel)
+  int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
+  int referenceLightSamples = 256;  // samples per triangular light in the highest-quality image
+  AccelKind baselineAccel = AccelKind::Embree;  // what the other knobs use (falls back to the reference BVH)
+  int timedRuns = 3;                // the time is the median of this many runs, except:
+  double singleRunMs = 10000.0;     //   a setting whose first run takes longer than this is run once,
+  double fastRunMs = 250.0;         //   one whose first run takes less than this (noisier) ...
+  int fastTimedRuns = 7;            //   ... this many times
+  // A run of 20 ms or more whose threads got less than this share of the CPU time they could have used
+  // (other processes held the cores) is repeated after a pause (50 ms, doubling), up to slowedRetries times,
+  // then kept and counted in the notes.
+  double minCpuShare = 0.8;
+  int slowedRetries = 5;
+};
+
+// One setting of one knob: what to render.
+struct KnobSetting {
+  TradeoffKnob knob = TradeoffKnob::Reference;
+  std::string label;        // the CSV's setting column: "1/16", "3", "64", "embree"
+  int stride = 1;           // pixel stride of the grid rendered; 1 = every pixel
+  RenderSettings settings;  // depth always explicit (maxDepthOverride >= 0)
+};
+
+// The settings measured for `scene`, the reference first, then knob by knob in the order listed above.
+std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const TradeoffOptions& options);
+
+struct TradeoffPoint {
+  KnobSetting setting;
+  double timeMs = 0.0;       // median render time
+  int runs = 0;              // renders the median was taken over
+  ImageError error;          // against the reference image
+  std::uint64_t rays = 0;    // rays of one render
+};
+
+struct TradeoffReport {
+  std::string sceneName;     // the file's stem ("default" for the embedded scene)
+  int width = 0, height = 0; // the resolution rendered (after resolutionScale)
+  int threads = 0;
+  double embreeBuildMs = 0.0, referenceBuildMs = 0.0;  // 0 when that accelerator was not built
+  double totalMs = 0.0;      // the whole measurement, builds included
+  std::vector<TradeoffPoint> points;  // in enumerateKnobSettings order; the reference first
+  std::vector<std::string> notes;     // what a reader should know ("no mirrors: depth changes nothing")
+  bool cancelled = false;    // then `points` is empty
+};
+
+struct TradeoffProgress {
+  int rendersDone = 0;
+  int rendersPlanned = 0;    // exact once every setting has been rendered once (it depends on their times)
+  std::string what;          // "depth 3", "building the reference BVH"
+};
+using TradeoffProgressFn = std::function<void(const TradeoffProgress&)>;
+
+// Measures every setting of enumerateKnobSettings(*scene, options) on `pool`.
+// - `scene` must hold the meshes: the viewer can pass its PreparedGeometry::source, not a parametersOf()
+//   snapshot. The BVHs are built here, once per accelerator, and are not part of any time.
+// - Blocks the calling thread for as long as the renders take (seconds to minutes): the viewer calls it from a
+//   worker thread of its own, never from the UI thread, and pauses its progressive renderer meanwhile, or the
+//   times mean little.
+// - Raising `*cancel` stops within one tile of rendering; the report then says cancelled.
+// - `progress` is called on the calling thread before every BVH build and every render.
+// Throws std::invalid_argument for a camera without pixels or a resolution scale <= 0.
+TradeoffReport measureTradeoff(std::shared_ptr<const Scene> scene, const TradeoffOptions& options, ThreadPool& pool,
+                               const std::atomic<bool>* cancel = nullptr, const TradeoffProgressFn& progress = {});
+
+// The CSV the bench writes: a header line, then one line per point of every report.
+// Columns: scene, knob, setting, time_ms, rmse, psnr_db ("inf" when exact), pct_off_by_more_than_1, rays.
+std::string tradeoffCsvHeader();
+std::string tradeoffCsvRows(const TradeoffReport& report);
+
+}  // namespace rayview

@@ -1,0 +1,339 @@
+#include "rayview/tradeoff.h"
+
+#include <time.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+#include <stdexcept>
+#include <thread>
+
+#include "rayview/prepared_scene.h"
+#include "rayview/tiles.h"
+#include "rayview/tracer.h"
+
+namespace rayview {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+int ceilDiv(int a, int b) { return (a + b - 1) / b; }
+
+// CPU time of the whole process: with the pool's workers busy and the caller waiting, it is what the render
+// threads got. Compared with wall time it tells whether other processes took the cores meanwhile.
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+
+// A run shorter than this is not judged: thread wake-up latency alone can halve its CPU share.
+constexpr double kMinMsToJudgeShare = 20.0;
+
+// ---- Enumeration
+
+std::vector<int> depthsToList(int maxDepth, bool hasMirrors) {
+  if (maxDepth <= 0) return {0};
+  if (!hasMirrors) return {0, maxDepth};
+  std::vector<int> depths;
+  if (maxDepth <= kMaxDepthsListed) {
+    for (int d = 0; d <= maxDepth; ++d) depths.push_back(d);
+    return depths;
+  }
+  depths.push_back(0);
+  for (int d = 1; d < maxDepth; d *= 2) depths.push_back(d);
+  depths.push_back(maxDepth);
+  return depths;
+}
+
+std::string previewLabel(int stride) { return stride == 1 ? "1" : "1/" + std::to_string(stride); }
+
+// ---- Rendering one setting
+
+struct Run {
+  Image image;
+  RayCounts rays;
+  double wallMs = 0.0;
+  double cpuShare = 1.0;  // CPU time / (wall time x threads); well below 1 when other processes ran
+};
+
+// Renders the pixels on the stride grid, then fills every pixel with the sample at the top-left of its
+// block, as the viewer publishes a pass. Only the tracing is timed. False when `cancel` was raised.
+bool renderStrided(const Tracer& tracer, int width, int height, int stride, ThreadPool& pool,
+                   const std::atomic<bool>* cancel, Run& run) {
+  Image& image = run.image;
+  RayCounts& rays = run.rays;
+  image = Image(width, height);
+  rays = {};
+  const std::vector<Tile> tiles = makeTiles(ceilDiv(width, stride), ceilDiv(height, stride), pool.size());
+  std::mutex raysMutex;
+  std::atomic<bool> cancelled{false};
+  const double cpuStart = processCpuMs();
+  const auto start = Clock::now();
+  pool.parallelFor(tiles.size(), [&](std::size_t index) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) {
+      cancelled.store(true, std::memory_order_relaxed);
+      return;
+    }
+    const Tile& tile = tiles[index];
+    RayCounts counts;
+    for (int gy = tile.y0; gy < tile.y1; ++gy)
+      for (int gx = tile.x0; gx < tile.x1; ++gx) {
+        const Color c = tracer.tracePixel(gx * stride, gy * stride, counts);
+        std::uint8_t* out = image.pixel(gx * stride, gy * stride);
+        out[0] = quantizeChannel(c.x);
+        out[1] = quantizeChannel(c.y);
+        out[2] = quantizeChannel(c.z);
+      }
+    std::lock_guard lock(raysMutex);
+    rays += counts;
+  });
+  run.wallMs = msSince(start);
+  run.cpuShare = run.wallMs > 0.0 ? (processCpuMs() - cpuStart) / (run.wallMs * pool.size()) : 1.0;
+  if (cancelled.load()) return false;
+  if (stride == 1) return true;
+  // In place: grid pixels are read before anything overwrites them, rows copy an already-finished row above.
+  const auto rowBytes = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height; ++y) {
+    std::uint8_t* row = image.pixel(0, y);
+    if (y % stride != 0) {
+      std::memcpy(row, image.pixel(0, y - 1), rowBytes);
+      continue;
+    }
+    for (int x = 0; x < width; ++x)
+      if (x % stride != 0) std::memcpy(row + 3 * x, row + 3 * (x - x % stride), 3);
+  }
+  return true;
+}
+
+// One distinct render: several knob settings may share it.
+struct Render {
+  int stride = 1;
+  RenderSettings settings;
+  std::string description;  // of the first knob setting that needs it
+  std::vector<double> timesMs;
+  ImageError error;
+  std::uint64_t rays = 0;
+};
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const std::size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+bool buildCancelled(void* user, double) { return !static_cast<const std::atomic<bool>*>(user)->load(); }
+
+std::string formatNumber(const char* format, double value) {
+  char text[64];
+  std::snprintf(text, sizeof text, format, value);
+  return text;
+}
+
+std::string csvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+std::string_view toString(TradeoffKnob knob) {
+  switch (knob) {
+    case TradeoffKnob::Reference: return "reference";
+    case TradeoffKnob::Preview: return "preview";
+    case TradeoffKnob::Depth: return "depth";
+    case TradeoffKnob::LightSamples: return "light_samples";
+    case TradeoffKnob::Accel: return "accel";
+  }
+  return "?";
+}
+
+std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const TradeoffOptions& options) {
+  const int maxDepth = std::max(0, scene.maxRayDepth);
+  RenderSettings baseline;
+  baseline.maxDepthOverride = maxDepth;
+  baseline.lightSamples = 1;
+  baseline.accel = availableAccel(options.baselineAccel);
+  const bool samplesMatter =
+      !scene.triangularLights.empty() && baseline.triangularLightModel == TriangularLightModel::Area;
+
+  std::vector<KnobSetting> list;
+  RenderSettings best = baseline;
+  best.accel = availableAccel(AccelKind::Reference);
+  best.lightSamples = samplesMatter ? std::clamp(options.referenceLightSamples, 1, kMaxLightSamples) : 1;
+  list.push_back({TradeoffKnob::Reference,
+                  "depth=" + std::to_string(maxDepth) + " samples=" + std::to_string(best.lightSamples) +
+                      " accel=" + std::string(toString(best.accel)),
+                  1, best});
+
+  for (int stride : kPreviewStrides) list.push_back({TradeoffKnob::Preview, previewLabel(stride), stride, baseline});
+
+  for (int depth : depthsToList(maxDepth, scene.hasMirrors())) {
+    RenderSettings s = baseline;
+    s.maxDepthOverride = depth;
+    list.push_back({TradeoffKnob::Depth, std::to_string(depth), 1, s});
+  }
+
+  if (samplesMatter) {
+    const int most = std::clamp(options.maxLightSamples, 1, kMaxLightSamples);
+    for (int n = 1;; n = std::min(2 * n, most)) {
+      RenderSettings s = baseline;
+      s.lightSamples = n;
+      list.push_back({TradeoffKnob::LightSamples, std::to_string(n), 1, s});
+      if (n == most) break;
+    }
+  }
+
+  for (AccelKind kind : {AccelKind::Embree, AccelKind::Reference}) {
+    if (availableAccel(kind) != kind) continue;
+    RenderSettings s = baseline;
+    s.accel = kind;
+    list.push_back({TradeoffKnob::Accel, std::string(toString(kind)), 1, s});
+  }
+  return list;
+}
+
+TradeoffReport measureTradeoff(std::shared_ptr<const Scene> scene, const TradeoffOptions& options, ThreadPool& pool,
+                               const std::atomic<bool>* cancel, const TradeoffProgressFn& progress) {
+  const auto start = Clock::now();
+  TradeoffReport report;
+  report.sceneName = scene->sourcePath.empty() ? "default" : scene->sourcePath.stem().string();
+  report.threads = pool.size();
+
+  // Camera, lights and materials from a resized copy; the meshes are read from the geometry's own scene.
+  Scene view = parametersOf(*scene);
+  const auto scaled = [&](int pixels) {
+    return std::max(1, static_cast<int>(std::lround(pixels * options.resolutionScale)));
+  };
+  if (scene->camera.width <= 0 || scene->camera.height <= 0 || !(options.resolutionScale > 0.0))
+    throw std::invalid_argument("the tradeoff needs a camera with pixels and a positive resolution scale");
+  view.camera.width = report.width = scaled(scene->camera.width);
+  view.camera.height = report.height = scaled(scene->camera.height);
+
+  if (!scene->hasMirrors()) report.notes.push_back("no mirrors (or depth 0): depth changes nothing");
+  if (scene->triangularLights.empty())
+    report.notes.push_back("no triangular lights: light samples change nothing (not measured)");
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree)
+    report.notes.push_back("built without Embree: only the reference BVH is measured");
+
+  const std::vector<KnobSetting> settings = enumerateKnobSettings(*scene, options);
+  std::vector<Render> renders;
+  std::vector<std::size_t> renderOf;
+  for (const KnobSetting& k : settings) {
+    const auto same = std::find_if(renders.begin(), renders.end(),
+                                   [&](const Render& r) { return r.stride == k.stride && r.settings == k.settings; });
+    renderOf.push_back(static_cast<std::size_t>(same - renders.begin()));
+    if (same == renders.end())
+      renders.push_back({k.stride, k.settings, std::string(toString(k.knob)) + " " + k.label, {}, {}, 0});
+  }
+
+  const auto isCancelled = [&] { return cancel && cancel->load(); };
+  const auto cancelledReport = [&] {
+    TradeoffReport r = std::move(report);
+    r.points.clear();
+    r.cancelled = true;
+    r.totalMs = msSince(start);
+    return r;
+  };
+  const int timedRuns = std::max(1, options.timedRuns);
+  TradeoffProgress status{0, static_cast<int>(renders.size()) * timedRuns, {}};
+  const auto tell = [&](std::string what) {
+    status.what = std::move(what);
+    if (progress) progress(status);
+  };
+
+  std::shared_ptr<const PreparedGeometry> geometry[2];  // by AccelKind
+  for (const Render& r : renders) {
+    auto& built = geometry[static_cast<int>(r.settings.accel)];
+    if (built) continue;
+    if (isCancelled()) return cancelledReport();
+    tell("building the " + std::string(toString(r.settings.accel)) + " BVH");
+    built = prepareGeometry(scene, r.settings.accel, cancel ? buildCancelled : nullptr,
+                            const_cast<std::atomic<bool>*>(cancel));
+    if (!built || isCancelled()) return cancelledReport();
+    (r.settings.accel == AccelKind::Embree ? report.embreeBuildMs : report.referenceBuildMs) = built->buildMs;
+  }
+
+  // Round 0 renders every setting and keeps its error (renders[0] is the reference: it comes first); later
+  // rounds only time. Interleaved rounds spread slow drifts of the machine's load over all settings.
+  const auto runsFor = [&](const Render& r) {
+    const double first = r.timesMs.front();
+    if (first > options.singleRunMs) return 1;
+    return first < options.fastRunMs ? std::max(timedRuns, options.fastTimedRuns) : timedRuns;
+  };
+  const int maxRuns = std::max(timedRuns, options.fastTimedRuns);
+  Image referenceImage;
+  int slowedRepeated = 0, slowedKept = 0;
+  for (int round = 0; round < maxRuns; ++round) {
+    for (std::size_t i = 0; i < renders.size(); ++i) {
+      Render& r = renders[i];
+      if (round > 0 && round >= runsFor(r)) continue;
+      if (isCancelled()) return cancelledReport();
+      tell(r.description);
+      const Tracer tracer(view, *geometry[static_cast<int>(r.settings.accel)], r.settings);
+      Run run;
+      // A run during which other processes held the cores is repeated (a few times at most): on a shared
+      // machine that keeps bursts of someone else's work out of the medians.
+      for (int attempt = 0;; ++attempt) {
+        if (!renderStrided(tracer, view.camera.width, view.camera.height, r.stride, pool, cancel, run))
+          return cancelledReport();
+        const bool slowed = run.wallMs >= kMinMsToJudgeShare && run.cpuShare < options.minCpuShare;
+        if (!slowed) break;
+        if (attempt >= options.slowedRetries) {
+          ++slowedKept;
+          break;
+        }
+        ++slowedRepeated;
+        // Give a burst of someone else's work time to pass: 50 ms, 100 ms, 200 ms ...
+        std::this_thread::sleep_for(std::chrono::milliseconds(50 << std::min(attempt, 5)));
+        if (isCancelled()) return cancelledReport();
+      }
+      r.timesMs.push_back(run.wallMs);
+      ++status.rendersDone;
+      if (round > 0) continue;
+      r.rays = run.rays.total();
+      if (i == 0) referenceImage = std::move(run.image);
+      else r.error = compareToReference(run.image, referenceImage);
+    }
+    if (round == 0) {
+      status.rendersPlanned = 0;
+      for (const Render& r : renders) status.rendersPlanned += runsFor(r);
+    }
+  }
+
+  if (slowedRepeated > 0 || slowedKept > 0)
+    report.notes.push_back(std::to_string(slowedRepeated) + " runs slowed by other processes were repeated" +
+                           (slowedKept > 0 ? "; " + std::to_string(slowedKept) + " kept (still slowed)" : ""));
+
+  for (std::size_t k = 0; k < settings.size(); ++k) {
+    const Render& r = renders[renderOf[k]];
+    report.points.push_back({settings[k], median(r.timesMs), static_cast<int>(r.timesMs.size()), r.error, r.rays});
+  }
+  report.totalMs = msSince(start);
+  return report;
+}
+
+std::string tradeoffCsvHeader() { return "scene,knob,setting,time_ms,rmse,psnr_db,pct_off_by_more_than_1,rays\n"; }
+
+std::string tradeoffCsvRows(const TradeoffReport& report) {
+  std::string csv;
+  for (const TradeoffPoint& p : report.points) {
+    csv += csvField(report.sceneName) + "," + std::string(toString(p.setting.knob)) + "," +
+           csvField(p.setting.label) + "," + formatNumber("%.3f", p.timeMs) + "," +
+           formatNumber("%.4f", p.error.rmse) + "," +
+           (std::isinf(p.error.psnrDb) ? std::string("inf") : formatNumber("%.2f", p.error.psnrDb)) + "," +
+           formatNumber("%.4f", p.error.pctOffByMoreThan1) + "," + std::to_string(p.rays) + "\n";
+  }
+  return csv;
+}
+
+}  // namespace rayview

@@ -1,0 +1,321 @@
+// The speed-for-accuracy measurement: image metrics on known images, the knobs enumerated, a small tradeoff
+// run (exact at its finest settings), its CSV and its plot.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "rayview/image_metrics.h"
+#include "rayview/plot.h"
+#include "rayview/tradeoff.h"
+#include "support/scene_builder.h"
+
+namespace rayview {
+namespace {
+
+using testing::addQuadFacingZ;
+using testing::addTriangle;
+using testing::frontCamera;
+using testing::plainMaterial;
+
+Image filled(int w, int h, std::uint8_t value) {
+  Image image(w, h);
+  std::fill(image.rgb.begin(), image.rgb.end(), value);
+  return image;
+}
+
+// ---- Metrics
+
+TEST(ImageMetrics, IdenticalImagesAreExact) {
+  const Image a = filled(5, 4, 77);
+  const ImageError e = compareToReference(a, a);
+  EXPECT_EQ(e.rmse, 0.0);
+  EXPECT_TRUE(std::isinf(e.psnrDb));
+  EXPECT_EQ(e.pctOffByMoreThan1, 0.0);
+  EXPECT_EQ(e.maxChannelDifference, 0);
+}
+
+TEST(ImageMetrics, UniformOffsetGivesThatRmse) {
+  const ImageError e = compareToReference(filled(8, 8, 103), filled(8, 8, 100));
+  EXPECT_DOUBLE_EQ(e.rmse, 3.0);
+  EXPECT_DOUBLE_EQ(e.psnrDb, 20.0 * std::log10(255.0 / 3.0));
+  EXPECT_DOUBLE_EQ(e.pctOffByMoreThan1, 100.0);
+  EXPECT_EQ(e.maxChannelDifference, 3);
+}
+
+TEST(ImageMetrics, OffByOneIsNotOff) {
+  const ImageError e = compareToReference(filled(4, 4, 101), filled(4, 4, 100));
+  EXPECT_DOUBLE_EQ(e.rmse, 1.0);
+  EXPECT_EQ(e.pctOffByMoreThan1, 0.0);
+}
+
+TEST(ImageMetrics, OneChannelOfHalfThePixels) {
+  const Image reference = filled(4, 2, 10);
+  Image image = reference;
+  for (int x = 0; x < 4; ++x) image.pixel(x, 0)[1] = 12;  // the top row's green, off by 2
+  const ImageError e = compareToReference(image, reference);
+  // 4 channels of 24 off by 2: sqrt(4 * 4 / 24).
+  EXPECT_DOUBLE_EQ(e.rmse, std::sqrt(16.0 / 24.0));
+  EXPECT_DOUBLE_EQ(e.pctOffByMoreThan1, 50.0);
+}
+
+TEST(ImageMetrics, SizesMustMatch) {
+  EXPECT_THROW(compareToReference(filled(4, 4, 0), filled(4, 5, 0)), std::invalid_argument);
+  EXPECT_TRUE(std::isinf(psnrFromRmse(0.0)));
+}
+
+// ---- Scenes
+
+// A lit wall with a small occluder in front (a hard shadow) and a mirror on the right half.
+Scene wallScene(bool triangularLight, int size = 40) {
+  Scene scene;
+  scene.camera = frontCamera(size);
+  scene.maxRayDepth = 2;
+  scene.background = Color(50, 100, 150);
+  scene.materials.push_back(plainMaterial("matte"));
+  Material mirror = plainMaterial("mirror");
+  mirror.diffuse = Color(0.3f);
+  mirror.mirror = Color(0.7f);
+  scene.materials.push_back(mirror);
+  addQuadFacingZ(scene, -4, -4, 4, 4, -4, 0);
+  addQuadFacingZ(scene, 0.8, -4, 4, 4, -3.9, 1);
+  addQuadFacingZ(scene, -0.5, -0.5, 0.5, 0.5, -2, 0);
+  // Behind the camera, facing it: what the mirror shows.
+  addTriangle(scene, {-20, -20, 2}, {20, 20, 2}, {20, -20, 2}, 0);
+  addTriangle(scene, {-20, -20, 2}, {-20, 20, 2}, {20, 20, 2}, 0);
+  if (triangularLight) {
+    // (v1 - v2) x (v1 - v3) points down -z, at the wall.
+    scene.triangularLights.push_back({"tri", {0, 0.6, -1}, {0.6, -0.6, -1}, {-0.6, -0.6, -1}, Color(3000.0f)});
+  } else {
+    scene.pointLights.push_back({"point", {0.2, 0.3, -1}, Color(3000.0f)});
+  }
+  return scene;
+}
+
+std::vector<KnobSetting> settingsOf(const std::vector<KnobSetting>& all, TradeoffKnob knob) {
+  std::vector<KnobSetting> out;
+  std::copy_if(all.begin(), all.end(), std::back_inserter(out), [&](const KnobSetting& k) { return k.knob == knob; });
+  return out;
+}
+
+std::vector<std::string> labelsOf(const std::vector<KnobSetting>& settings) {
+  std::vector<std::string> labels;
+  for (const KnobSetting& k : settings) labels.push_back(k.label);
+  return labels;
+}
+
+// ---- Enumeration
+
+TEST(KnobEnumeration, EveryKnobOfASceneWithMirrorsAndATriangularLight) {
+  const Scene scene = wallScene(true);
+  const std::vector<KnobSetting> all = enumerateKnobSettings(scene, TradeoffOptions{});
+  ASSERT_FALSE(all.empty());
+  EXPECT_EQ(all.front().knob, TradeoffKnob::Reference);
+  EXPECT_EQ(all.front().settings.accel, AccelKind::Reference);
+  EXPECT_EQ(all.front().settings.lightSamples, 256);
+  EXPECT_EQ(all.front().settings.maxDepthOverride, 2);
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::Preview)),
+            (std::vector<std::string>{"1/16", "1/8", "1/4", "1/2", "1"}));
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::Depth)), (std::vector<std::string>{"0", "1", "2"}));
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::LightSamples)),
+            (std::vector<std::string>{"1", "2", "4", "8", "16", "32", "64", "128", "256"}));
+  const auto accel = settingsOf(all, TradeoffKnob::Accel);
+  ASSERT_FALSE(accel.empty());
+  EXPECT_EQ(accel.back().label, "reference");
+  // Each knob varies alone: everything else stays at the baseline.
+  for (const KnobSetting& k : settingsOf(all, TradeoffKnob::LightSamples)) {
+    EXPECT_EQ(k.stride, 1);
+    EXPECT_EQ(k.settings.maxDepthOverride, 2);
+    EXPECT_EQ(k.settings.accel, availableAccel(AccelKind::Embree));
+  }
+  for (const KnobSetting& k : settingsOf(all, TradeoffKnob::Preview)) EXPECT_EQ(k.settings.lightSamples, 1);
+}
+
+TEST(KnobEnumeration, WithoutMirrorsOrTriangularLights) {
+  Scene scene = wallScene(false);
+  scene.materials[1].mirror = Color(0.0f);
+  scene.maxRayDepth = 5;
+  const std::vector<KnobSetting> all = enumerateKnobSettings(scene, TradeoffOptions{});
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::Depth)), (std::vector<std::string>{"0", "5"}));
+  EXPECT_TRUE(settingsOf(all, TradeoffKnob::LightSamples).empty());
+  EXPECT_EQ(all.front().settings.lightSamples, 1);
+}
+
+TEST(KnobEnumeration, DeepScenesListPowersOfTwo) {
+  Scene scene = wallScene(false);
+  scene.maxRayDepth = 40;
+  TradeoffOptions options;
+  options.maxLightSamples = 6;
+  EXPECT_EQ(labelsOf(settingsOf(enumerateKnobSettings(scene, options), TradeoffKnob::Depth)),
+            (std::vector<std::string>{"0", "1", "2", "4", "8", "16", "32", "40"}));
+  scene = wallScene(true);
+  EXPECT_EQ(labelsOf(settingsOf(enumerateKnobSettings(scene, options), TradeoffKnob::LightSamples)),
+            (std::vector<std::string>{"1", "2", "4", "6"}));
+}
+
+// ---- Measuring
+
+const TradeoffPoint& pointOf(const TradeoffReport& report, TradeoffKnob knob, const std::string& label) {
+  for (const TradeoffPoint& p : report.points)
+    if (p.setting.knob == knob && p.setting.label == label) return p;
+  throw std::runtime_error("no point " + std::string(toString(knob)) + " " + label);
+}
+
+TradeoffOptions quickOptions() {
+  TradeoffOptions options;
+  options.timedRuns = 1;
+  options.fastTimedRuns = 1;
+  options.baselineAccel = AccelKind::Reference;  // so the finest setting of each knob is the reference image
+  return options;
+}
+
+TEST(MeasureTradeoff, PreviewErrorFallsToZeroAtFullResolution) {
+  ThreadPool pool(2);
+  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), quickOptions(), pool);
+  ASSERT_FALSE(report.cancelled);
+  EXPECT_EQ(report.width, 40);
+  EXPECT_EQ(report.threads, 2);
+
+  const TradeoffPoint& reference = report.points.front();
+  EXPECT_EQ(reference.setting.knob, TradeoffKnob::Reference);
+  EXPECT_EQ(reference.error.rmse, 0.0);
+
+  std::vector<double> previewRmse;
+  for (const char* label : {"1/16", "1/8", "1/4", "1/2", "1"})
+    previewRmse.push_back(pointOf(report, TradeoffKnob::Preview, label).error.rmse);
+  EXPECT_EQ(previewRmse.back(), 0.0);
+  EXPECT_GT(previewRmse.front(), 1.0);
+  // Monotone-ish: each level no worse than the coarsest, and refining two levels always helps.
+  for (std::size_t i = 0; i < previewRmse.size(); ++i) EXPECT_LE(previewRmse[i], previewRmse.front()) << i;
+  for (std::size_t i = 0; i + 2 < previewRmse.size(); ++i) EXPECT_LT(previewRmse[i + 2], previewRmse[i]) << i;
+  // Fewer pixels, fewer rays: the camera rays of a 1/s preview are its grid.
+  EXPECT_LT(pointOf(report, TradeoffKnob::Preview, "1/16").rays, pointOf(report, TradeoffKnob::Preview, "1").rays);
+
+  // Depth: the mirror needs one bounce; the scene's maximum is exact.
+  EXPECT_GT(pointOf(report, TradeoffKnob::Depth, "0").error.rmse, 1.0);
+  EXPECT_EQ(pointOf(report, TradeoffKnob::Depth, "1").error.rmse, 0.0);
+  EXPECT_EQ(pointOf(report, TradeoffKnob::Depth, "2").error.rmse, 0.0);
+
+  // Settings that coincide are one render: same time, same figures.
+  const TradeoffPoint& fullPreview = pointOf(report, TradeoffKnob::Preview, "1");
+  const TradeoffPoint& maxDepth = pointOf(report, TradeoffKnob::Depth, "2");
+  EXPECT_EQ(fullPreview.timeMs, maxDepth.timeMs);
+  EXPECT_EQ(fullPreview.rays, maxDepth.rays);
+  for (const TradeoffPoint& p : report.points) {
+    EXPECT_GT(p.timeMs, 0.0);
+    EXPECT_EQ(p.runs, 1);
+  }
+}
+
+TEST(MeasureTradeoff, LightSamplesConvergeToTheReference) {
+  ThreadPool pool(2);
+  TradeoffOptions options = quickOptions();
+  options.maxLightSamples = 64;
+  options.referenceLightSamples = 64;
+  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(true, 24)), options, pool);
+  ASSERT_FALSE(report.cancelled);
+  EXPECT_GT(pointOf(report, TradeoffKnob::LightSamples, "1").error.rmse, 0.5);
+  EXPECT_EQ(pointOf(report, TradeoffKnob::LightSamples, "64").error.rmse, 0.0);
+  EXPECT_LT(pointOf(report, TradeoffKnob::LightSamples, "16").error.rmse,
+            pointOf(report, TradeoffKnob::LightSamples, "1").error.rmse);
+  EXPECT_GT(pointOf(report, TradeoffKnob::LightSamples, "64").rays, pointOf(report, TradeoffKnob::LightSamples, "1").rays);
+}
+
+TEST(MeasureTradeoff, EmbreeAgreesWithTheReference) {
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
+  ThreadPool pool(2);
+  TradeoffOptions options;
+  options.timedRuns = 3;
+  options.fastRunMs = 0.0;
+  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), options, pool);
+  const TradeoffPoint& embree = pointOf(report, TradeoffKnob::Accel, "embree");
+  EXPECT_LT(embree.error.pctOffByMoreThan1, 1.0);
+  EXPECT_EQ(pointOf(report, TradeoffKnob::Accel, "reference").error.rmse, 0.0);
+  EXPECT_EQ(embree.runs, 3);
+  EXPECT_GT(report.embreeBuildMs, 0.0);
+  EXPECT_GT(report.referenceBuildMs, 0.0);
+}
+
+TEST(MeasureTradeoff, ResolutionScale) {
+  ThreadPool pool(1);
+  TradeoffOptions options = quickOptions();
+  options.resolutionScale = 0.25;
+  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), options, pool);
+  EXPECT_EQ(report.width, 10);
+  EXPECT_EQ(report.height, 10);
+  EXPECT_EQ(pointOf(report, TradeoffKnob::Preview, "1").rays > 0, true);
+}
+
+TEST(MeasureTradeoff, CancelBeforeStart) {
+  ThreadPool pool(2);
+  const std::atomic<bool> cancel{true};
+  int calls = 0;
+  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), quickOptions(), pool,
+                                                &cancel, [&](const TradeoffProgress&) { ++calls; });
+  EXPECT_TRUE(report.cancelled);
+  EXPECT_TRUE(report.points.empty());
+  EXPECT_LE(calls, 1);
+}
+
+TEST(MeasureTradeoff, ProgressCountsEveryRender) {
+  ThreadPool pool(2);
+  int lastDone = -1, planned = 0, calls = 0;
+  measureTradeoff(std::make_shared<const Scene>(wallScene(false, 8)), quickOptions(), pool, nullptr,
+                  [&](const TradeoffProgress& p) {
+                    EXPECT_GE(p.rendersDone, lastDone);
+                    lastDone = p.rendersDone;
+                    planned = p.rendersPlanned;
+                    ++calls;
+                  });
+  EXPECT_GT(planned, 0);
+  EXPECT_EQ(lastDone, planned - 1);  // reported before the last render
+  EXPECT_GE(calls, planned);
+}
+
+// ---- CSV and plot
+
+TEST(TradeoffCsv, HeaderAndARowPerSetting) {
+  ThreadPool pool(2);
+  const TradeoffReport report =
+      measureTradeoff(std::make_shared<const Scene>(wallScene(true, 16)), quickOptions(), pool);
+  EXPECT_EQ(tradeoffCsvHeader(), "scene,knob,setting,time_ms,rmse,psnr_db,pct_off_by_more_than_1,rays\n");
+  std::istringstream rows(tradeoffCsvRows(report));
+  std::string line;
+  std::size_t count = 0;
+  while (std::getline(rows, line)) {
+    EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7) << line;
+    if (count == 0) {
+      EXPECT_EQ(line.rfind("default,reference,", 0), 0u) << line;
+      EXPECT_NE(line.find(",0.0000,inf,0.0000,"), std::string::npos) << line;
+    }
+    ++count;
+  }
+  EXPECT_EQ(count, report.points.size());
+  EXPECT_EQ(count, enumerateKnobSettings(wallScene(true, 16), quickOptions()).size());
+}
+
+TEST(TradeoffPlot, DrawsEverySeries) {
+  ThreadPool pool(2);
+  const TradeoffReport report =
+      measureTradeoff(std::make_shared<const Scene>(wallScene(true, 16)), quickOptions(), pool);
+  const Image plot = plotTradeoff(report, 640, 400);
+  ASSERT_EQ(plot.width, 640);
+  ASSERT_EQ(plot.height, 400);
+  const auto has = [&](std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    for (std::size_t i = 0; i < plot.rgb.size(); i += 3)
+      if (plot.rgb[i] == r && plot.rgb[i + 1] == g && plot.rgb[i + 2] == b) return true;
+    return false;
+  };
+  EXPECT_TRUE(has(0, 114, 178));   // preview
+  EXPECT_TRUE(has(213, 94, 0));    // depth
+  EXPECT_TRUE(has(0, 158, 115));   // light samples
+  EXPECT_TRUE(has(204, 121, 167)); // accel
+
+  TradeoffReport empty;
+  empty.cancelled = true;
+  EXPECT_EQ(plotTradeoff(empty, 500, 300).width, 500);
+}
+
+}  // namespace
+}  // namespace rayview
