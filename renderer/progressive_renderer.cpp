@@ -1,9 +1,8 @@
 #include "rayview/progressive_renderer.h"
 
 #include <algorithm>
-#include <cstring>
 
-#include "rayview/tiles.h"
+#include "rayview/grid_render.h"
 
 namespace rayview {
 namespace {
@@ -13,8 +12,6 @@ using Clock = std::chrono::steady_clock;
 double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
-
-int ceilDiv(int a, int b) { return (a + b - 1) / b; }
 
 }  // namespace
 
@@ -102,7 +99,7 @@ void ProgressiveRenderer::controllerLoop() {
         if (!renderPass(*source, generation, stride, previousStride, rays)) return false;
         const double passMs = msBetween(passStart, Clock::now());
         if (previousStride == 0) adaptFirstStride(stride, passMs);
-        publish(*source, generation, stride, passMs, rays, restartTime);
+        publish(generation, stride, passMs, rays, restartTime);
         if (stride == 1) return true;
         // While the user drags, hold the coarse level until the drag ends or the next edit arrives.
         std::unique_lock lock(mutex_);
@@ -122,36 +119,14 @@ void ProgressiveRenderer::controllerLoop() {
 
 bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t generation, int stride,
                                      int previousStride, RayCounts& rays) {
-  const int gridWidth = ceilDiv(source.width(), stride);
-  const int gridHeight = ceilDiv(source.height(), stride);
-  const std::vector<Tile> tiles = makeTiles(gridWidth, gridHeight, pool_.size());
-  std::mutex raysMutex;
-  std::atomic<bool> cancelled{false};
-  pool_.parallelFor(tiles.size(), [&](std::size_t index) {
-    if (generation_.load(std::memory_order_relaxed) != generation) {
-      cancelled.store(true, std::memory_order_relaxed);
-      return;
-    }
-    const Tile& tile = tiles[index];
-    RayCounts counts;
-    for (int gy = tile.y0; gy < tile.y1; ++gy)
-      for (int gx = tile.x0; gx < tile.x1; ++gx) {
-        const int x = gx * stride, y = gy * stride;
-        // Computed by an earlier pass of this restart: never twice.
-        if (previousStride != 0 && x % previousStride == 0 && y % previousStride == 0) continue;
-        const Color c = source.pixel(x, y, counts);
-        std::uint8_t* out = samples_.pixel(x, y);
-        out[0] = quantizeChannel(c.x);
-        out[1] = quantizeChannel(c.y);
-        out[2] = quantizeChannel(c.z);
-      }
-    std::lock_guard lock(raysMutex);
-    rays += counts;
-  });
-  return !cancelled.load() && generation_.load() == generation;
+  // Pixels on the previous (coarser) pass's grid were computed by it: never twice.
+  renderGrid([&](int x, int y, RayCounts& counts) { return source.pixel(x, y, counts); }, stride, previousStride,
+             pool_, samples_, rays,
+             [&] { return generation_.load(std::memory_order_relaxed) != generation; });
+  return generation_.load() == generation;
 }
 
-void ProgressiveRenderer::publish(const PixelSource& source, std::uint64_t generation, int stride, double passMs,
+void ProgressiveRenderer::publish(std::uint64_t generation, int stride, double passMs,
                                   const RayCounts& rays, Clock::time_point restartTime) {
   ProgressiveFrame frame;
   frame.generation = generation;
@@ -160,22 +135,8 @@ void ProgressiveRenderer::publish(const PixelSource& source, std::uint64_t gener
   frame.passMs = passMs;
   frame.passRays = rays;
   frame.megaRaysPerSecond = passMs > 0.0 ? rays.total() / (passMs * 1000.0) : 0.0;
-  const int width = source.width(), height = source.height();
-  if (stride == 1) {
-    frame.image = samples_;
-  } else {
-    // Each pixel shows the sample at the top-left corner of its stride block: blocky, no blur.
-    frame.image = Image(width, height);
-    for (int y = 0; y < height; ++y) {
-      const std::uint8_t* sourceRow = samples_.pixel(0, y - y % stride);
-      std::uint8_t* row = frame.image.pixel(0, y);
-      if (y % stride != 0) {
-        std::memcpy(row, frame.image.pixel(0, y - 1), static_cast<std::size_t>(width) * 3);
-        continue;
-      }
-      for (int x = 0; x < width; ++x) std::memcpy(row + 3 * x, sourceRow + 3 * (x - x % stride), 3);
-    }
-  }
+  frame.image = samples_;
+  fillBlocks(frame.image, stride);
   std::function<void()> listener;
   {
     std::lock_guard lock(mutex_);

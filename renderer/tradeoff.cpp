@@ -5,13 +5,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstring>
-#include <mutex>
 #include <stdexcept>
 #include <thread>
 
 #include "rayview/prepared_scene.h"
-#include "rayview/tiles.h"
+#include "rayview/grid_render.h"
 #include "rayview/tracer.h"
 
 namespace rayview {
@@ -22,8 +20,6 @@ using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
-
-int ceilDiv(int a, int b) { return (a + b - 1) / b; }
 
 // CPU time of the whole process: with the pool's workers busy and the caller waiting, it is what the render
 // threads got. Compared with wall time it tells whether other processes took the cores meanwhile.
@@ -71,44 +67,15 @@ bool renderStrided(const Tracer& tracer, int width, int height, int stride, Thre
   RayCounts& rays = run.rays;
   image = Image(width, height);
   rays = {};
-  const std::vector<Tile> tiles = makeTiles(ceilDiv(width, stride), ceilDiv(height, stride), pool.size());
-  std::mutex raysMutex;
-  std::atomic<bool> cancelled{false};
   const double cpuStart = processCpuMs();
   const auto start = Clock::now();
-  pool.parallelFor(tiles.size(), [&](std::size_t index) {
-    if (cancel && cancel->load(std::memory_order_relaxed)) {
-      cancelled.store(true, std::memory_order_relaxed);
-      return;
-    }
-    const Tile& tile = tiles[index];
-    RayCounts counts;
-    for (int gy = tile.y0; gy < tile.y1; ++gy)
-      for (int gx = tile.x0; gx < tile.x1; ++gx) {
-        const Color c = tracer.tracePixel(gx * stride, gy * stride, counts);
-        std::uint8_t* out = image.pixel(gx * stride, gy * stride);
-        out[0] = quantizeChannel(c.x);
-        out[1] = quantizeChannel(c.y);
-        out[2] = quantizeChannel(c.z);
-      }
-    std::lock_guard lock(raysMutex);
-    rays += counts;
-  });
+  const bool complete = renderGrid(
+      [&](int x, int y, RayCounts& counts) { return tracer.tracePixel(x, y, counts); }, stride, 0, pool, image, rays,
+      [cancel] { return cancel && cancel->load(std::memory_order_relaxed); });
   run.wallMs = msSince(start);
   run.cpuShare = run.wallMs > 0.0 ? (processCpuMs() - cpuStart) / (run.wallMs * pool.size()) : 1.0;
-  if (cancelled.load()) return false;
-  if (stride == 1) return true;
-  // In place: grid pixels are read before anything overwrites them, rows copy an already-finished row above.
-  const auto rowBytes = static_cast<std::size_t>(width) * 3;
-  for (int y = 0; y < height; ++y) {
-    std::uint8_t* row = image.pixel(0, y);
-    if (y % stride != 0) {
-      std::memcpy(row, image.pixel(0, y - 1), rowBytes);
-      continue;
-    }
-    for (int x = 0; x < width; ++x)
-      if (x % stride != 0) std::memcpy(row + 3 * x, row + 3 * (x - x % stride), 3);
-  }
+  if (!complete) return false;
+  fillBlocks(image, stride);
   return true;
 }
 

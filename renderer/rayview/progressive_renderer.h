@@ -77,7 +77,7 @@ class ProgressiveRenderer {
   void controllerLoop();
   bool renderPass(const PixelSource& source, std::uint64_t generation, int stride, int previousStride,
                   RayCounts& rays);
-  void publish(const PixelSource& source, std::uint64_t generation, int stride, double passMs,
+  void publish(std::uint64_t generation, int stride, double passMs,
                const RayCounts& rays, std::chrono::steady_clock::time_point restartTime);
   void adaptFirstStride(int stride, double passMs);
 

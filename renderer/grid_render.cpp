@@ -1,0 +1,60 @@
+#include "rayview/grid_render.h"
+
+#include <atomic>
+#include <cstring>
+#include <mutex>
+
+#include "rayview/tiles.h"
+
+namespace rayview {
+namespace {
+
+int ceilDiv(int a, int b) { return (a + b - 1) / b; }
+
+}  // namespace
+
+bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPool& pool, Image& image,
+                RayCounts& rays, const std::function<bool()>& stopped) {
+  const std::vector<Tile> tiles = makeTiles(ceilDiv(image.width, stride), ceilDiv(image.height, stride), pool.size());
+  std::mutex raysMutex;
+  std::atomic<bool> cancelled{false};
+  pool.parallelFor(tiles.size(), [&](std::size_t index) {
+    if (stopped && stopped()) {
+      cancelled.store(true, std::memory_order_relaxed);
+      return;
+    }
+    const Tile& tile = tiles[index];
+    RayCounts counts;
+    for (int gy = tile.y0; gy < tile.y1; ++gy)
+      for (int gx = tile.x0; gx < tile.x1; ++gx) {
+        const int x = gx * stride, y = gy * stride;
+        if (skipStride != 0 && x % skipStride == 0 && y % skipStride == 0) continue;
+        const Color c = pixel(x, y, counts);
+        std::uint8_t* out = image.pixel(x, y);
+        out[0] = quantizeChannel(c.x);
+        out[1] = quantizeChannel(c.y);
+        out[2] = quantizeChannel(c.z);
+      }
+    std::lock_guard lock(raysMutex);
+    rays += counts;
+  });
+  return !cancelled.load();
+}
+
+void fillBlocks(Image& image, int stride) {
+  if (stride <= 1) return;
+  // In place: a block's sample is read before anything in its row overwrites it; rows between grid rows
+  // copy the finished row above.
+  const auto rowBytes = static_cast<std::size_t>(image.width) * 3;
+  for (int y = 0; y < image.height; ++y) {
+    std::uint8_t* row = image.pixel(0, y);
+    if (y % stride != 0) {
+      std::memcpy(row, image.pixel(0, y - 1), rowBytes);
+      continue;
+    }
+    for (int x = 0; x < image.width; ++x)
+      if (x % stride != 0) std::memcpy(row + 3 * x, row + 3 * (x - x % stride), 3);
+  }
+}
+
+}  // namespace rayview

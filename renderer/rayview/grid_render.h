@@ -1,0 +1,25 @@
+#pragma once
+// The one tiled render loop: a full frame, a progressive pass and a tradeoff measurement all trace the
+// pixels of a stride grid, tile by tile on the pool, centre first, and stop at the next tile when asked.
+
+#include <functional>
+
+#include "rayview/image.h"
+#include "rayview/thread_pool.h"
+#include "rayview/tracer.h"
+
+namespace rayview {
+
+using PixelFunction = std::function<Color(int x, int y, RayCounts& counts)>;
+
+// Traces the pixels (gx * stride, gy * stride) of `image` (already width x height) that are not also on the
+// `skipStride` grid (0: skip none; a coarser pass computed those), quantizing into `image`. `stopped` is
+// checked before each tile. Returns false when it stopped early (the image is then partial).
+bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPool& pool, Image& image,
+                RayCounts& rays, const std::function<bool()>& stopped);
+
+// Gives every pixel the colour of the sample at the top-left corner of its stride x stride block: the
+// blocky (never blurred) upscale of a coarse pass. In place.
+void fillBlocks(Image& image, int stride);
+
+}  // namespace rayview
