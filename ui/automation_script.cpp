@@ -148,6 +148,17 @@ void parseCamera(ScriptCommand& c, const std::vector<std::string>& t, LineParser
   p.fail("unknown camera action '" + what + "'");
 }
 
+// measure-tradeoff [SCALE] [TIMEOUT_SECONDS]: numbers[0] the scale, numbers[1] the timeout, defaults filled in.
+void parseMeasureTradeoff(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p) {
+  const std::string usage = "measure-tradeoff [RESOLUTION_SCALE] [TIMEOUT_SECONDS]";
+  if (t.size() > 2) p.fail("usage: " + usage);
+  c.numbers = {kDefaultTradeoffScale, kDefaultTradeoffSeconds};
+  for (std::size_t i = 0; i < t.size(); ++i) c.numbers[i] = p.number(t[i]);
+  if (!(c.numbers[0] > 0.0 && c.numbers[0] <= 1.0))
+    p.fail("the resolution scale must be above 0 and at most 1 (" + usage + ")");
+  if (!(c.numbers[1] > 0.0)) p.fail("measure-tradeoff needs a positive timeout (" + usage + ")");
+}
+
 }  // namespace
 
 Script parseScript(const std::string& text, const std::string& file) {
@@ -181,6 +192,7 @@ Script parseScript(const std::string& text, const std::string& file) {
       if (c.name == "wait-final") p.optionalNumber(tokens, "wait-final [TIMEOUT_SECONDS]");
       else if (c.name == "wait-frames") p.integers(tokens, 0, 1, "wait-frames N", 0, 1000000);
       else if (c.name == "sleep") p.numbers(tokens, 0, 1, "sleep SECONDS");
+      else if (c.name == "measure-tradeoff") parseMeasureTradeoff(c, tokens, p);
       else if (c.name == "resize") p.integers(tokens, 0, 2, "resize WIDTH HEIGHT", 64, 16384);
       else if (c.name == "quit") {
         if (tokens.size() > 1) p.fail("usage: quit [EXIT_CODE]");

@@ -36,5 +36,8 @@ Script readScriptFile(const std::filesystem::path& path);
 // Default time limits, in seconds.
 inline constexpr double kDefaultWaitFinalSeconds = 120.0;
 inline constexpr double kDefaultLoadSeconds = 300.0;
+inline constexpr double kDefaultTradeoffSeconds = 600.0;
+// measure-tradeoff without a scale measures at this share of the image's resolution (as the panel's default).
+inline constexpr double kDefaultTradeoffScale = 0.25;
 
 }  // namespace rayview

@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "image_texture.h"
 #include "rayview/diagnostics.h"
+#include "rayview/tradeoff.h"
 #include "recent_files.h"
 #include "scene_loader_task.h"
 #include "scene_session.h"
@@ -22,6 +24,8 @@ struct PanelActions {
   std::optional<std::string> saveSceneAs;
   bool frameScene = false;
   bool resetCamera = false;
+  std::optional<double> measureTradeoff;  // at this resolution scale
+  bool cancelTradeoff = false;
 };
 
 // The text fields and toggles of the file panels, kept between frames.
@@ -35,6 +39,22 @@ struct FilePanelState {
 
 struct DisplayOptions {
   bool showStats = true;  // display only: never restarts the render
+};
+
+// The resolution scales the "Speed vs accuracy" panel offers (of the camera's image); the first is the default.
+inline constexpr double kTradeoffScales[] = {0.25, 0.5, 1.0};
+
+// The "Speed vs accuracy" panel: the choice, the measurement in progress and the last result.
+struct TradeoffPanelState {
+  int scaleIndex = 0;  // into kTradeoffScales
+  bool running = false;
+  TradeoffProgress progress;
+  double fraction = 0.0;
+  std::string message;                   // why the last measurement has no result ("cancelled: ...")
+  std::optional<TradeoffReport> report;  // the last finished measurement (its plot is the texture)
+  bool stale = false;                    // the scene was edited or replaced since
+  bool reveal = false;                   // open the header and scroll to it once (a new result)
+  bool showPlot = false;                 // the plot floats over the image (turned on by a new result)
 };
 
 struct CameraPanelState {
@@ -74,6 +94,9 @@ void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::
 void drawLightsPanel(SceneEdits& edits, double sceneRadius);
 void drawMaterialsPanel(SceneEdits& edits, bool hasTexture);
 void drawRenderSettingsPanel(SceneSession& session, bool& showStats);
+// `canMeasure` is false (with `why`) while no scene can be measured.
+void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,
+                       PanelActions& actions);
 
 // Over the image's bottom-right corner (`right`, `bottom`): preview level, pass time, Mrays/s, latencies, sizes.
 void drawStatsOverlay(const ViewerStats& stats, float right, float bottom);
@@ -82,5 +105,8 @@ void drawStatsOverlay(const ViewerStats& stats, float right, float bottom);
 // and the load progress. Each returns the y below itself (`y` when it is not shown).
 float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
 float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
+// The plot of the last measurement (the texture), at its size or smaller to fit, closable (state.showPlot).
+void drawTradeoffPlot(TradeoffPanelState& state, const ImageTexture& plot, float x, float y, float maxWidth,
+                      float maxHeight);
 
 }  // namespace rayview

@@ -63,6 +63,8 @@ class SceneSession {
   // The loaded scene (meshes included) shared, for preparing its geometry again.
   std::shared_ptr<const Scene> loadedShared() const { return parts_.scene; }
   bool hasPendingEdits() const;
+  // The edits the running render uses (what editedScene() applies).
+  const SceneEdits& committedEdits() const { return committedEdits_; }
 
   // Counts edits that restarted the render (for stats and tests).
   std::uint64_t commitCount() const { return commits_; }

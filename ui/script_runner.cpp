@@ -79,6 +79,23 @@ bool ScriptRunner::waitIsOver(ScriptHost& host) {
       return framesLeft_ == 0 || --framesLeft_ == 0;
     case Wait::Until:
       return late;
+    case Wait::Tradeoff: {
+      const TradeoffState state = host.tradeoffState();
+      if (state.running) {
+        if (late) {
+          host.cancelTradeoff();
+          fail("the measurement did not finish within " + std::to_string(current_->numbers[1]) + " s");
+        }
+        return false;
+      }
+      if (!state.error.empty()) {
+        fail("measure-tradeoff: " + state.error);
+        return false;
+      }
+      std::printf("tradeoff %d points\n", state.points);
+      std::fflush(stdout);
+      return true;
+    }
   }
   return true;
 }
@@ -115,6 +132,10 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     host.saveScene(c.args.empty() ? std::string() : c.args[0]);
   } else if (name == "screenshot") {
     host.screenshot(c.args[0]);
+  } else if (name == "measure-tradeoff") {
+    host.measureTradeoff(c.numbers[0]);
+    wait_ = Wait::Tradeoff;
+    deadline_ = Clock::now() + seconds(c.numbers[1]);
   } else if (name == "print-state") {
     std::printf("%s\n", host.stateLine().c_str());
     std::fflush(stdout);

@@ -1,6 +1,7 @@
 #pragma once
 // Runs an automation script from the UI loop: at most one command per UI frame, and a waiting command
-// (wait-final, open, sleep, wait-frames) holds the script until its condition is met or its time is up.
+// (wait-final, open, sleep, wait-frames, measure-tradeoff) holds the script until its condition is met or its
+// time is up.
 // The viewer is reached only through ScriptHost, the same operations its keys and panels use.
 
 #include <chrono>
@@ -13,6 +14,13 @@
 namespace rayview {
 
 class SceneSession;
+
+// The newest speed-vs-accuracy measurement, as a script sees it.
+struct TradeoffState {
+  bool running = false;  // requested or measuring
+  int points = 0;        // of the finished report
+  std::string error;     // why it has no report ("cancelled: ...", a failure); "" when it has one
+};
 
 class ScriptHost {
  public:
@@ -32,6 +40,11 @@ class ScriptHost {
   virtual void screenshot(const std::string& path) = 0;  // taken when this frame has been drawn
   virtual std::string stateLine() const = 0;
   virtual void resizeWindow(int width, int height) = 0;
+  // Measure the speed-for-accuracy trade of the scene on screen at this share of its resolution (the render
+  // pauses meanwhile); cancel it; what became of it.
+  virtual void measureTradeoff(double resolutionScale) = 0;
+  virtual void cancelTradeoff() = 0;
+  virtual TradeoffState tradeoffState() const = 0;
   virtual void quit(int exitCode) = 0;
 };
 
@@ -49,7 +62,7 @@ class ScriptRunner {
 
  private:
   using Clock = std::chrono::steady_clock;
-  enum class Wait { None, Final, Load, Frames, Until };
+  enum class Wait { None, Final, Load, Frames, Until, Tradeoff };
 
   void start(const ScriptCommand& command, ScriptHost& host);
   bool waitIsOver(ScriptHost& host);

@@ -29,6 +29,7 @@ void ViewerApp::quit(int exitCode) {
 }
 
 void ViewerApp::requestLoad(const std::string& path, bool isReload) {
+  stopTradeoff("cancelled: a scene is loading", true);
   LoadRequest request;
   request.path = path;
   request.options = LoadOptions{command_.strict, true};

@@ -19,11 +19,13 @@ ViewerApp::ViewerApp(const CommandLine& command, std::optional<Script> script)
       window_("rayview", kInitialWindowWidth, kInitialWindowHeight),
       imgui_(window_.handle(), window_.contentScale(), window_.framebufferScale()),
       renderer_(command.threads),
-      recent_(RecentFiles::defaultStorage()) {
+      recent_(RecentFiles::defaultStorage()),
+      tradeoff_(command.threads) {
   if (script) script_.emplace(std::move(*script));
   stats_.threads = renderer_.threads();
   // Wake the UI loop when a pass is published, so it can sleep while passes render.
   renderer_.setFrameListener([] { glfwPostEmptyEvent(); });
+  tradeoff_.setFinishedListener([] { glfwPostEmptyEvent(); });
 }
 
 ViewerApp::~ViewerApp() {
@@ -43,12 +45,14 @@ int ViewerApp::run() {
     if (const std::vector<std::string> dropped = window_.takeDroppedPaths(); !dropped.empty()) open(dropped.front());
     changed |= pollLoader();
     changed |= pollFileWatch(now);
+    changed |= pollTradeoff();
     // Read before taking the frame: when the renderer was idle, its last pass is certainly taken below.
     const bool rendererIdle = renderer_.idle();
     changed |= takeNewFrame();
 
     const bool scriptActive = script_ && script_->running();
-    if (changed || framesToDraw_ > 0 || scriptActive || loading() || !pendingScreenshot_.empty()) {
+    if (changed || framesToDraw_ > 0 || scriptActive || loading() || measuring() ||
+        !pendingScreenshot_.empty()) {
       drawFrame();
       framesToDraw_ = changed ? kSettleFrames : std::max(0, framesToDraw_ - 1);
     }
@@ -66,6 +70,7 @@ double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) cons
   double wait = kIdleWaitSeconds;
   if (watch_.active() && filePanel_.reloadOnChange) wait = std::min(wait, watch_.secondsUntilNextLook(now) + 0.001);
   if (loading()) wait = std::min(wait, kLoadingPollSeconds);
+  if (measuring()) wait = std::min(wait, kMeasuringPollSeconds);
   // A script condition to check: look again soon. A pass in flight wakes us when it is published.
   if (script_ && script_->running()) wait = std::min(wait, kRenderingPollSeconds);
   if (!rendererIdle) wait = std::min(wait, kRenderingFallbackSeconds);
@@ -97,9 +102,13 @@ void ViewerApp::restartRender(std::shared_ptr<const PixelSource> source) {
 
 void ViewerApp::commitEdits() {
   if (!session_) return;
-  if (std::shared_ptr<const PixelSource> source = session_->commit(editProblem_)) restartRender(std::move(source));
+  if (std::shared_ptr<const PixelSource> source = session_->commit(editProblem_)) {
+    stopTradeoff("cancelled: the scene was edited", false);
+    restartRender(std::move(source));
+  }
   // Another traversal back-end was chosen: prepare the geometry again in the background.
   if (session_->needsRebuild() && !loading() && rebuildRequested_ != session_->settings().accel) {
+    stopTradeoff("cancelled: the traversal changed", true);
     rebuildRequested_ = session_->settings().accel;
     LoadRequest request;
     request.path = scenePath_;
@@ -150,6 +159,7 @@ void ViewerApp::drawFrame() {
     renderer_.setInteractive(dragging);
   }
   commitEdits();
+  startRequestedTradeoff(l);
 
   if (!texture_.empty()) {
     ImGui::GetBackgroundDrawList()->AddImage(
@@ -175,6 +185,7 @@ void ViewerApp::drawFrame() {
     }
   }
   window_.swapBuffers();
+  if (revealFrames_ > 0) --revealFrames_;
   afterSwap();
 }
 
@@ -210,6 +221,8 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       drawRenderSettingsPanel(*session_, display_.showStats);
       drawLightsPanel(session_->edits(), session_->bounds().radius());
       drawMaterialsPanel(session_->edits(), session_->loaded().texture.has_value());
+      const std::string why = whyNoTradeoff();
+      drawTradeoffPanel(tradeoffPanel_, session_->edits().camera, why.empty(), why, actions);
     }
     ImGui::PopItemWidth();
   }
@@ -222,8 +235,10 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       session_ ? (scenePath_.empty() ? std::string("the default scene") : scenePath_) : std::string();
   const float belowError =
       drawErrorOverlay(loadError_, stillShowing, l.viewX + margin, l.viewY + margin, l.viewWidth - 2.0f * margin);
-  drawLoadingOverlay(loader_.progress(), l.viewX + margin, belowError,
-                     std::min(l.viewWidth - 2.0f * margin, 480.0f * imgui_.layoutScale()));
+  const float belowLoading = drawLoadingOverlay(loader_.progress(), l.viewX + margin, belowError,
+                                                std::min(l.viewWidth - 2.0f * margin, 480.0f * imgui_.layoutScale()));
+  drawTradeoffPlot(tradeoffPanel_, plotTexture_, l.viewX + margin, belowLoading, l.viewWidth - 2.0f * margin,
+                   l.viewY + l.viewHeight - margin - belowLoading);
 }
 
 void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
@@ -233,6 +248,8 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   if (actions.saveSceneNumbered || shortcuts.saveScene) saveSceneReporting({});
   if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
   if (shortcuts.focusOpen) filePanel_.focusOpenPath = true;
+  if (actions.cancelTradeoff) cancelTradeoff();
+  if (actions.measureTradeoff) measureTradeoff(*actions.measureTradeoff);
   if (shortcuts.quit) quit(0);
   if (session_ && (actions.frameScene || shortcuts.frameScene))
     session_->navigate([&](OrbitCamera& o) { o.frame(session_->bounds()); });

@@ -21,6 +21,7 @@
 #include "scene_loader_task.h"
 #include "scene_session.h"
 #include "script_runner.h"
+#include "tradeoff_task.h"
 #include "window.h"
 
 namespace rayview {
@@ -31,6 +32,13 @@ namespace rayview {
 inline constexpr double kRenderingPollSeconds = 1.0 / 120.0;
 inline constexpr double kRenderingFallbackSeconds = 0.25;
 inline constexpr double kLoadingPollSeconds = 1.0 / 30.0;     // progress bar
+inline constexpr double kMeasuringPollSeconds = 0.1;          // progress bar, drawn seldom: the cores measure
+// Speed vs accuracy in the viewer: retries of a run slowed by other processes (the bench's default is 5).
+inline constexpr int kViewerSlowedRetries = 1;
+// A new result opens its panel and scrolls to it; ImGui applies the scroll in the frame after: the result is on
+// screen (for scripts: measure-tradeoff is over) after this many frames.
+inline constexpr int kRevealFrames = 2;
+inline constexpr int kMinPlotWidth = 480;  // narrower, the plot's labels overlap
 inline constexpr double kIdleWaitSeconds = 10.0;              // final image, nothing to watch
 // Frames drawn after the last event so ImGui's hover and focus state settles.
 inline constexpr int kSettleFrames = 2;
@@ -64,6 +72,9 @@ class ViewerApp final : public ScriptHost {
   void screenshot(const std::string& path) override { pendingScreenshot_ = path; }
   std::string stateLine() const override;
   void resizeWindow(int width, int height) override { window_.setSize(width, height); }
+  void measureTradeoff(double resolutionScale) override;
+  void cancelTradeoff() override { stopTradeoff("cancelled", true); }
+  TradeoffState tradeoffState() const override;
   void quit(int exitCode) override;
 
  private:
@@ -84,6 +95,13 @@ class ViewerApp final : public ScriptHost {
   void restartRender(std::shared_ptr<const PixelSource> source);
   bool takeNewFrame();
   void commitEdits();
+
+  // Speed vs accuracy (viewer_tradeoff.cpp): the measurement pauses the render and any edit or load cancels it.
+  bool measuring() const { return requestedTradeoff_.has_value() || awaitedTradeoff_ != 0; }
+  std::string whyNoTradeoff() const;
+  void startRequestedTradeoff(const Layout& layout);
+  bool pollTradeoff();
+  void stopTradeoff(const std::string& why, bool restartRender);
 
   // One UI frame
   void drawFrame();
@@ -107,6 +125,8 @@ class ViewerApp final : public ScriptHost {
   FileWatch watch_;
   NavigationInput navigation_;
   std::optional<ScriptRunner> script_;
+  TradeoffTask tradeoff_;
+  ImageTexture plotTexture_;
 
   // The scene on screen.
   std::unique_ptr<SceneSession> session_;
@@ -135,6 +155,15 @@ class ViewerApp final : public ScriptHost {
   FilePanelState filePanel_;
   CameraPanelState cameraPanel_;
   DisplayOptions display_;
+  // The measurement.
+  TradeoffPanelState tradeoffPanel_;
+  std::optional<double> requestedTradeoff_;  // started once this frame's edits are committed
+  std::uint64_t awaitedTradeoff_ = 0;        // the running measurement's id
+  std::uint64_t plotVersion_ = 0;
+  std::uint64_t measuredSerial_ = 0, measuredCommit_ = 0;  // what the last measurement saw
+  std::string tradeoffError_;                // why the newest measurement has no report
+  int revealFrames_ = 0;                     // frames until a new result is on screen
+
   std::string pendingScreenshot_;
   int framesToDraw_ = kSettleFrames;
   bool quit_ = false;

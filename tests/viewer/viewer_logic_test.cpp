@@ -1,8 +1,10 @@
 // The viewer's logic without a window: scripts, edits and restarts, numbered saves, file watching, recent files.
+#include <atomic>
 #include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -17,6 +19,7 @@
 #include "scene_session.h"
 #include "script_runner.h"
 #include "support/image_compare.h"
+#include "tradeoff_task.h"
 
 namespace rayview {
 namespace {
@@ -96,6 +99,18 @@ TEST(AutomationScript, MistakesNameTheFileAndLine) {
   EXPECT_NE(errorOf("wait-final 0\n").find("positive"), std::string::npos);
   EXPECT_NE(errorOf("print-state now\n").find("takes no arguments"), std::string::npos);
   EXPECT_NE(errorOf("set light \"sun position 1 2 3\n").find("unterminated quote"), std::string::npos);
+  EXPECT_NE(errorOf("measure-tradeoff 0\n").find("t.rvs:1: the resolution scale"), std::string::npos);
+  EXPECT_NE(errorOf("measure-tradeoff 1.5\n").find("at most 1"), std::string::npos);
+  EXPECT_NE(errorOf("measure-tradeoff 0.5 -1\n").find("positive timeout"), std::string::npos);
+  EXPECT_NE(errorOf("measure-tradeoff 0.5 10 3\n").find("usage: measure-tradeoff"), std::string::npos);
+}
+
+TEST(AutomationScript, MeasureTradeoffFillsInItsDefaults) {
+  const Script s = parseScript("measure-tradeoff\nmeasure-tradeoff 0.5\nmeasure-tradeoff 1 30\n", "t.rvs");
+  ASSERT_EQ(s.commands.size(), 3u);
+  EXPECT_EQ(s.commands[0].numbers, (std::vector<double>{kDefaultTradeoffScale, kDefaultTradeoffSeconds}));
+  EXPECT_EQ(s.commands[1].numbers, (std::vector<double>{0.5, kDefaultTradeoffSeconds}));
+  EXPECT_EQ(s.commands[2].numbers, (std::vector<double>{1.0, 30.0}));
 }
 
 // A host that records what the runner asks of the viewer.
@@ -120,6 +135,15 @@ class FakeHost : public ScriptHost {
   std::string stateLine() const override { return "state"; }
   void resizeWindow(int, int) override {}
   void quit(int code) override { exitCode = code; }
+  void measureTradeoff(double scale) override {
+    measuredScale = scale;
+    tradeoff.running = true;
+  }
+  void cancelTradeoff() override {
+    tradeoff.running = false;
+    tradeoff.error = "cancelled";
+  }
+  TradeoffState tradeoffState() const override { return tradeoff; }
 
   void frame(ScriptRunner& runner) {
     runner.step(*this);
@@ -132,6 +156,8 @@ class FakeHost : public ScriptHost {
   std::uint64_t serial = 1;
   bool final = false;
   int exitCode = -1;
+  double measuredScale = 0.0;
+  TradeoffState tradeoff;
 };
 
 TEST(ScriptRunner, WaitsForTheFinalPassThenRunsOneCommandPerFrame) {
@@ -190,6 +216,45 @@ TEST(ScriptRunner, UnknownIdsFailWithTheKnownOnes) {
   host.frame(runner);
   ASSERT_TRUE(runner.failed());
   EXPECT_NE(runner.failure().find("point lights: sun; triangular lights: strip"), std::string::npos) << runner.failure();
+}
+
+TEST(ScriptRunner, MeasureTradeoffWaitsThenPrintsThePointCount) {
+  FakeHost host(nullptr);
+  ScriptRunner runner(parseScript("measure-tradeoff 0.5\nquit 7\n", "t"));
+  host.frame(runner);
+  EXPECT_EQ(host.measuredScale, 0.5);
+  host.frame(runner);
+  host.frame(runner);
+  EXPECT_EQ(host.exitCode, -1);  // still measuring
+  host.tradeoff = TradeoffState{false, 17, ""};
+  ::testing::internal::CaptureStdout();
+  host.frame(runner);  // the wait is over: the line, then the next command
+  EXPECT_EQ(::testing::internal::GetCapturedStdout(), "tradeoff 17 points\n");
+  EXPECT_EQ(host.exitCode, 7);
+  EXPECT_FALSE(runner.failed());
+}
+
+TEST(ScriptRunner, MeasureTradeoffFailsWhenCancelledOrLate) {
+  {
+    FakeHost host(nullptr);
+    ScriptRunner runner(parseScript("measure-tradeoff\n", "t"));
+    host.frame(runner);
+    host.tradeoff = TradeoffState{false, 0, "cancelled: the scene was edited"};
+    host.frame(runner);
+    ASSERT_TRUE(runner.failed());
+    EXPECT_NE(runner.failure().find("t:1: measure-tradeoff: cancelled: the scene was edited"), std::string::npos)
+        << runner.failure();
+  }
+  {
+    FakeHost host(nullptr);
+    ScriptRunner runner(parseScript("measure-tradeoff 0.25 0.05\n", "t"));
+    host.frame(runner);
+    std::this_thread::sleep_for(std::chrono::milliseconds(80));
+    host.frame(runner);
+    ASSERT_TRUE(runner.failed());
+    EXPECT_NE(runner.failure().find("did not finish within"), std::string::npos) << runner.failure();
+    EXPECT_EQ(host.tradeoff.error, "cancelled");  // the runner stopped it
+  }
 }
 
 TEST(ScriptRunner, WaitFinalTimesOut) {
@@ -287,6 +352,135 @@ TEST(SceneSession, ResolutionEditsKeepTheNearPlanesAspect) {
 }
 
 // ------------------------------------------------------------------------------------------ saving
+
+// ------------------------------------------------------------------------------------- speed vs accuracy
+
+TEST(Tradeoff, TheMeasuredSceneHasTheMeshesAndTheCommittedEdits) {
+  SceneSession session(loadParts(), RenderSettings{});
+  session.edits().maxRayDepth = 5;
+  session.edits().camera.position = glm::dvec3(1.0, 2.0, 3.0);
+  session.edits().pointLights[0].intensity = Color(1.0f, 2.0f, 3.0f);
+  const int red = findMaterial(session.edits(), "red");
+  session.edits().materials[static_cast<std::size_t>(red)].diffuse = Color(0.0f, 1.0f, 0.0f);
+  std::string problem;
+  ASSERT_NE(session.commit(problem), nullptr);
+  session.edits().maxRayDepth = 7;  // not committed yet: not measured
+
+  const std::shared_ptr<const Scene> scene = measuringScene(session.loaded(), session.committedEdits());
+  EXPECT_EQ(scene->triangles.size(), session.loaded().triangles.size());
+  EXPECT_FALSE(scene->triangles.empty());
+  EXPECT_EQ(scene->maxRayDepth, 5);
+  EXPECT_EQ(scene->camera.position, glm::dvec3(1.0, 2.0, 3.0));
+  EXPECT_EQ(scene->pointLights[0].intensity, Color(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(scene->materials[static_cast<std::size_t>(red)].diffuse, Color(0.0f, 1.0f, 0.0f));
+  EXPECT_EQ(session.loaded().maxRayDepth, 2);  // the loaded scene is untouched
+  EXPECT_NE(session.loaded().camera.position, glm::dvec3(1.0, 2.0, 3.0));
+}
+
+TEST(Tradeoff, ScaledSideRoundsAsTheMeasurementDoes) {
+  EXPECT_EQ(scaledSide(480, 0.25), 120);
+  EXPECT_EQ(scaledSide(300, 0.25), 75);
+  EXPECT_EQ(scaledSide(3, 0.25), 1);
+  EXPECT_EQ(scaledSide(301, 0.5), 151);
+}
+
+TradeoffPoint point(TradeoffKnob knob, const std::string& label, double ms, double pctOff, int stride = 1) {
+  TradeoffPoint p;
+  p.setting.knob = knob;
+  p.setting.label = label;
+  p.setting.stride = stride;
+  p.timeMs = ms;
+  p.error.pctOffByMoreThan1 = pctOff;
+  return p;
+}
+
+TEST(Tradeoff, AdviceNamesTheFastestSettingCloseToTheBestImage) {
+  TradeoffReport r;
+  EXPECT_EQ(tradeoffAdvice(r), "");
+  r.points = {point(TradeoffKnob::Reference, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1/2", 1.0, 30.0, 2),
+              point(TradeoffKnob::Preview, "1", 2.0, 12.0), point(TradeoffKnob::LightSamples, "32", 40.0, 0.3),
+              point(TradeoffKnob::LightSamples, "64", 80.0, 0.0)};
+  std::string advice = tradeoffAdvice(r);
+  EXPECT_NE(advice.find("light_samples 32, 40.0 ms"), std::string::npos) << advice;
+  EXPECT_NE(advice.find("the best image: 300.0 ms"), std::string::npos) << advice;
+  r.points[2].error.pctOffByMoreThan1 = 0.5;  // the defaults are close enough
+  advice = tradeoffAdvice(r);
+  EXPECT_EQ(advice.rfind("The defaults are enough: 2.0 ms", 0), 0u) << advice;
+  r.points = {point(TradeoffKnob::Reference, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1", 2.0, 12.0)};
+  EXPECT_EQ(tradeoffAdvice(r).rfind("No setting but the best image", 0), 0u) << tradeoffAdvice(r);
+}
+
+TradeoffRequest smallRequest(SceneSession& session) {
+  TradeoffRequest request;
+  request.source = session.loadedShared();
+  request.edits = session.committedEdits();
+  request.options.resolutionScale = 0.1;
+  request.options.maxLightSamples = 4;
+  request.options.referenceLightSamples = 4;
+  request.options.timedRuns = 1;
+  request.options.fastTimedRuns = 1;
+  request.options.slowedRetries = 0;
+  request.plotWidth = 480;
+  request.plotHeight = 300;
+  return request;
+}
+
+template <typename Done>
+bool waitUntil(Done done, std::chrono::seconds limit = std::chrono::seconds(60)) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (!done()) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  return true;
+}
+
+TEST(Tradeoff, TheTaskMeasuresOnItsOwnThreadAndPlots) {
+  SceneSession session(loadParts(), RenderSettings{});
+  TradeoffTask task(2);
+  std::atomic<int> finished{0};
+  task.setFinishedListener([&] { ++finished; });
+  const std::uint64_t id = task.start(smallRequest(session));
+  std::optional<TradeoffResult> result;
+  ASSERT_TRUE(waitUntil([&] { return (result = task.takeResult()).has_value(); }));
+  EXPECT_EQ(result->id, id);
+  ASSERT_TRUE(result->ok()) << result->error;
+  EXPECT_GE(result->report.points.size(), 5u);
+  EXPECT_EQ(result->report.width, 48);  // 480 x 300 at 0.1
+  EXPECT_EQ(result->report.height, 30);
+  EXPECT_EQ(result->plot.width, 480);
+  EXPECT_EQ(result->plot.height, 300);
+  EXPECT_TRUE(waitUntil([&] { return finished.load() == 1; }));  // called just after the result is ready
+  EXPECT_FALSE(task.status().busy);
+  EXPECT_FALSE(task.takeResult().has_value());  // once
+}
+
+TEST(Tradeoff, CancelStopsTheMeasurementAndANewerRequestWins) {
+  SceneSession session(loadParts(), RenderSettings{});
+  TradeoffTask task(2);
+  TradeoffRequest slow = smallRequest(session);
+  slow.options.resolutionScale = 1.0;
+  slow.options.maxLightSamples = 256;
+  slow.options.referenceLightSamples = 256;
+  slow.options.timedRuns = 3;
+  task.start(slow);
+  ASSERT_TRUE(waitUntil([&] { return task.status().progress.rendersPlanned > 0; }));  // measuring
+  const auto cancelled = std::chrono::steady_clock::now();
+  task.cancel();
+  ASSERT_TRUE(waitUntil([&] { return !task.status().busy; }, std::chrono::seconds(10)));
+  EXPECT_LT(std::chrono::steady_clock::now() - cancelled, std::chrono::seconds(5));
+  if (std::optional<TradeoffResult> result = task.takeResult()) {
+    EXPECT_TRUE(result->cancelled);
+  }
+
+  // A request superseded by a newer one never reports; the newer one does.
+  task.start(slow);
+  const std::uint64_t newer = task.start(smallRequest(session));
+  std::optional<TradeoffResult> result;
+  ASSERT_TRUE(waitUntil([&] { return (result = task.takeResult()).has_value(); }));
+  EXPECT_EQ(result->id, newer);
+  EXPECT_TRUE(result->ok()) << result->error;
+}
 
 TEST(NumberedFile, NeverOverwritesAndLeavesNoTemporary) {
   const fs::path directory = freshDirectory("numbered");

@@ -9,6 +9,8 @@ Cases:
   script       a --script: material edit, failing load (the error shows, the old scene stays), save-scene
   reload       the open file changes on disk: the viewer reloads it by itself; F5 reloads too
   screenshot   the whole window (panels and image) is captured and has both
+  tradeoff     measure-tradeoff on a small scene: "tradeoff N points" (N >= 5), the plot and the panel on screen,
+               then the render starts again
   hidpi        on a 192-dpi screen (content scale 2) the window, the text and the panels are twice as big
   idle-cpu     once the final pass is shown, the process uses (next to) no CPU
   no-display   without a display: exit code 1 and one line saying how to render headless
@@ -401,6 +403,49 @@ def case_screenshot(args, work):
         print(f"  copied to {os.path.normpath(target)}")
 
 
+def case_tradeoff(args, work):
+    scene = copy_scene(work)
+    shot = os.path.join(work, "tradeoff.png")
+    script = os.path.join(work, "tradeoff.rvs")
+    with open(script, "w") as f:
+        f.write(f"resize 1280 800\nopen {scene}\nwait-final\nmeasure-tradeoff 0.25 240\nscreenshot {shot}\n"
+                "wait-final\nquit\n")
+    # The embedded default scene first: `open` replaces it with the small test scene.
+    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
+    try:
+        if viewer.finish(timeout=280) != 0:
+            raise Failure("the tradeoff script failed\n" + viewer.output())
+    finally:
+        viewer.kill()
+    lines = [line for line in viewer.stdout if line.startswith("tradeoff")]
+    if len(lines) != 1 or len(lines[0].split()) != 3 or lines[0].split()[2] != "points":
+        raise Failure("expected one 'tradeoff N points' line\n" + viewer.output())
+    points = int(lines[0].split()[1])
+    if points < 5:
+        raise Failure(f"only {points} points measured (at least 5: the reference and the preview levels)")
+    # The render starts again after the measurement: a final pass after the screenshot.
+    after = viewer.stdout[viewer.stdout.index(f"screenshot {shot}"):]
+    if not any(line.startswith("final pass generation") for line in after):
+        raise Failure("no final pass after the measurement\n" + viewer.output())
+
+    width, height, pixels = read_png(shot)
+    if (width, height) != (1280, 800):
+        raise Failure(f"the screenshot is {width}x{height}, expected the 1280x800 window")
+
+    def region(x0, x1, y0, y1):
+        return [pixels[(y * width + x) * 3:(y * width + x) * 3 + 3] for y in range(y0, y1, 2) for x in range(x0, x1, 2)]
+
+    panel = set(region(10, 390, 10, 790))
+    if len(panel) < 8:
+        raise Failure(f"the panel column looks uniform ({len(panel)} colours)")
+    # The plot floats over the image area: a white chart with coloured series and text.
+    plot = region(430, 1260, 60, 540)
+    white = sum(p == b"\xff\xff\xff" for p in plot) / len(plot)
+    if white < 0.3 or len(set(plot)) < 20:
+        raise Failure(f"no plot over the image ({white:.0%} white, {len(set(plot))} colours)")
+    print(f"  {points} points; screenshot {shot}: {len(panel)} colours in the panels, plot {white:.0%} white")
+
+
 def set_screen_dpi(dpi):
     """Xft.dpi in the root window's resources, as a desktop sets it: GLFW derives the content scale from it."""
     libx11 = ctypes.util.find_library("X11")
@@ -485,7 +530,7 @@ def case_no_display(args, work):
 
 
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
-         "screenshot": case_screenshot, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
+         "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display}
 
 
