@@ -4,6 +4,7 @@
 #include "rayview/scene_loader.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cfloat>
 #include <charconv>
@@ -836,6 +837,33 @@ class Loader {
     }
     triangles.resize(kept);
     triangles.shrink_to_fit();
+    warnAboutDuplicatedFaces();
+  }
+
+  // Faces listed twice (same three vertices, any order or winding) are coincident surfaces: which one a
+  // ray sees is a tie, which rayview gives to the face listed first. Real files do this (a wall written once
+  // as a mirror and once as a colour), and the picture then depends on that rule: say so.
+  void warnAboutDuplicatedFaces() {
+    const std::vector<Triangle>& triangles = result_.scene.triangles;
+    std::vector<std::array<std::uint32_t, 4>> keys(triangles.size());  // sorted vertices, then the face index
+    for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+      std::array<std::uint32_t, 4> key{triangles[i].vertex[0], triangles[i].vertex[1], triangles[i].vertex[2], i};
+      std::sort(key.begin(), key.begin() + 3);
+      keys[i] = key;
+    }
+    std::sort(keys.begin(), keys.end());
+    std::size_t repeats = 0;
+    std::uint32_t firstRepeat = 0;
+    for (std::size_t k = 1; k < keys.size(); ++k)
+      if (std::equal(keys[k].begin(), keys[k].begin() + 3, keys[k - 1].begin())) {
+        if (repeats == 0 || keys[k][3] < firstRepeat) firstRepeat = keys[k][3];
+        ++repeats;
+      }
+    if (repeats == 0) return;
+    const PendingMesh& mesh = meshes_[triangles[firstRepeat].mesh];
+    warn(mesh.line, plural(repeats, "face repeats", "faces repeat") +
+                        " the three vertices of an earlier face (the first in " + meshName(mesh) +
+                        "): coincident surfaces, where rayview shows the face listed first");
   }
 
   bool isDegenerate(const Triangle& t) const {

@@ -455,6 +455,14 @@ TEST(Loader, DegenerateTrianglesAreSkippedWithOneWarningPerMesh) {
   EXPECT_EQ(collinear.scene.triangles.size(), 1u);
 }
 
+TEST(Loader, RepeatedFacesAreKeptWithOneWarning) {
+  // The second quad repeats both faces, one of them with the opposite winding.
+  const LoadedScene loaded = load(with("1 2 3\n1 3 4\n", "1 2 3\n1 3 4\n3 2 1\n4 3 1\n"), strictOptions());
+  EXPECT_TRUE(hasWarning(loaded, 35, "2 faces repeat the three vertices of an earlier face (the first in mesh \"quad\")"));
+  EXPECT_EQ(loaded.scene.triangles.size(), 4u);  // kept: which one is seen is the renderer's tie rule
+  EXPECT_TRUE(load(with("1 2 3\n1 3 4\n", "1 2 3\n1 3 4\n")).warnings.empty());
+}
+
 // ---------------------------------------------------------------- materials
 
 TEST(Loader, MaterialIdsAreStringsAndMustResolve) {

@@ -53,6 +53,7 @@ const std::string kMirrorAlias = "<mirrorreflactance> read as <mirrorreflectance
 const std::string kZeroBased = "face indices are 0-based (vertex indices include 0 and never reach the count)";
 const std::string kGlued = "<nearPlane>: numbers not separated by whitespace in '1-1'";
 const std::string kCeng477 = "this looks like a METU CENG477 scene";
+const std::string kRepeatedFaces = "faces repeat the three vertices of an earlier face";
 
 const std::vector<Row>& table() {
   static const std::vector<Row> rows = {
@@ -90,7 +91,7 @@ const std::vector<Row>& table() {
       loads("peer-scenes/GtuOdevlerEmirhanAltunel__CSE461-HW1/assets/scene copy.xml", 30, true,
             {{3, kBackgroundColor}, {38, kMirrorAlias + " (2 times; the first is shown)"}}),
       loads("peer-scenes/GtuOdevlerEmirhanAltunel__CSE461-HW1/assets/scene.xml", 24, true,
-            {{3, kBackgroundColor}, {32, kMirrorAlias}}),
+            {{3, kBackgroundColor}, {32, kMirrorAlias}, {73, "12 " + kRepeatedFaces}}),
       loads("peer-scenes/GtuOdevlerEmirhanAltunel__CSE461-HW1/assets/scene_cat.xml", 70576, false,
             {{3, kBackgroundColor}, {34, kMirrorAlias}, {35334, kZeroBased}}),
       loads("peer-scenes/GtuOdevlerEmirhanAltunel__CSE461-HW1/assets/scene_chest.xml", 728, false,
@@ -98,12 +99,13 @@ const std::vector<Row>& table() {
       loads("peer-scenes/GtuOdevlerEmirhanAltunel__CSE461-HW1/assets/scene_cube.xml", 12, false,
             {{1, "no <ambientlight>: using black (0 0 0)"}, {3, kBackgroundColor}, {23, kMirrorAlias}, {41, kZeroBased}}),
       loads("peer-scenes/GtuOdevlerEmirhanAltunel__CSE461-HW1/assets/scene_orig.xml", 24, false,
-            {{3, kBackgroundColor}, {30, kMirrorAlias},
+            {{3, kBackgroundColor}, {30, kMirrorAlias}, {71, "12 " + kRepeatedFaces},
              {69, "texture image \"my_texture_only_texture.png\" could not be read (tried "}}),
 
       // ---- Kurtburakk: <textureimage> names the peer's OUTPUT file, never shipped
       loads("peer-scenes/Kurtburakk__Computer-Graphics-Cse-461/RayTracer/PA1/cghw1/examplexml/example.xml", 24, false,
-            {{3, kBackgroundColor}, {30, kMirrorAlias}, {69, "texture image \"image_file_name.png\" could not be read"}}),
+            {{3, kBackgroundColor}, {30, kMirrorAlias}, {69, "texture image \"image_file_name.png\" could not be read"},
+             {71, "12 " + kRepeatedFaces}}),
       loads("peer-scenes/Kurtburakk__Computer-Graphics-Cse-461/RayTracer/PA1/cghw1/examplexml/test1.xml", 4, false,
             {{3, kBackgroundColor}, {24, kMirrorAlias + " (2 times"}, {57, "texture image \"test1.png\" could not be read"}}),
       loads("peer-scenes/Kurtburakk__Computer-Graphics-Cse-461/RayTracer/PA1/cghw1/examplexml/test2.xml", 10, false,
@@ -120,7 +122,7 @@ const std::vector<Row>& table() {
       loads("peer-scenes/aeakyuz__ray_tracer/scenes/old.xml", 1, false,
             {{3, kBackgroundColor}, {30, kMirrorAlias}, {59, "texture image \"textures/sun.png\" could not be read"}}),
       loads("peer-scenes/aeakyuz__ray_tracer/scenes/sample.xml", 24, false,
-            {{3, kBackgroundColor}, {30, kMirrorAlias},
+            {{3, kBackgroundColor}, {30, kMirrorAlias}, {71, "12 " + kRepeatedFaces},
              {69, "texture image \"/home/alierdem/Desktop/graphics461/hw1/textures/gosling.jpeg\" could not be read"}}),
       loads("peer-scenes/aeakyuz__ray_tracer/scenes/scene2.xml", 2, true,
             {{3, kBackgroundColor}, {38, kMirrorAlias + " (2 times"}}),
@@ -128,18 +130,20 @@ const std::vector<Row>& table() {
 
       // ---- akusgulu: the 2023 format, spec spelling
       loads("peer-scenes/akusgulu__raytracer/scenes/scene1.xml", 14, false),
-      loads("peer-scenes/akusgulu__raytracer/scenes/scene2.xml", 978, false, {{20, "stray text '...' ignored"}}),
-      loads("peer-scenes/akusgulu__raytracer/scenes/scene3.xml", 25860, false),
+      loads("peer-scenes/akusgulu__raytracer/scenes/scene2.xml", 978, false,
+            {{20, "stray text '...' ignored"}, {661, "1 face repeats the three vertices of an earlier face"}}),
+      loads("peer-scenes/akusgulu__raytracer/scenes/scene3.xml", 25860, false, {{13442, "48 " + kRepeatedFaces}}),
 
       // ---- bashtag: textures relative to the repository root (./assets/textures/...)
       loads("peer-scenes/bashtag__Simple-Ray-Tracer/assets/scenes/scene_3_meshes.xml", 1238, true,
-            {{5, kBackgroundColor}, {32, kMirrorAlias + " (2 times"}}),
+            {{5, kBackgroundColor}, {32, kMirrorAlias + " (2 times"}, {1751, "6 " + kRepeatedFaces}}),
       loads("peer-scenes/bashtag__Simple-Ray-Tracer/assets/scenes/scene_3_meshes_triangular_light.xml", 1238, true,
-            {{5, kBackgroundColor}, {32, kMirrorAlias + " (2 times"}}),
+            {{5, kBackgroundColor}, {32, kMirrorAlias + " (2 times"}, {1751, "6 " + kRepeatedFaces}}),
       loads("peer-scenes/bashtag__Simple-Ray-Tracer/assets/scenes/scene_3_meshes_triangular_light_mirror.xml", 1238, true,
-            {{5, kBackgroundColor}, {32, kMirrorAlias + " (2 times"}}),
+            {{5, kBackgroundColor}, {32, kMirrorAlias + " (2 times"}, {1751, "6 " + kRepeatedFaces}}),
       loads("peer-scenes/bashtag__Simple-Ray-Tracer/assets/scenes/scene_low_tree.xml", 2463, true,
-            {{4, kBackgroundColor}, {31, kMirrorAlias}, {5175, "mesh \"1\": 3 degenerate triangles skipped"}}),
+            {{4, kBackgroundColor}, {31, kMirrorAlias}, {5175, "mesh \"1\": 3 degenerate triangles skipped"},
+             {5175, "10 " + kRepeatedFaces}}),
       loads("peer-scenes/bashtag__Simple-Ray-Tracer/assets/scenes/scene_sphere_point_light.xml", 7936, true,
             {{5, kBackgroundColor}, {32, kMirrorAlias}}),
       loads("peer-scenes/bashtag__Simple-Ray-Tracer/assets/scenes/scene_sphere_triangular_light.xml", 7936, true,
