@@ -74,6 +74,8 @@ int runBenchCommand(const CommandLine& command) {
   ThreadPool pool(command.threads);
   TradeoffOptions options;
   options.resolutionScale = command.resolutionScale;
+  options.triangularLightModel = command.settings.triangularLightModel;
+  options.secondaryRayStart = command.settings.secondaryRayStart;
   const bool showProgress = !command.quiet && isatty(fileno(stderr));
   const std::vector<std::string> names = uniqueNames(command.scenePaths);
   std::string csv = tradeoffCsvHeader();

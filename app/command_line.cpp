@@ -55,7 +55,7 @@ const std::vector<OptionSpec>& optionTable() {
        [](CommandLine& c, const std::string& v) { c.threads = parseInt("--threads", v, 1, 1024); }},
       {"--depth", "N", kBoth, "maximum mirror recursion depth (default: the scene's <maxraytracedepth>)",
        [](CommandLine& c, const std::string& v) { c.settings.maxDepthOverride = parseInt("--depth", v, 0, 1000000); }},
-      {"--tri-light", "area|directional", kBoth, "triangular-light model (default: area)",
+      {"--tri-light", "area|directional", kAll, "triangular-light model (default: area)",
        [](CommandLine& c, const std::string& v) {
          if (!parseTriangularLightModel(v, c.settings.triangularLightModel))
            throw UsageError("--tri-light expects 'area' or 'directional', not '" + v + "'");
@@ -69,7 +69,7 @@ const std::vector<OptionSpec>& optionTable() {
          if (!parseAccelKind(v, c.settings.accel))
            throw UsageError("--accel expects 'embree' or 'reference', not '" + v + "'");
        }},
-      {"--ray-start", "offset|exclude-hit", kBoth,
+      {"--ray-start", "offset|exclude-hit", kAll,
        "where shadow/mirror rays start: offset off the surface (default), or at the hit point ignoring its "
        "triangle (the 2017-19 course renderer)",
        [](CommandLine& c, const std::string& v) {

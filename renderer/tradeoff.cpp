@@ -130,6 +130,8 @@ std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const Tradeof
   baseline.maxDepthOverride = maxDepth;
   baseline.lightSamples = 1;
   baseline.accel = availableAccel(options.baselineAccel);
+  baseline.triangularLightModel = options.triangularLightModel;
+  baseline.secondaryRayStart = options.secondaryRayStart;
   const bool samplesMatter =
       !scene.triangularLights.empty() && baseline.triangularLightModel == TriangularLightModel::Area;
 

@@ -142,6 +142,19 @@ TEST(KnobEnumeration, WithoutMirrorsOrTriangularLights) {
   EXPECT_EQ(all.front().settings.lightSamples, 1);
 }
 
+TEST(KnobEnumeration, TheUsersLightModelAndRayStartHoldForEverySetting) {
+  TradeoffOptions options;
+  options.triangularLightModel = TriangularLightModel::Directional;
+  options.secondaryRayStart = SecondaryRayStart::ExcludeHitTriangle;
+  const std::vector<KnobSetting> all = enumerateKnobSettings(wallScene(true), options);
+  for (const KnobSetting& k : all) {
+    EXPECT_EQ(k.settings.triangularLightModel, TriangularLightModel::Directional) << k.label;
+    EXPECT_EQ(k.settings.secondaryRayStart, SecondaryRayStart::ExcludeHitTriangle) << k.label;
+  }
+  // Samples only matter for the area model.
+  EXPECT_TRUE(settingsOf(all, TradeoffKnob::LightSamples).empty());
+}
+
 TEST(KnobEnumeration, DeepScenesListPowersOfTwo) {
   Scene scene = wallScene(false);
   scene.maxRayDepth = 40;

@@ -45,6 +45,8 @@ void ViewerApp::startRequestedTradeoff(const Layout& l) {
   request.edits = session_->committedEdits();
   request.options.resolutionScale = scale;
   request.options.baselineAccel = session_->settings().accel;
+  request.options.triangularLightModel = session_->settings().triangularLightModel;
+  request.options.secondaryRayStart = session_->settings().secondaryRayStart;
   // A quick look, not a benchmark: a run slowed by other processes is repeated once, not up to five times with
   // growing pauses (which can turn seconds into a minute on a busy machine); the notes still count them.
   request.options.slowedRetries = kViewerSlowedRetries;

@@ -52,6 +52,9 @@ struct TradeoffOptions {
   int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
   int referenceLightSamples = 256;  // samples per triangular light in the highest-quality image
   AccelKind baselineAccel = AccelKind::Embree;  // what the other knobs use (falls back to the reference BVH)
+  // Kept for every setting, the reference image included: the user's choices, not knobs measured here.
+  TriangularLightModel triangularLightModel = TriangularLightModel::Area;
+  SecondaryRayStart secondaryRayStart = SecondaryRayStart::Offset;
   int timedRuns = 3;                // the time is the median of this many runs, except:
   double singleRunMs = 10000.0;     //   a setting whose first run takes longer than this is run once,
   double fastRunMs = 250.0;         //   one whose first run takes less than this (noisier) ...
