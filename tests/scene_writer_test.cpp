@@ -8,6 +8,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/scene_loader.h"
@@ -130,6 +132,8 @@ void expectSameScene(const Scene& a, const Scene& b) {
 }
 
 bool mentionsTexture(const Diagnostic& d) { return d.message.find("texture") != std::string::npos; }
+bool aboutRepeatedFaces(const Diagnostic& d) { return d.message.find("faces repeat the three vertices") != std::string::npos ||
+                                                      d.message.find("face repeats the three vertices") != std::string::npos; }
 
 class SceneWriterRoundTrip : public ::testing::TestWithParam<fs::path> {};
 
@@ -143,9 +147,15 @@ TEST_P(SceneWriterRoundTrip, ReadsBackEqualWithoutWarnings) {
   const LoadedScene again = loadSceneFile(written);
   expectSameScene(original.scene, again.scene);
   // Correct spellings, every element present: nothing to repair or default. Only a texture that the
-  // original author never shipped may still be reported missing.
-  for (const Diagnostic& warning : again.warnings)
+  // original author never shipped may still be reported missing, and faces the original lists twice
+  // (the scene's content, written as it is) are still reported.
+  for (const Diagnostic& warning : again.warnings) {
+    if (aboutRepeatedFaces(warning)) {
+      EXPECT_TRUE(std::any_of(original.warnings.begin(), original.warnings.end(), aboutRepeatedFaces));
+      continue;
+    }
     EXPECT_TRUE(mentionsTexture(warning) && !original.scene.texture) << warning.format();
+  }
   // Writing is deterministic: the same scene gives the same bytes.
   EXPECT_EQ(sceneToXml(again.scene, again.scene.textureImage), sceneToXml(again.scene, again.scene.textureImage));
 }
