@@ -9,7 +9,7 @@
 
 #include "rayview/plot.h"
 #include "rayview/tradeoff.h"
-#include "scene_source.h"
+#include "rayview/scene_source.h"
 
 namespace rayview {
 namespace {
@@ -74,8 +74,7 @@ int runBenchCommand(const CommandLine& command) {
   ThreadPool pool(command.threads);
   TradeoffOptions options;
   options.resolutionScale = command.resolutionScale;
-  options.triangularLightModel = command.settings.triangularLightModel;
-  options.secondaryRayStart = command.settings.secondaryRayStart;
+  options.baseline = renderSettingsOf(command);
   const bool showProgress = !command.quiet && isatty(fileno(stderr));
   const std::vector<std::string> names = uniqueNames(command.scenePaths);
   std::string csv = tradeoffCsvHeader();
@@ -83,7 +82,9 @@ int runBenchCommand(const CommandLine& command) {
     const TradeoffProgressFn progress = [&](const TradeoffProgress& p) {
       std::fprintf(stderr, "\r\033[K%s: [%d/%d] %s", names[i].c_str(), p.rendersDone, p.rendersPlanned, p.what.c_str());
     };
-    TradeoffReport report = measureTradeoff(scenes[i], options, pool, nullptr, showProgress ? progress : nullptr);
+    const std::shared_ptr<const Scene>& scene = scenes[i];
+    TradeoffReport report = measureTradeoff(*scene, std::shared_ptr<const SceneGeometry>(scene, &scene->geometry()),
+                                            names[i], options, pool, nullptr, showProgress ? progress : nullptr);
     if (showProgress) std::fputs("\r\033[K", stderr);
     report.sceneName = names[i];
     csv += tradeoffCsvRows(report);

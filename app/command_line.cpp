@@ -9,10 +9,10 @@ namespace {
 enum Applies : unsigned { kRender = 1u, kView = 2u, kBoth = kRender | kView, kBench = 4u, kAll = kBoth | kBench };
 
 struct OptionSpec {
-  const char* name;
-  const char* valueName;  // nullptr: a flag
+  std::string name;
+  std::string valueName;  // empty: a flag
   unsigned applies;
-  const char* help;
+  std::string help;
   std::function<void(CommandLine&, const std::string& value)> apply;
 };
 
@@ -47,38 +47,30 @@ std::string whereTag(unsigned applies) {
   return " [" + tag + "]";
 }
 
-const std::vector<OptionSpec>& optionTable() {
-  static const std::vector<OptionSpec> table = {
+// An option for each row of the knob table: --NAME VALUE. The bench varies the knobs it measures itself.
+OptionSpec knobOption(const Knob& knob) {
+  const std::string option = "--" + std::string(knob.name);
+  return {option, knob.valueName(), knob.measuredByTradeoff ? kBoth : kAll, std::string(knob.help),
+          [&knob, option](CommandLine& c, const std::string& v) {
+            const std::optional<int> value = knob.parse(v);
+            if (!value) throw UsageError(option + " expects " + knob.expectation() + ", not '" + v + "'");
+            std::erase_if(c.knobs, [&](const KnobAssignment& a) { return a.knob == &knob; });
+            c.knobs.push_back({&knob, *value});
+          }};
+}
+
+std::vector<OptionSpec> makeOptionTable() {
+  std::vector<OptionSpec> table = {
       {"-o", "OUT.png|OUT.ppm", kRender, "image to write (written whole: a temporary file renamed into place)",
        [](CommandLine& c, const std::string& v) { c.outputPath = v; }},
       {"--threads", "N", kAll, "render threads (default: one per hardware thread)",
        [](CommandLine& c, const std::string& v) { c.threads = parseInt("--threads", v, 1, 1024); }},
-      {"--depth", "N", kBoth, "maximum mirror recursion depth (default: the scene's <maxraytracedepth>)",
-       [](CommandLine& c, const std::string& v) { c.settings.maxDepthOverride = parseInt("--depth", v, 0, 1000000); }},
-      {"--tri-light", "area|directional", kAll, "triangular-light model (default: area)",
-       [](CommandLine& c, const std::string& v) {
-         if (!parseTriangularLightModel(v, c.settings.triangularLightModel))
-           throw UsageError("--tri-light expects 'area' or 'directional', not '" + v + "'");
-       }},
-      {"--light-samples", "N", kBoth, "samples per triangular light, area model (default: 1 = the centroid)",
-       [](CommandLine& c, const std::string& v) {
-         c.settings.lightSamples = parseInt("--light-samples", v, 1, kMaxLightSamples);
-       }},
-      {"--accel", "embree|reference", kBoth, "ray traversal: Embree (fast) or the double-precision reference BVH",
-       [](CommandLine& c, const std::string& v) {
-         if (!parseAccelKind(v, c.settings.accel))
-           throw UsageError("--accel expects 'embree' or 'reference', not '" + v + "'");
-       }},
-      {"--ray-start", "offset|exclude-hit", kAll,
-       "where shadow/mirror rays start: offset off the surface (default), or at the hit point ignoring its "
-       "triangle (the 2017-19 course renderer)",
-       [](CommandLine& c, const std::string& v) {
-         if (!parseSecondaryRayStart(v, c.settings.secondaryRayStart))
-           throw UsageError("--ray-start expects 'offset' or 'exclude-hit', not '" + v + "'");
-       }},
-      {"--strict", nullptr, kAll, "treat every repaired typo and unknown element as an error",
+  };
+  for (const Knob& knob : knobTable()) table.push_back(knobOption(knob));
+  const std::vector<OptionSpec> rest = {
+      {"--strict", "", kAll, "treat every repaired typo and unknown element as an error",
        [](CommandLine& c, const std::string&) { c.strict = true; }},
-      {"--quiet", nullptr, kRender | kBench, "print only errors",
+      {"--quiet", "", kRender | kBench, "print only errors",
        [](CommandLine& c, const std::string&) { c.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",
        [](CommandLine& c, const std::string& v) { c.scriptPath = v; }},
@@ -87,10 +79,22 @@ const std::vector<OptionSpec>& optionTable() {
       {"--scale", "F", kBench, "render at F times the camera's resolution (0 < F <= 4; default 1)",
        [](CommandLine& c, const std::string& v) { c.resolutionScale = parsePositive("--scale", v, 4.0); }},
   };
+  table.insert(table.end(), rest.begin(), rest.end());
+  return table;
+}
+
+const std::vector<OptionSpec>& optionTable() {
+  static const std::vector<OptionSpec> table = makeOptionTable();
   return table;
 }
 
 }  // namespace
+
+RenderSettings renderSettingsOf(const CommandLine& command) {
+  RenderSettings settings;
+  applyKnobs(command.knobs, {nullptr, &settings});
+  return settings;
+}
 
 CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
   CommandLine command;
@@ -130,10 +134,10 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       if (!spec) throw UsageError("unknown option '" + name + "' (see rayview --help)");
       if (!(spec->applies & mode))
         throw UsageError("option '" + name + "' does not apply to " + modeName(mode));
-      if (spec->valueName && !hasInlineValue) {
+      if (!spec->valueName.empty() && !hasInlineValue) {
         if (i + 1 >= arguments.size()) throw UsageError("option '" + name + "' expects " + spec->valueName);
         value = arguments[++i];
-      } else if (!spec->valueName && hasInlineValue) {
+      } else if (spec->valueName.empty() && hasInlineValue) {
         throw UsageError("option '" + name + "' takes no value");
       }
       spec->apply(command, value);
@@ -170,7 +174,7 @@ std::string helpText() {
       "\n"
       "options:\n";
   for (const OptionSpec& s : optionTable()) {
-    std::string left = std::string("  ") + s.name + (s.valueName ? std::string(" ") + s.valueName : "");
+    std::string left = "  " + s.name + (s.valueName.empty() ? "" : " " + s.valueName);
     if (left.size() < 32) left.resize(32, ' ');
     else left += "  ";
     text += left + s.help + whereTag(s.applies) + "\n";

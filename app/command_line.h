@@ -1,19 +1,16 @@
 #pragma once
-// rayview's command line: one table of options drives parsing and --help.
+// rayview's command line: one table of options drives parsing and --help; the render knobs among them come
+// from the renderer's knob table (rayview/knobs.h).
 
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include "rayview/render_settings.h"
+#include "rayview/exit_codes.h"
+#include "rayview/knobs.h"
 
 namespace rayview {
-
-// Exit codes, the same for every subcommand.
-inline constexpr int kExitOk = 0;
-inline constexpr int kExitIoFailure = 1;
-inline constexpr int kExitBadInput = 2;  // bad scene or bad arguments; nothing written
 
 class UsageError : public std::runtime_error {
  public:
@@ -29,13 +26,18 @@ struct CommandLine {
   int threads = 0;         // 0: one per hardware thread
   bool strict = false;
   bool quiet = false;
-  RenderSettings settings;
+  // --depth, --tri-light, ...: one per knob given (the last wins), written into the render settings at once
+  // and into the scene's parameters once it is loaded (see knobs.h).
+  std::vector<KnobAssignment> knobs;
   std::string scriptPath;  // view: --script FILE (automation, see docs/viewer.md)
   std::string benchName;                // bench: the benchmark to run ("tradeoff")
   std::vector<std::string> scenePaths;  // bench: every SCENE given
   std::string outputDirectory;          // bench: --out DIR
   double resolutionScale = 1.0;         // bench: --scale F
 };
+
+// The default settings with the knobs given on the command line.
+RenderSettings renderSettingsOf(const CommandLine& command);
 
 // Throws UsageError with a one-line message for anything it cannot take.
 CommandLine parseCommandLine(const std::vector<std::string>& arguments);

@@ -8,7 +8,7 @@
 #include "render_command.h"
 
 #ifdef RAYVIEW_HAVE_VIEWER
-#include "viewer_main.h"
+#include "viewer.h"
 #endif
 
 int main(int argc, char** argv) {
@@ -33,7 +33,8 @@ int main(int argc, char** argv) {
       return runBenchCommand(command);
     case CommandKind::View:
 #ifdef RAYVIEW_HAVE_VIEWER
-      return runViewer(command);
+      return runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,
+                                     command.scriptPath});
 #else
       // Built without the viewer: render the scene headless instead and say where the image went.
       command.kind = CommandKind::Render;

@@ -7,7 +7,7 @@
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
-#include "scene_source.h"
+#include "rayview/scene_source.h"
 
 namespace rayview {
 namespace {
@@ -37,10 +37,13 @@ int runRenderCommand(const CommandLine& command) {
   if (!command.quiet)
     for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
 
-  const Scene& scene = loaded.scene;
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, command.settings.accel);
+  // The knobs given on the command line, written once into their homes: the settings and the scene's parameters.
+  Scene& scene = loaded.scene;
+  RenderSettings settings;
+  applyKnobs(command.knobs, {&scene.parameters(), &settings});
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, settings.accel);
   ThreadPool pool(command.threads);
-  const Tracer tracer(scene, *geometry->accel, geometry->shading, command.settings);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
   Image image;
   FrameStats stats;
   renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats);
@@ -53,7 +56,7 @@ int runRenderCommand(const CommandLine& command) {
   }
 
   if (!command.quiet) {
-    const RenderSettings& s = command.settings;
+    const RenderSettings& s = settings;
     std::printf("scene      %s: %zu triangles, %zu point lights, %zu triangular lights, %dx%d\n",
                 command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(), scene.triangles.size(),
                 scene.pointLights.size(), scene.triangularLights.size(), scene.camera.width, scene.camera.height);

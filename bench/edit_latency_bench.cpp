@@ -19,7 +19,7 @@ using Clock = std::chrono::steady_clock;
 void measureEditLatency(benchmark::State& state, std::shared_ptr<const Scene> original) {
   auto geometry = prepareGeometry(original, AccelKind::Embree);
   ProgressiveRenderer renderer(2);
-  Scene edited = parametersOf(*original);  // as the viewer edits: never the meshes
+  SceneParameters edited = original->parameters();  // as the viewer edits: never the meshes
   // Warm up: lets the renderer pick its first stride for this scene, as it would after the first edit.
   for (int i = 0; i < 3; ++i)
     renderer.waitForFinal(renderer.restart(std::make_shared<TracedImage>(original, geometry, RenderSettings{})),
@@ -30,7 +30,7 @@ void measureEditLatency(benchmark::State& state, std::shared_ptr<const Scene> or
     edited.materials[0].diffuse.x = (++edit % 2) ? 0.5f : 0.6f;
     // The edit's own cost on the UI thread (snapshot + tracer set-up) counts toward the latency.
     const auto start = Clock::now();
-    auto snapshot = std::make_shared<const Scene>(edited);
+    auto snapshot = std::make_shared<const SceneParameters>(edited);
     auto source = std::make_shared<TracedImage>(snapshot, geometry, RenderSettings{});
     const double editMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     const auto generation = renderer.restart(std::move(source));

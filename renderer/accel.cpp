@@ -4,7 +4,7 @@
 
 namespace rayview {
 
-std::unique_ptr<Accel> buildAccel(const Scene& scene, AccelKind kind, const glm::dvec3& origin,
+std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                   BuildProgress progress, void* progressUser) {
 #ifdef RAYVIEW_HAVE_EMBREE
   if (kind == AccelKind::Embree) return makeEmbreeAccel(scene, origin, progress, progressUser);

@@ -7,9 +7,9 @@
 
 namespace rayview {
 
-std::unique_ptr<Accel> makeEmbreeAccel(const Scene& scene, const glm::dvec3& origin, BuildProgress progress,
+std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress,
                                        void* progressUser);
-std::unique_ptr<Accel> makeReferenceAccel(const Scene& scene, const glm::dvec3& origin,
+std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin,
                                           BuildProgress progress, void* progressUser);
 
 }  // namespace rayview

@@ -125,7 +125,7 @@ void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
 
 class EmbreeAccel final : public Accel {
  public:
-  EmbreeAccel(const Scene& scene, const glm::dvec3& origin, BuildProgress progress, void* progressUser)
+  EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress, void* progressUser)
       : Accel(origin) {
     RTCDevice device = sharedDevice();
     scene_ = rtcNewScene(device);
@@ -211,7 +211,7 @@ class EmbreeAccel final : public Accel {
 
 }  // namespace
 
-std::unique_ptr<Accel> makeEmbreeAccel(const Scene& scene, const glm::dvec3& origin, BuildProgress progress,
+std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress,
                                        void* progressUser) {
   auto accel = std::make_unique<EmbreeAccel>(scene, origin, progress, progressUser);
   if (!accel->valid()) return nullptr;  // cancelled through the progress callback

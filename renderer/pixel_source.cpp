@@ -2,10 +2,10 @@
 
 namespace rayview {
 
-TracedImage::TracedImage(std::shared_ptr<const Scene> scene, std::shared_ptr<const PreparedGeometry> geometry,
+TracedImage::TracedImage(std::shared_ptr<const SceneParameters> parameters, std::shared_ptr<const PreparedGeometry> geometry,
                          const RenderSettings& settings)
-    : scene_(std::move(scene)),
+    : parameters_(std::move(parameters)),
       geometry_(std::move(geometry)),
-      tracer_(*scene_, *geometry_, settings) {}
+      tracer_(*parameters_, *geometry_, settings) {}
 
 }  // namespace rayview

@@ -43,7 +43,7 @@ class ReferenceAccel final : public Accel {
 
 }  // namespace
 
-std::unique_ptr<Accel> makeReferenceAccel(const Scene& scene, const glm::dvec3& origin, BuildProgress progress,
+std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress,
                                           void* progressUser) {
   // Relative to the origin in double, once; the traversal never sees world coordinates.
   std::vector<glm::dvec3> relative;

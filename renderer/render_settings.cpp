@@ -2,18 +2,7 @@
 
 namespace rayview {
 
-std::string_view toString(TriangularLightModel model) {
-  return model == TriangularLightModel::Area ? "area" : "directional";
-}
-
 std::string_view toString(AccelKind kind) { return kind == AccelKind::Embree ? "embree" : "reference"; }
-
-bool parseTriangularLightModel(std::string_view text, TriangularLightModel& out) {
-  if (text == "area") out = TriangularLightModel::Area;
-  else if (text == "directional") out = TriangularLightModel::Directional;
-  else return false;
-  return true;
-}
 
 bool parseAccelKind(std::string_view text, AccelKind& out) {
   if (text == "embree") out = AccelKind::Embree;

@@ -2,7 +2,7 @@
 
 namespace rayview {
 
-bool Scene::hasMirrors() const {
+bool SceneParameters::hasMirrors() const {
   if (maxRayDepth <= 0) return false;
   for (const Material& m : materials)
     if (m.isMirror()) return true;

@@ -7,6 +7,8 @@
 #include <glm/geometric.hpp>
 
 #include "rayview/light_samples.h"
+#include "rayview/point_light.h"
+#include "rayview/triangular_light.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/ray_offset.h"
 
@@ -22,7 +24,7 @@ double justBefore(double distance) { return distance * (1.0 - 1e-6); }
 
 }  // namespace
 
-ShadingGeometry prepareShadingGeometry(const Scene& scene, const glm::dvec3& origin) {
+ShadingGeometry prepareShadingGeometry(const SceneGeometry& scene, const glm::dvec3& origin) {
   ShadingGeometry g;
   g.vertices.reserve(scene.vertices.size());
   for (const glm::dvec3& v : scene.vertices) g.vertices.push_back(v - origin);
@@ -43,63 +45,94 @@ std::uint8_t quantizeChannel(float value) {
   return static_cast<std::uint8_t>(std::floor(value + 0.5f));
 }
 
-Tracer::Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& geometry,
-               const RenderSettings& settings)
-    : Tracer(scene, scene, accel, geometry, settings) {}
+// A hit's colour is local + mirror * (colour of the next hit), then blended with the texture:
+//   c = tf * texel + (1 - tf) * (local + mirror * next).
+// The path is followed forward (no recursion, so no depth can exhaust the stack) and folded backward in
+// exactly this order, which is the arithmetic of the recursive definition.
+struct Tracer::PathVertex {
+  Color local{0.0f};
+  Color mirror{0.0f};      // weight of the next hit
+  Color texel{0.0f};
+  float textureFactor = 0.0f;
+  bool continues = false;  // a mirror ray leaves this hit
+  bool textured = false;
+};
 
-Tracer::Tracer(const Scene& scene, const PreparedGeometry& geometry, const RenderSettings& settings)
-    : Tracer(scene, *geometry.source, *geometry.accel, geometry.shading, settings) {}
+Tracer::Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& shading, const RenderSettings& settings)
+    : Tracer(scene.parameters(), scene.geometry(), accel, shading, settings) {}
 
-Tracer::Tracer(const Scene& scene, const Scene& meshes, const Accel& accel, const ShadingGeometry& geometry,
-               const RenderSettings& settings)
-    : scene_(scene), meshes_(meshes), accel_(accel), geometry_(geometry), settings_(settings) {
-  maxDepth_ = settings.maxDepthOverride >= 0 ? settings.maxDepthOverride : scene.maxRayDepth;
-  basis_ = cameraBasis(scene.camera);
-  eyeRelative_ = scene.camera.position - accel.origin();
-  for (const PointLight& light : scene.pointLights) pointLightPositions_.push_back(light.position - accel.origin());
-  for (const TriangularLight& light : scene.triangularLights) {
-    TriangularLightFrame f;
-    f.v1 = light.vertex1 - accel.origin();
-    f.v2 = light.vertex2 - accel.origin();
-    f.v3 = light.vertex3 - accel.origin();
-    f.centroid = (light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - accel.origin();
-    const glm::dvec3 n = glm::cross(light.vertex1 - light.vertex2, light.vertex1 - light.vertex3);
-    const double length = glm::length(n);
-    if (!(length > 0.0)) continue;  // a degenerate light emits nothing
-    f.normal = n / length;
-    f.intensity = light.intensity;
-    triangularLights_.push_back(f);
-  }
+Tracer::Tracer(const SceneParameters& parameters, const PreparedGeometry& geometry, const RenderSettings& settings)
+    : Tracer(parameters, *geometry.source, *geometry.accel, geometry.shading, settings) {}
+
+Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, const Accel& accel,
+               const ShadingGeometry& shading, const RenderSettings& settings)
+    : parameters_(parameters), meshes_(meshes), accel_(accel), shading_(shading), settings_(settings) {
+  basis_ = cameraBasis(parameters.camera);
+  eyeRelative_ = parameters.camera.position - accel.origin();
+  for (const PointLight& light : parameters.pointLights) pointLights_.emplace_back(light, accel.origin());
+  for (const TriangularLight& light : parameters.triangularLights)
+    if (auto prepared = TriangularLightShading::prepare(light, accel.origin(), settings.triangularLightModel,
+                                                        settings.lightSamples))
+      triangularLights_.push_back(*prepared);
   useTexture_ = meshes.texture.has_value() && !meshes.texture->rgb.empty();
-  settings_.lightSamples = std::clamp(settings_.lightSamples, 1, kMaxLightSamples);
 }
 
 Color Tracer::tracePixel(int i, int j, RayCounts& counts) const {
-  const glm::dvec3 direction = glm::normalize(pixelDirection(scene_.camera, basis_, i, j));
+  const glm::dvec3 direction = glm::normalize(pixelDirection(parameters_.camera, basis_, i, j));
   const Ray ray{eyeRelative_, direction, 0.0, kInfinity};
   const std::uint32_t seed = hash32(static_cast<std::uint32_t>(j) * 0x9E3779B1U + static_cast<std::uint32_t>(i));
   ++counts.camera;
-  if (std::optional<Hit> hit = accel_.closestHit(ray)) return shadeHit(ray, *hit, 0, seed, counts);
-  return scene_.background;
+  if (std::optional<Hit> hit = accel_.closestHit(ray)) return tracePath(ray, *hit, seed, counts);
+  return parameters_.background;
 }
 
-Color Tracer::trace(const Ray& ray, int depth, std::uint32_t pixelSeed, RayCounts& counts) const {
-  ++counts.reflection;
-  if (std::optional<Hit> hit = accel_.closestHit(ray)) return shadeHit(ray, *hit, depth, pixelSeed, counts);
-  return Color(0.0f);  // a reflected ray that hits nothing adds nothing (course reference)
+Color Tracer::tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const {
+  constexpr int kInline = 16;  // deeper paths (facing mirrors) spill to the heap
+  PathVertex inlineVertices[kInline];
+  std::vector<PathVertex> spilled;
+  auto vertexAt = [&](int k) -> PathVertex& {
+    if (k < kInline) return inlineVertices[k];
+    if (static_cast<std::size_t>(k - kInline) >= spilled.size()) spilled.resize(spilled.size() * 2 + kInline);
+    return spilled[k - kInline];
+  };
+
+  Ray ray = cameraRay;
+  Hit hit = firstHit;
+  int last = 0;
+  for (int depth = 0;; ++depth) {
+    Ray next;
+    PathVertex& v = vertexAt(depth) = shadeHit(ray, hit, depth, pixelSeed, counts, next);
+    last = depth;
+    if (!v.continues) break;
+    ++counts.reflection;
+    std::optional<Hit> nextHit = accel_.closestHit(next);
+    if (!nextHit) break;  // a reflected ray that hits nothing adds nothing (course reference)
+    ray = next;
+    hit = *nextHit;
+  }
+
+  Color next(0.0f);
+  for (int k = last; k >= 0; --k) {
+    const PathVertex& v = vertexAt(k);
+    Color color = v.local;
+    if (v.continues) color += v.mirror * next;
+    if (v.textured) color = v.textureFactor * v.texel + (1.0f - v.textureFactor) * color;
+    next = color;
+  }
+  return next;
 }
 
-Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
-                       RayCounts& counts) const {
+Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
+                                    RayCounts& counts, Ray& mirrorRay) const {
   const Triangle& triangle = meshes_.triangles[hit.triangle];
-  const Material& material = scene_.materials[triangle.material];
+  const Material& material = parameters_.materials[triangle.material];
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
-  const glm::dvec3& a = geometry_.vertices[triangle.vertex[0]];
+  const glm::dvec3& a = shading_.vertices[triangle.vertex[0]];
   // In double from the barycentrics: on the triangle's plane to double rounding, whatever the ray was.
-  const glm::dvec3 pExact = a + hit.b1 * (geometry_.vertices[triangle.vertex[1]] - a) +
-                            hit.b2 * (geometry_.vertices[triangle.vertex[2]] - a);
-  const glm::dvec3& ngExact = geometry_.faceNormals[hit.triangle];
+  const glm::dvec3 pExact = a + hit.b1 * (shading_.vertices[triangle.vertex[1]] - a) +
+                            hit.b2 * (shading_.vertices[triangle.vertex[2]] - a);
+  const glm::dvec3& ngExact = shading_.faceNormals[hit.triangle];
   const glm::vec3 ng = toFloat(ngExact);
   glm::vec3 n = ng;
   if (triangle.hasNormals()) {
@@ -111,8 +144,8 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
   const glm::dvec3 dExact = glm::normalize(ray.direction);
   const glm::vec3 toEye = -toFloat(dExact);
   const bool excludeHit = settings_.secondaryRayStart == SecondaryRayStart::ExcludeHitTriangle;
-  const bool fixedEpsilon = scene_.shadowRayEpsilon.has_value();
-  const double epsilon = fixedEpsilon ? *scene_.shadowRayEpsilon : 0.0;
+  const bool fixedEpsilon = parameters_.shadowRayEpsilon.has_value();
+  const double epsilon = fixedEpsilon ? *parameters_.shadowRayEpsilon : 0.0;
   // A secondary ray leaving the surface along `direction`.
   auto secondaryRay = [&](const glm::dvec3& direction) {
     if (excludeHit) return Ray{pExact, direction, 0.0, kInfinity, hit.triangle};
@@ -120,77 +153,53 @@ Color Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t 
     return Ray{origin, direction, 0.0, kInfinity};
   };
 
-  Color color = material.ambient * scene_.ambientLight;
+  PathVertex v;
+  Color& color = v.local;
+  color = material.ambient * parameters_.ambientLight;
 
-  // One light direction's Blinn-Phong terms, before the shadow test.
-  auto reflectedLight = [&](const glm::vec3& toLight, const Color& irradiance) {
+  // One light direction: its Blinn-Phong terms, then (when they add anything) the shadow ray toward `target`
+  // (stopping just before it), or along `l` without end.
+  auto addLight = [&](const glm::dvec3& l, const Color& irradiance, const glm::dvec3* target) {
+    const glm::vec3 toLight = toFloat(l);
     const Color diffuse = material.diffuse * irradiance * std::max(0.0f, glm::dot(n, toLight));
     const glm::vec3 h = glm::normalize(toLight + toEye);
     const float specular = std::pow(std::max(0.0f, glm::dot(n, h)), material.phongExponent);
-    return diffuse + material.specular * irradiance * specular;
-  };
-  // Shadow ray from the surface toward `target` (stopping just before it), or along `l` without end.
-  auto visible = [&](const glm::dvec3& l, const glm::dvec3* target) {
+    const Color contribution = diffuse + material.specular * irradiance * specular;
+    if (contribution == Color(0.0f)) return;  // no shadow ray for light that would add nothing
     Ray shadow = secondaryRay(l);
     if (target) {
       const glm::dvec3 toTarget = *target - shadow.origin;
       const double length = glm::length(toTarget);
-      if (!(length > 0.0)) return true;
-      shadow.direction = toTarget / length;
-      shadow.tFar = justBefore(length);
+      if (length > 0.0) {
+        shadow.direction = toTarget / length;
+        shadow.tFar = justBefore(length);
+        ++counts.shadow;
+        if (accel_.occluded(shadow)) return;
+      }
+    } else {
+      ++counts.shadow;
+      if (accel_.occluded(shadow)) return;
     }
-    ++counts.shadow;
-    return !accel_.occluded(shadow);
+    color += contribution;
   };
 
-  for (std::size_t k = 0; k < pointLightPositions_.size(); ++k) {
-    const glm::dvec3 toLight = pointLightPositions_[k] - pExact;
-    const double distanceSquared = glm::dot(toLight, toLight);
-    if (!(distanceSquared > 0.0)) continue;
-    const glm::dvec3 l = toLight / std::sqrt(distanceSquared);
-    const Color contribution =
-        reflectedLight(toFloat(l), scene_.pointLights[k].intensity / static_cast<float>(distanceSquared));
-    if (contribution == Color(0.0f)) continue;  // no shadow ray for light that would add nothing
-    if (visible(l, &pointLightPositions_[k])) color += contribution;
-  }
+  for (const PointLightShading& light : pointLights_) light.illuminate(pExact, addLight);
+  for (const TriangularLightShading& light : triangularLights_) light.illuminate(pExact, pixelSeed, addLight);
 
-  for (const TriangularLightFrame& light : triangularLights_) {
-    if (settings_.triangularLightModel == TriangularLightModel::Directional) {
-      const glm::dvec3 l = -light.normal;
-      const Color contribution = reflectedLight(toFloat(l), light.intensity);
-      if (contribution != Color(0.0f) && visible(l, nullptr)) color += contribution;
-      continue;
-    }
-    const int samples = settings_.lightSamples;
-    const Color perSample = light.intensity / static_cast<float>(samples);
-    for (int s = 0; s < samples; ++s) {
-      const glm::vec2 w = triangleSample(s, samples, pixelSeed);
-      const glm::dvec3 y = samples == 1 ? light.centroid
-                                        : light.v1 + double(w.x) * (light.v2 - light.v1) + double(w.y) * (light.v3 - light.v1);
-      const glm::dvec3 toLight = y - pExact;
-      const double distanceSquared = glm::dot(toLight, toLight);
-      if (!(distanceSquared > 0.0)) continue;
-      const glm::dvec3 l = toLight / std::sqrt(distanceSquared);
-      const double cosine = glm::dot(light.normal, -l);  // n_L . omega, omega from the light to x
-      if (!(cosine > 0.0)) continue;
-      const Color contribution = reflectedLight(toFloat(l), perSample * static_cast<float>(cosine / distanceSquared));
-      if (contribution == Color(0.0f)) continue;
-      if (visible(l, &y)) color += contribution;
-    }
-  }
-
-  if (material.isMirror() && depth < maxDepth_) {
+  if (material.isMirror() && depth < parameters_.maxRayDepth) {
     const glm::dvec3 nExact(n);
     const glm::dvec3 r = glm::normalize(dExact - 2.0 * glm::dot(dExact, nExact) * nExact);
-    const Ray reflected = secondaryRay(r);
-    color += material.mirror * trace(reflected, depth + 1, pixelSeed, counts);
+    mirrorRay = secondaryRay(r);
+    v.mirror = material.mirror;
+    v.continues = true;
   }
 
   if (useTexture_ && material.textureFactor != 0.0f && triangle.hasTexCoords()) {
-    const float tf = material.textureFactor;
-    color = tf * sampleTexture(triangle, hit) + (1.0f - tf) * color;
+    v.textured = true;
+    v.textureFactor = material.textureFactor;
+    v.texel = sampleTexture(triangle, hit);
   }
-  return color;
+  return v;
 }
 
 // Texture lookup: uv interpolated from the face's <texturedata> entries; u to the right, v up (OBJ

@@ -5,6 +5,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "rayview/knobs.h"
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
@@ -190,9 +191,11 @@ TEST(Mirror, RecursionStopsAtMaxDepth) {
 
 TEST(Mirror, DepthOverrideWins) {
   RenderSettings settings;
-  settings.maxDepthOverride = 3;
+  Scene scene = facingMirrors(9);
+  const KnobAssignment depth{&depthKnob(), 3};  // --depth 3, written into the scene's parameters
+  applyKnobs({&depth, 1}, {&scene.parameters(), &settings});
   RayCounts counts;
-  centrePixel(facingMirrors(9), settings, &counts);
+  centrePixel(scene, settings, &counts);
   EXPECT_EQ(counts.reflection, 3u);
 }
 

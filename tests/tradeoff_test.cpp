@@ -114,7 +114,7 @@ TEST(KnobEnumeration, EveryKnobOfASceneWithMirrorsAndATriangularLight) {
   EXPECT_EQ(all.front().knob, TradeoffKnob::Reference);
   EXPECT_EQ(all.front().settings.accel, AccelKind::Reference);
   EXPECT_EQ(all.front().settings.lightSamples, 256);
-  EXPECT_EQ(all.front().settings.maxDepthOverride, 2);
+  EXPECT_EQ(all.front().depth, 2);
   EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::Preview)),
             (std::vector<std::string>{"1/16", "1/8", "1/4", "1/2", "1"}));
   EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::Depth)), (std::vector<std::string>{"0", "1", "2"}));
@@ -126,7 +126,7 @@ TEST(KnobEnumeration, EveryKnobOfASceneWithMirrorsAndATriangularLight) {
   // Each knob varies alone: everything else stays at the baseline.
   for (const KnobSetting& k : settingsOf(all, TradeoffKnob::LightSamples)) {
     EXPECT_EQ(k.stride, 1);
-    EXPECT_EQ(k.settings.maxDepthOverride, 2);
+    EXPECT_EQ(k.depth, 2);
     EXPECT_EQ(k.settings.accel, availableAccel(AccelKind::Embree));
   }
   for (const KnobSetting& k : settingsOf(all, TradeoffKnob::Preview)) EXPECT_EQ(k.settings.lightSamples, 1);
@@ -144,8 +144,8 @@ TEST(KnobEnumeration, WithoutMirrorsOrTriangularLights) {
 
 TEST(KnobEnumeration, TheUsersLightModelAndRayStartHoldForEverySetting) {
   TradeoffOptions options;
-  options.triangularLightModel = TriangularLightModel::Directional;
-  options.secondaryRayStart = SecondaryRayStart::ExcludeHitTriangle;
+  options.baseline.triangularLightModel = TriangularLightModel::Directional;
+  options.baseline.secondaryRayStart = SecondaryRayStart::ExcludeHitTriangle;
   const std::vector<KnobSetting> all = enumerateKnobSettings(wallScene(true), options);
   for (const KnobSetting& k : all) {
     EXPECT_EQ(k.settings.triangularLightModel, TriangularLightModel::Directional) << k.label;
@@ -169,6 +169,14 @@ TEST(KnobEnumeration, DeepScenesListPowersOfTwo) {
 
 // ---- Measuring
 
+// The scene's own parameters on its own geometry, as `rayview bench tradeoff` measures a file.
+TradeoffReport measureScene(const Scene& scene, const TradeoffOptions& options, ThreadPool& pool,
+                            const std::atomic<bool>* cancel = nullptr, const TradeoffProgressFn& progress = {}) {
+  const std::string name = scene.sourcePath.empty() ? "default" : scene.sourcePath.stem().string();
+  return measureTradeoff(scene, std::make_shared<const SceneGeometry>(scene.geometry()), name, options, pool, cancel,
+                         progress);
+}
+
 const TradeoffPoint& pointOf(const TradeoffReport& report, TradeoffKnob knob, const std::string& label) {
   for (const TradeoffPoint& p : report.points)
     if (p.setting.knob == knob && p.setting.label == label) return p;
@@ -179,13 +187,13 @@ TradeoffOptions quickOptions() {
   TradeoffOptions options;
   options.timedRuns = 1;
   options.fastTimedRuns = 1;
-  options.baselineAccel = AccelKind::Reference;  // so the finest setting of each knob is the reference image
+  options.baseline.accel = AccelKind::Reference;  // so the finest setting of each knob is the reference image
   return options;
 }
 
 TEST(MeasureTradeoff, PreviewErrorFallsToZeroAtFullResolution) {
   ThreadPool pool(2);
-  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), quickOptions(), pool);
+  const TradeoffReport report = measureScene((wallScene(false)), quickOptions(), pool);
   ASSERT_FALSE(report.cancelled);
   EXPECT_EQ(report.width, 40);
   EXPECT_EQ(report.threads, 2);
@@ -226,7 +234,7 @@ TEST(MeasureTradeoff, LightSamplesConvergeToTheReference) {
   TradeoffOptions options = quickOptions();
   options.maxLightSamples = 64;
   options.referenceLightSamples = 64;
-  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(true, 24)), options, pool);
+  const TradeoffReport report = measureScene((wallScene(true, 24)), options, pool);
   ASSERT_FALSE(report.cancelled);
   EXPECT_GT(pointOf(report, TradeoffKnob::LightSamples, "1").error.rmse, 0.5);
   EXPECT_EQ(pointOf(report, TradeoffKnob::LightSamples, "64").error.rmse, 0.0);
@@ -241,7 +249,7 @@ TEST(MeasureTradeoff, EmbreeAgreesWithTheReference) {
   TradeoffOptions options;
   options.timedRuns = 3;
   options.fastRunMs = 0.0;
-  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), options, pool);
+  const TradeoffReport report = measureScene((wallScene(false)), options, pool);
   const TradeoffPoint& embree = pointOf(report, TradeoffKnob::Accel, "embree");
   EXPECT_LT(embree.error.pctOffByMoreThan1, 1.0);
   EXPECT_EQ(pointOf(report, TradeoffKnob::Accel, "reference").error.rmse, 0.0);
@@ -254,7 +262,7 @@ TEST(MeasureTradeoff, ResolutionScale) {
   ThreadPool pool(1);
   TradeoffOptions options = quickOptions();
   options.resolutionScale = 0.25;
-  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), options, pool);
+  const TradeoffReport report = measureScene((wallScene(false)), options, pool);
   EXPECT_EQ(report.width, 10);
   EXPECT_EQ(report.height, 10);
   EXPECT_EQ(pointOf(report, TradeoffKnob::Preview, "1").rays > 0, true);
@@ -264,7 +272,7 @@ TEST(MeasureTradeoff, CancelBeforeStart) {
   ThreadPool pool(2);
   const std::atomic<bool> cancel{true};
   int calls = 0;
-  const TradeoffReport report = measureTradeoff(std::make_shared<const Scene>(wallScene(false)), quickOptions(), pool,
+  const TradeoffReport report = measureScene((wallScene(false)), quickOptions(), pool,
                                                 &cancel, [&](const TradeoffProgress&) { ++calls; });
   EXPECT_TRUE(report.cancelled);
   EXPECT_TRUE(report.points.empty());
@@ -274,7 +282,7 @@ TEST(MeasureTradeoff, CancelBeforeStart) {
 TEST(MeasureTradeoff, ProgressCountsEveryRender) {
   ThreadPool pool(2);
   int lastDone = -1, planned = 0, calls = 0;
-  measureTradeoff(std::make_shared<const Scene>(wallScene(false, 8)), quickOptions(), pool, nullptr,
+  measureScene((wallScene(false, 8)), quickOptions(), pool, nullptr,
                   [&](const TradeoffProgress& p) {
                     EXPECT_GE(p.rendersDone, lastDone);
                     lastDone = p.rendersDone;
@@ -291,7 +299,7 @@ TEST(MeasureTradeoff, ProgressCountsEveryRender) {
 TEST(TradeoffCsv, HeaderAndARowPerSetting) {
   ThreadPool pool(2);
   const TradeoffReport report =
-      measureTradeoff(std::make_shared<const Scene>(wallScene(true, 16)), quickOptions(), pool);
+      measureScene((wallScene(true, 16)), quickOptions(), pool);
   EXPECT_EQ(tradeoffCsvHeader(), "scene,knob,setting,time_ms,rmse,psnr_db,pct_off_by_more_than_1,rays\n");
   std::istringstream rows(tradeoffCsvRows(report));
   std::string line;
@@ -311,7 +319,7 @@ TEST(TradeoffCsv, HeaderAndARowPerSetting) {
 TEST(TradeoffPlot, DrawsEverySeries) {
   ThreadPool pool(2);
   const TradeoffReport report =
-      measureTradeoff(std::make_shared<const Scene>(wallScene(true, 16)), quickOptions(), pool);
+      measureScene((wallScene(true, 16)), quickOptions(), pool);
   const Image plot = plotTradeoff(report, 640, 400);
   ASSERT_EQ(plot.width, 640);
   ASSERT_EQ(plot.height, 400);

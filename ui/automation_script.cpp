@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "rayview/render_settings.h"
+#include "rayview/knobs.h"
 
 namespace rayview {
 namespace {
@@ -86,30 +86,24 @@ class LineParser {
 };
 
 void parseSet(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p) {
-  if (t.empty()) p.fail("'set' needs what to set: depth, background, ambient, tri-light, light-samples, ray-start, accel, material, light");
+  if (t.empty()) {
+    std::string names;
+    for (const Knob& knob : knobTable()) names += std::string(knob.name) + ", ";
+    p.fail("'set' needs what to set: " + names + "background, ambient, material, light");
+  }
   const std::string& what = t[0];
   c.args = {what};
-  if (what == "depth") return p.integers(t, 1, 1, "set depth N", 0, 1000000);
+  // The render knobs (rayview/knobs.h): `set NAME VALUE`, checked against the knob's own limits or choices.
+  if (const Knob* knob = findKnob(what)) {
+    const std::string usage = "set " + what + " " + knob->valueName();
+    if (!knob->isChoice()) return p.integers(t, 1, 1, usage, knob->min, knob->max);
+    const std::optional<int> value = t.size() == 2 ? knob->parse(t[1]) : std::nullopt;
+    if (!value) p.fail("usage: " + usage);
+    c.args.push_back(t[1]);
+    c.numbers.push_back(*value);
+    return;
+  }
   if (what == "background" || what == "ambient") return p.numbers(t, 1, 3, "set " + what + " R G B");
-  if (what == "light-samples") return p.integers(t, 1, 1, "set light-samples N", 1, kMaxLightSamples);
-  if (what == "tri-light") {
-    TriangularLightModel model;
-    if (t.size() != 2 || !parseTriangularLightModel(t[1], model)) p.fail("usage: set tri-light area|directional");
-    c.args.push_back(t[1]);
-    return;
-  }
-  if (what == "ray-start") {
-    SecondaryRayStart start;
-    if (t.size() != 2 || !parseSecondaryRayStart(t[1], start)) p.fail("usage: set ray-start offset|exclude-hit");
-    c.args.push_back(t[1]);
-    return;
-  }
-  if (what == "accel") {
-    AccelKind kind;
-    if (t.size() != 2 || !parseAccelKind(t[1], kind)) p.fail("usage: set accel embree|reference");
-    c.args.push_back(t[1]);
-    return;
-  }
   if (what == "material") {
     const std::string usage = "set material ID ambient|diffuse|specular|mirror R G B, or set material ID phong|texture-factor X";
     if (t.size() < 3) p.fail("usage: " + usage);

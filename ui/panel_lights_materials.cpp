@@ -6,7 +6,7 @@
 
 namespace rayview {
 
-void drawLightsPanel(SceneEdits& edits, double sceneRadius) {
+void drawLightsPanel(SceneParameters& edits, double sceneRadius) {
   if (!ImGui::CollapsingHeader("Lights")) return;
   const double speed = (sceneRadius > 0.0 ? sceneRadius : 1.0) * 0.005;
   editRadiance("Ambient", edits.ambientLight);
@@ -35,7 +35,7 @@ void drawLightsPanel(SceneEdits& edits, double sceneRadius) {
   if (edits.pointLights.empty() && edits.triangularLights.empty()) hintText("This scene has no point or triangular lights.");
 }
 
-void drawMaterialsPanel(SceneEdits& edits, bool hasTexture) {
+void drawMaterialsPanel(SceneParameters& edits, bool hasTexture) {
   if (!ImGui::CollapsingHeader("Materials")) return;
   for (std::size_t i = 0; i < edits.materials.size(); ++i) {
     Material& m = edits.materials[i];

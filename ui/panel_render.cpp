@@ -35,35 +35,9 @@ std::string millisecondsOrPending(double ms) {
 void drawRenderSettingsPanel(SceneSession& session, bool& showStats) {
   if (!ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::Checkbox("Stats over the image", &showStats);  // display only: never restarts the render
-  SceneEdits& edits = session.edits();
-  RenderSettings& settings = session.settings();
-  if (ImGui::InputInt("Max ray depth", &edits.maxRayDepth)) edits.maxRayDepth = std::clamp(edits.maxRayDepth, 0, 1000);
-  editRadiance("Background", edits.background);
-
-  const bool hasTriangularLights = !edits.triangularLights.empty();
-  ImGui::BeginDisabled(!hasTriangularLights);
-  int model = settings.triangularLightModel == TriangularLightModel::Area ? 0 : 1;
-  if (ImGui::Combo("Tri-light model", &model, "area\0directional\0"))
-    settings.triangularLightModel = model == 0 ? TriangularLightModel::Area : TriangularLightModel::Directional;
-  ImGui::BeginDisabled(settings.triangularLightModel != TriangularLightModel::Area);
-  if (ImGui::InputInt("Light samples", &settings.lightSamples))
-    settings.lightSamples = std::clamp(settings.lightSamples, 1, kMaxLightSamples);
-  ImGui::EndDisabled();
-  ImGui::EndDisabled();
-
-  int rayStart = settings.secondaryRayStart == SecondaryRayStart::Offset ? 0 : 1;
-  if (ImGui::Combo("Ray start", &rayStart, "offset off the surface\0at the hit, skip its triangle\0"))
-    settings.secondaryRayStart = rayStart == 0 ? SecondaryRayStart::Offset : SecondaryRayStart::ExcludeHitTriangle;
-  if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Where shadow and mirror rays start (--ray-start). The second is what the 2017-19 course renderer did.");
-
-#ifdef RAYVIEW_HAVE_EMBREE
-  int accel = settings.accel == AccelKind::Embree ? 0 : 1;
-  if (ImGui::Combo("Traversal", &accel, "Embree\0reference BVH\0"))
-    settings.accel = accel == 0 ? AccelKind::Embree : AccelKind::Reference;
-#else
-  ImGui::TextUnformatted("Traversal: reference BVH (built without Embree)");
-#endif
+  // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.
+  for (const Knob& knob : knobTable()) editKnob(knob, session.edits(), session.settings());
+  editRadiance("Background", session.edits().background);
 }
 
 void drawStatsOverlay(const ViewerStats& s, float right, float bottom) {

@@ -91,8 +91,8 @@ void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const Scen
                     PanelActions& actions);
 void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions);
 void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::string& problem, PanelActions& actions);
-void drawLightsPanel(SceneEdits& edits, double sceneRadius);
-void drawMaterialsPanel(SceneEdits& edits, bool hasTexture);
+void drawLightsPanel(SceneParameters& edits, double sceneRadius);
+void drawMaterialsPanel(SceneParameters& edits, bool hasTexture);
 void drawRenderSettingsPanel(SceneSession& session, bool& showStats);
 // `canMeasure` is false (with `why`) while no scene can be measured.
 void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,

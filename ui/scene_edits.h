@@ -1,8 +1,7 @@
 #pragma once
-// What the viewer lets the user change in a loaded scene, and what each change costs.
-//
-// Everything here is cheap to change: camera, lights, materials, depth, background. Geometry is not
-// editable, so an edit never needs a new BVH; it only needs a new scene snapshot and a render restart.
+// What an edit of the scene's parameters costs, and whether they can be rendered. The viewer edits a
+// SceneParameters (camera, lights, materials, depth, background): geometry is not editable, so an edit never
+// needs a new BVH; it only needs a new parameter snapshot and a render restart.
 
 #include <string>
 #include <vector>
@@ -12,25 +11,9 @@
 
 namespace rayview {
 
-struct SceneEdits {
-  int maxRayDepth = 0;
-  Color background{0.0f};
-  Camera camera;
-  Color ambientLight{0.0f};
-  std::vector<PointLight> pointLights;
-  std::vector<TriangularLight> triangularLights;
-  std::vector<Material> materials;  // ids and order as loaded: triangles refer to them by index
-};
-
 // Largest image the viewer renders (each side, and in total), so a typo in a field cannot exhaust memory.
 inline constexpr int kMaxViewerImageSide = 16384;
 inline constexpr long long kMaxViewerImagePixels = 64LL * 1024 * 1024;
-
-SceneEdits editsOf(const Scene& scene);
-void applyEdits(const SceneEdits& edits, Scene& scene);
-
-bool sameCamera(const Camera& a, const Camera& b);
-bool sameEdits(const SceneEdits& a, const SceneEdits& b);
 
 enum class EditEffect {
   None,     // nothing the image depends on changed (or only display settings)
@@ -38,15 +21,15 @@ enum class EditEffect {
   Rebuild,  // another traversal back-end: the geometry must be prepared again
 };
 
-EditEffect classifyEdit(const SceneEdits& before, const RenderSettings& beforeSettings, const SceneEdits& after,
-                        const RenderSettings& afterSettings);
+EditEffect classifyEdit(const SceneParameters& before, const RenderSettings& beforeSettings,
+                        const SceneParameters& after, const RenderSettings& afterSettings);
 
-// Empty when the edits describe a scene that can be rendered; otherwise what is wrong, for the user.
-std::string editProblem(const SceneEdits& edits, const RenderSettings& settings);
+// Empty when the parameters describe a scene that can be rendered; otherwise what is wrong, for the user.
+std::string editProblem(const SceneParameters& edits, const RenderSettings& settings);
 
 // Index of the material / point light / triangular light with `id`, or -1.
-int findMaterial(const SceneEdits& edits, const std::string& id);
-int findPointLight(const SceneEdits& edits, const std::string& id);
-int findTriangularLight(const SceneEdits& edits, const std::string& id);
+int findMaterial(const SceneParameters& edits, const std::string& id);
+int findPointLight(const SceneParameters& edits, const std::string& id);
+int findTriangularLight(const SceneParameters& edits, const std::string& id);
 
 }  // namespace rayview

@@ -4,7 +4,7 @@
 #include <new>
 
 #include "rayview/camera_rays.h"
-#include "scene_source.h"
+#include "rayview/scene_source.h"
 
 namespace rayview {
 namespace {
@@ -15,83 +15,24 @@ double msSince(std::chrono::steady_clock::time_point start) {
 
 }  // namespace
 
-SceneLoaderTask::SceneLoaderTask() : worker_([this] { workerLoop(); }) {}
-
-SceneLoaderTask::~SceneLoaderTask() {
-  {
-    std::lock_guard lock(mutex_);
-    stopping_ = true;
-  }
-  wake_.notify_all();
-  worker_.join();
-}
-
-std::uint64_t SceneLoaderTask::request(LoadRequest request) {
-  std::uint64_t id;
-  {
-    std::lock_guard lock(mutex_);
-    id = ++pendingId_;
-    pending_ = std::move(request);
-    outcome_.reset();  // an older outcome not yet taken is stale now
-    latest_ = id;      // from here on the running load's build callback cancels it
-  }
-  wake_.notify_all();
-  return id;
-}
-
-std::optional<LoadOutcome> SceneLoaderTask::takeOutcome() {
-  std::lock_guard lock(mutex_);
-  std::optional<LoadOutcome> out = std::move(outcome_);
-  outcome_.reset();
-  return out;
-}
+SceneLoaderTask::SceneLoaderTask()
+    : worker_([this](std::uint64_t id, const LoadRequest& request, const std::atomic<bool>& cancel) {
+        return run(id, request, cancel);
+      }) {}
 
 LoadProgress SceneLoaderTask::progress() const {
   LoadProgress p;
-  std::lock_guard lock(mutex_);
-  p.busy = running_ || pending_.has_value();
-  p.path = pending_ ? pending_->path : runningPath_;
+  const std::optional<LoadRequest> current = worker_.current();
+  p.busy = current.has_value();
+  if (current) p.path = current->path;
   p.building = building_.load();
   p.fraction = fraction_.load();
   return p;
 }
 
-bool SceneLoaderTask::busy() const {
-  std::lock_guard lock(mutex_);
-  return running_ || pending_.has_value();
-}
-
-bool SceneLoaderTask::onBuildProgress(void* user, double fraction) {
-  const BuildContext& context = *static_cast<const BuildContext*>(user);
-  context.task->fraction_ = fraction;
-  return !context.task->superseded(context.id);
-}
-
-void SceneLoaderTask::workerLoop() {
-  for (;;) {
-    LoadRequest request;
-    std::uint64_t id;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_.load() || pending_.has_value(); });
-      if (stopping_) return;
-      request = std::move(*pending_);
-      pending_.reset();
-      id = pendingId_;
-      running_ = true;
-      runningPath_ = request.path;
-      building_ = false;
-      fraction_ = 0.0;
-    }
-    LoadOutcome outcome = run(id, request);
-    std::lock_guard lock(mutex_);
-    running_ = false;
-    // Only the newest request's outcome is shown; a superseded one is dropped here (and freed with it).
-    if (id == pendingId_ && !pending_) outcome_ = std::move(outcome);
-  }
-}
-
-LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request) {
+LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request, const std::atomic<bool>& cancel) {
+  building_ = false;
+  fraction_ = 0.0;
   LoadOutcome outcome;
   outcome.id = id;
   outcome.request = request;
@@ -108,13 +49,21 @@ LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request) {
       }
       scene = std::make_shared<const Scene>(std::move(loaded.scene));
     }
-    if (superseded(id)) return outcome;
+    if (cancel) return outcome;
 
     building_ = true;
     const AccelKind accel = availableAccel(request.accel);
-    BuildContext context{this, id};
+    struct BuildContext {
+      std::atomic<double>& fraction;
+      const std::atomic<bool>& cancel;
+    } context{fraction_, cancel};
+    const BuildProgress onProgress = [](void* user, double fraction) {
+      auto& c = *static_cast<BuildContext*>(user);
+      c.fraction = fraction;
+      return !c.cancel.load();
+    };
     // The shared overload: the geometry keeps this scene (the tracer reads its meshes) without a copy.
-    std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, accel, onBuildProgress, &context);
+    std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, accel, onProgress, &context);
     if (!geometry) return outcome;  // cancelled: a newer request took over
     outcome.buildMs = geometry->buildMs;
     outcome.parts.bounds = sceneBounds(*scene);

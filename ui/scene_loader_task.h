@@ -1,21 +1,20 @@
 #pragma once
-// Loading a scene and building its BVH off the UI thread, one request at a time, on one persistent worker.
+// Loading a scene and building its BVH off the UI thread, one request at a time, on one persistent worker
+// (RequestWorker).
 //
 // A new request supersedes the one in progress: the BVH build of the old one is cancelled through its
 // progress callback, and only the newest request's outcome is ever handed back. The scene on screen is
 // not touched here: the UI swaps it only when a successful outcome arrives, and keeps it on failure.
 
 #include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "rayview/scene_loader.h"
+#include "request_worker.h"
 #include "scene_session.h"
 
 namespace rayview {
@@ -49,43 +48,21 @@ struct LoadProgress {
 class SceneLoaderTask {
  public:
   SceneLoaderTask();
-  ~SceneLoaderTask();
-  SceneLoaderTask(const SceneLoaderTask&) = delete;
-  SceneLoaderTask& operator=(const SceneLoaderTask&) = delete;
 
   // Returns at once. Returns the request's id.
-  std::uint64_t request(LoadRequest request);
+  std::uint64_t request(LoadRequest request) { return worker_.submit(std::move(request)); }
 
   // The outcome of the newest request, once, when it is ready.
-  std::optional<LoadOutcome> takeOutcome();
+  std::optional<LoadOutcome> takeOutcome() { return worker_.take(); }
   LoadProgress progress() const;
-  bool busy() const;
+  bool busy() const { return worker_.busy(); }
 
  private:
-  struct BuildContext {
-    SceneLoaderTask* task;
-    std::uint64_t id;
-  };
+  LoadOutcome run(std::uint64_t id, const LoadRequest& request, const std::atomic<bool>& cancel);
 
-  void workerLoop();
-  LoadOutcome run(std::uint64_t id, const LoadRequest& request);
-  bool superseded(std::uint64_t id) const { return stopping_.load() || latest_.load() != id; }
-  static bool onBuildProgress(void* user, double fraction);
-
-  mutable std::mutex mutex_;
-  std::condition_variable wake_;
-  std::optional<LoadRequest> pending_;  // guarded by mutex_
-  std::uint64_t pendingId_ = 0;         // guarded by mutex_
-  bool running_ = false;                // guarded by mutex_
-  std::string runningPath_;             // guarded by mutex_
-  std::optional<LoadOutcome> outcome_;  // guarded by mutex_
-
-  std::atomic<std::uint64_t> latest_{0};
-  std::atomic<bool> stopping_{false};
   std::atomic<bool> building_{false};
   std::atomic<double> fraction_{0.0};
-
-  std::thread worker_;
+  RequestWorker<LoadRequest, LoadOutcome> worker_;  // last: its thread uses the members above
 };
 
 }  // namespace rayview

@@ -5,30 +5,21 @@
 
 namespace rayview {
 
-SceneSession::SceneSession(LoadedSceneParts parts, RenderSettings settings)
-    : parts_(std::move(parts)), edits_(editsOf(*parts_.scene)), settings_(settings) {
-  if (settings_.maxDepthOverride >= 0) {
-    edits_.maxRayDepth = settings_.maxDepthOverride;
-    settings_.maxDepthOverride = -1;
-  }
+SceneSession::SceneSession(LoadedSceneParts parts, RenderSettings settings, std::span<const KnobAssignment> knobs)
+    : parts_(std::move(parts)), edits_(parts_.scene->parameters()), settings_(settings) {
+  applyKnobs(knobs, {&edits_, &settings_});
   settings_.accel = parts_.accel;  // what this build could actually build
   orbit_.setHome(parts_.scene->camera, parts_.bounds);
   committedEdits_ = edits_;
   committedSettings_ = settings_;
-  committed_ = makeSnapshot();
-}
-
-std::shared_ptr<const Scene> SceneSession::makeSnapshot() const {
-  // Parameters only: the tracer reads the meshes from the geometry's own scene, so an edit costs the same
-  // on a 1M-triangle scene as on a cube. A render may still use the previous snapshot: it is never changed.
-  auto snapshot = std::make_shared<Scene>(parametersOf(*parts_.scene));
-  applyEdits(committedEdits_, *snapshot);
-  return snapshot;
+  // Parameters only: the tracer reads the meshes from the geometry, so an edit costs the same on a
+  // 1M-triangle scene as on a cube. A render may still use the previous snapshot: it is never changed.
+  committed_ = std::make_shared<const SceneParameters>(committedEdits_);
 }
 
 Scene SceneSession::editedScene() const {
   Scene scene = *parts_.scene;
-  applyEdits(committedEdits_, scene);
+  scene.parameters() = committedEdits_;
   return scene;
 }
 
@@ -51,7 +42,7 @@ void SceneSession::setResolutionKeepingAspect(int width, int height, bool widthC
 
 std::shared_ptr<const PixelSource> SceneSession::commit(std::string& problem) {
   // Numeric camera fields win over navigation: the pivot follows them.
-  if (!sameCamera(edits_.camera, orbit_.camera())) orbit_.setCamera(edits_.camera);
+  if (edits_.camera != orbit_.camera()) orbit_.setCamera(edits_.camera);
 
   problem = editProblem(edits_, settings_);
   if (!problem.empty()) return nullptr;
@@ -60,7 +51,7 @@ std::shared_ptr<const PixelSource> SceneSession::commit(std::string& problem) {
   if (classifyEdit(committedEdits_, committedSettings_, edits_, renderSettings) != EditEffect::Restart) return nullptr;
   committedEdits_ = edits_;
   committedSettings_ = renderSettings;
-  committed_ = makeSnapshot();
+  committed_ = std::make_shared<const SceneParameters>(committedEdits_);
   ++commits_;
   return currentSource();
 }

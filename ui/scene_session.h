@@ -5,10 +5,12 @@
 // hands back a new PixelSource to restart with. UI thread only.
 
 #include <memory>
+#include <span>
 #include <string>
 
 #include "orbit_camera.h"
 #include "rayview/pixel_source.h"
+#include "rayview/knobs.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/render_settings.h"
 #include "scene_edits.h"
@@ -24,12 +26,12 @@ struct LoadedSceneParts {
 
 class SceneSession {
  public:
-  // `settings.maxDepthOverride`, when set, becomes the scene's own depth so that the depth field, the
-  // render and "Save scene as" agree.
-  SceneSession(LoadedSceneParts parts, RenderSettings settings);
+  // `knobs` (the command line's, for the first scene) are written into the edits and settings before the
+  // first render, so that the fields, the render and "Save scene as" agree.
+  SceneSession(LoadedSceneParts parts, RenderSettings settings, std::span<const KnobAssignment> knobs = {});
 
-  SceneEdits& edits() { return edits_; }
-  const SceneEdits& edits() const { return edits_; }
+  SceneParameters& edits() { return edits_; }
+  const SceneParameters& edits() const { return edits_; }
   RenderSettings& settings() { return settings_; }
   const RenderSettings& settings() const { return settings_; }
   const Scene& loaded() const { return *parts_.scene; }
@@ -63,22 +65,20 @@ class SceneSession {
   // The loaded scene (meshes included) shared, for preparing its geometry again.
   std::shared_ptr<const Scene> loadedShared() const { return parts_.scene; }
   bool hasPendingEdits() const;
-  // The edits the running render uses (what editedScene() applies).
-  const SceneEdits& committedEdits() const { return committedEdits_; }
+  // The parameters the running render uses (what editedScene() holds).
+  const SceneParameters& committedEdits() const { return committedEdits_; }
 
   // Counts edits that restarted the render (for stats and tests).
   std::uint64_t commitCount() const { return commits_; }
 
  private:
-  std::shared_ptr<const Scene> makeSnapshot() const;
-
   LoadedSceneParts parts_;
-  SceneEdits edits_;
+  SceneParameters edits_;
   RenderSettings settings_;
   OrbitCamera orbit_;
-  SceneEdits committedEdits_;
+  SceneParameters committedEdits_;
   RenderSettings committedSettings_;
-  std::shared_ptr<const Scene> committed_;
+  std::shared_ptr<const SceneParameters> committed_;  // snapshot of committedEdits_ the render reads
   std::uint64_t commits_ = 0;
 };
 

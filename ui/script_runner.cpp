@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <utility>
 
+#include "rayview/knobs.h"
 #include "scene_session.h"
 
 namespace rayview {
@@ -161,25 +162,16 @@ void ScriptRunner::checkExpectedError(const ScriptCommand& c, ScriptHost& host) 
 void ScriptRunner::applySet(const ScriptCommand& c, ScriptHost& host) {
   SceneSession* session = host.session();
   if (!session) return fail("no scene is loaded");
-  SceneEdits& edits = session->edits();
+  SceneParameters& edits = session->edits();
   RenderSettings& settings = session->settings();
   const std::string& what = c.args[0];
   const std::vector<double>& n = c.numbers;
-  if (what == "depth") {
-    edits.maxRayDepth = static_cast<int>(n[0]);
+  if (const Knob* knob = findKnob(what)) {
+    knob->set(edits, settings, static_cast<int>(n[0]));
   } else if (what == "background") {
     edits.background = color(n);
   } else if (what == "ambient") {
     edits.ambientLight = color(n);
-  } else if (what == "light-samples") {
-    settings.lightSamples = static_cast<int>(n[0]);
-  } else if (what == "tri-light") {
-    parseTriangularLightModel(c.args[1], settings.triangularLightModel);
-  } else if (what == "ray-start") {
-    parseSecondaryRayStart(c.args[1], settings.secondaryRayStart);
-  } else if (what == "accel") {
-    parseAccelKind(c.args[1], settings.accel);
-    settings.accel = availableAccel(settings.accel);
   } else if (what == "material") {
     const int index = findMaterial(edits, c.args[1]);
     if (index < 0) return fail("no material '" + c.args[1] + "' (materials: " + idList(edits.materials) + ")");

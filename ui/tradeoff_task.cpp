@@ -1,17 +1,25 @@
 #include "tradeoff_task.h"
 
+#include "scene_session.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <filesystem>
 #include <utility>
 
 namespace rayview {
 
-std::shared_ptr<const Scene> measuringScene(const Scene& source, const SceneEdits& edits) {
-  auto scene = std::make_shared<Scene>(source);
-  applyEdits(edits, *scene);
-  return scene;
+TradeoffRequest tradeoffRequestFor(const SceneSession& session, double scale) {
+  TradeoffRequest request;
+  request.geometry = session.geometry().source;  // shared: the meshes are never copied
+  request.parameters = session.committedEdits();
+  const std::filesystem::path& source = session.loaded().sourcePath;
+  request.sceneName = source.empty() ? "default" : source.stem().string();
+  request.options.resolutionScale = scale;
+  request.options.baseline = session.settings();
+  return request;
 }
 
 int scaledSide(int pixels, double scale) {
@@ -50,98 +58,35 @@ std::string tradeoffAdvice(const TradeoffReport& report) {
   return line;
 }
 
-TradeoffTask::TradeoffTask(int threads) : threads_(threads), worker_([this] { workerLoop(); }) {}
-
-TradeoffTask::~TradeoffTask() {
-  {
-    std::lock_guard lock(mutex_);
-    stopping_ = true;
-    cancel_ = true;
-  }
-  wake_.notify_all();
-  worker_.join();
-}
-
-void TradeoffTask::setFinishedListener(std::function<void()> listener) {
-  std::lock_guard lock(mutex_);
-  listener_ = std::move(listener);
-}
-
-std::uint64_t TradeoffTask::start(TradeoffRequest request) {
-  std::uint64_t id;
-  {
-    std::lock_guard lock(mutex_);
-    id = ++pendingId_;
-    pending_ = std::move(request);
-    result_.reset();  // an older result not yet taken is stale now
-    cancel_ = true;   // the running one, if any; lowered when the worker takes this request
-  }
-  wake_.notify_all();
-  return id;
-}
-
-void TradeoffTask::cancel() {
-  std::lock_guard lock(mutex_);
-  pending_.reset();
-  result_.reset();
-  cancel_ = true;
-}
-
-std::optional<TradeoffResult> TradeoffTask::takeResult() {
-  std::lock_guard lock(mutex_);
-  return std::exchange(result_, std::nullopt);
-}
+TradeoffTask::TradeoffTask(int threads)
+    : threads_(threads),
+      worker_([this](std::uint64_t id, const TradeoffRequest& request, const std::atomic<bool>& cancel) {
+        return run(id, request, cancel);
+      }) {}
 
 TradeoffStatus TradeoffTask::status() const {
-  std::lock_guard lock(mutex_);
   TradeoffStatus s;
-  s.busy = running_ || pending_.has_value();
+  s.busy = worker_.busy();
+  std::lock_guard lock(progressMutex_);
   s.progress = progress_;
   return s;
 }
 
-void TradeoffTask::workerLoop() {
-  for (;;) {
-    TradeoffRequest request;
-    std::uint64_t id;
-    {
-      std::unique_lock lock(mutex_);
-      wake_.wait(lock, [&] { return stopping_ || pending_.has_value(); });
-      if (stopping_) break;
-      request = std::move(*pending_);
-      pending_.reset();
-      id = pendingId_;
-      running_ = true;
-      progress_ = TradeoffProgress{0, 0, "copying the scene"};
-      cancel_ = false;  // under the lock: a cancel() from now on reaches this run
-    }
-    TradeoffResult result = run(id, request);
-    request = TradeoffRequest{};  // let go of the scene before reporting
-    std::function<void()> listener;
-    {
-      std::lock_guard lock(mutex_);
-      running_ = false;
-      // Only the newest request's result is handed back, and a cancelled one only if nothing replaced it.
-      if (id == pendingId_ && !pending_) result_ = std::move(result);
-      listener = listener_;
-    }
-    if (listener) listener();
+TradeoffResult TradeoffTask::run(std::uint64_t id, const TradeoffRequest& request, const std::atomic<bool>& cancel) {
+  {
+    std::lock_guard lock(progressMutex_);
+    progress_ = TradeoffProgress{0, 0, "starting"};
   }
-  pool_.reset();
-}
-
-TradeoffResult TradeoffTask::run(std::uint64_t id, const TradeoffRequest& request) {
   TradeoffResult result;
   result.id = id;
   try {
-    std::shared_ptr<const Scene> scene = measuringScene(*request.source, request.edits);
     if (!pool_) pool_ = std::make_unique<ThreadPool>(threads_);
-    result.report = measureTradeoff(std::move(scene), request.options, *pool_, &cancel_,
-                                    [this](const TradeoffProgress& progress) {
-                                      std::lock_guard lock(mutex_);
+    result.report = measureTradeoff(request.parameters, request.geometry, request.sceneName, request.options, *pool_,
+                                    &cancel, [this](const TradeoffProgress& progress) {
+                                      std::lock_guard lock(progressMutex_);
                                       progress_ = progress;
                                     });
-    result.cancelled = result.report.cancelled || cancel_.load();
+    result.cancelled = result.report.cancelled || cancel.load();
     if (!result.cancelled) result.plot = plotTradeoff(result.report, request.plotWidth, request.plotHeight);
   } catch (const std::exception& error) {
     result.error = error.what();

@@ -1,6 +1,6 @@
 #pragma once
 // Measuring the speed-for-accuracy trade of the scene on screen (issue 4, item 2; docs/tradeoff.md) off the
-// UI thread: one persistent worker thread runs measureTradeoff() on a thread pool of its own (created at the
+// UI thread: one persistent worker thread (RequestWorker) runs measureTradeoff() on a thread pool of its own (created at the
 // first measurement, then kept), one request at a time. No GL here.
 //
 // The UI pauses its progressive renderer while a measurement runs (so the two do not compete for the cores
@@ -8,32 +8,33 @@
 
 #include <algorithm>
 #include <atomic>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "rayview/image.h"
 #include "rayview/plot.h"
 #include "rayview/thread_pool.h"
 #include "rayview/tradeoff.h"
-#include "scene_edits.h"
+#include "request_worker.h"
 
 namespace rayview {
 
 struct TradeoffRequest {
-  std::shared_ptr<const Scene> source;  // the loaded scene, meshes included (never copied on the UI thread)
-  SceneEdits edits;                     // what is rendered: camera, lights, materials, depth, background
+  std::shared_ptr<const SceneGeometry> geometry;  // the loaded scene's (shared, never copied)
+  SceneParameters parameters;                     // what is rendered: the committed edits
+  std::string sceneName;                          // the file's stem ("default" for the embedded scene)
   TradeoffOptions options;
   int plotWidth = kDefaultPlotWidth, plotHeight = kDefaultPlotHeight;  // pixels of the plot
 };
 
-// The scene measured: a copy of `source` (meshes included) with `edits` applied. Runs on the worker.
-std::shared_ptr<const Scene> measuringScene(const Scene& source, const SceneEdits& edits);
+// What the viewer measures: the committed edits, on the session's geometry (shared), at `scale` of the
+// image's resolution, from the session's settings.
+class SceneSession;
+TradeoffRequest tradeoffRequestFor(const SceneSession& session, double scale);
 
 // The side measured at `scale` of `pixels`, as measureTradeoff rounds it.
 int scaledSide(int pixels, double scale);
@@ -65,41 +66,27 @@ struct TradeoffStatus {
 class TradeoffTask {
  public:
   explicit TradeoffTask(int threads);  // of the measuring pool; <= 0: one per hardware thread
-  ~TradeoffTask();
-  TradeoffTask(const TradeoffTask&) = delete;
-  TradeoffTask& operator=(const TradeoffTask&) = delete;
 
   // Called on the worker when a result is ready (the viewer wakes its UI loop). Set it before start().
-  void setFinishedListener(std::function<void()> listener);
+  void setFinishedListener(std::function<void()> listener) { worker_.setFinishedListener(std::move(listener)); }
 
   // Returns at once with the request's id. Cancels a measurement still running.
-  std::uint64_t start(TradeoffRequest request);
+  std::uint64_t start(TradeoffRequest request) { return worker_.submit(std::move(request)); }
   // Stops the running measurement within one tile; its result, if any, says cancelled. Returns at once.
-  void cancel();
+  void cancel() { worker_.cancel(); }
 
   // The result of the newest request, once, when it is ready.
-  std::optional<TradeoffResult> takeResult();
+  std::optional<TradeoffResult> takeResult() { return worker_.take(); }
   TradeoffStatus status() const;
 
  private:
-  void workerLoop();
-  TradeoffResult run(std::uint64_t id, const TradeoffRequest& request);
+  TradeoffResult run(std::uint64_t id, const TradeoffRequest& request, const std::atomic<bool>& cancel);
 
   const int threads_;
-  std::unique_ptr<ThreadPool> pool_;  // worker thread only
-  std::function<void()> listener_;
-
-  mutable std::mutex mutex_;
-  std::condition_variable wake_;
-  std::optional<TradeoffRequest> pending_;  // guarded by mutex_
-  std::uint64_t pendingId_ = 0;             // guarded by mutex_
-  bool running_ = false;                    // guarded by mutex_
-  TradeoffProgress progress_;               // guarded by mutex_
-  std::optional<TradeoffResult> result_;    // guarded by mutex_
-  bool stopping_ = false;                   // guarded by mutex_
-
-  std::atomic<bool> cancel_{false};  // raised for the running measurement; lowered when the next one starts
-  std::thread worker_;
+  std::unique_ptr<ThreadPool> pool_;  // made by the worker at its first measurement, then kept
+  mutable std::mutex progressMutex_;
+  TradeoffProgress progress_;         // guarded by progressMutex_
+  RequestWorker<TradeoffRequest, TradeoffResult> worker_;  // last: its thread uses the members above
 };
 
 }  // namespace rayview

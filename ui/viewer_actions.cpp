@@ -1,6 +1,7 @@
 // The viewer's actions, shared by keys, panels and scripts: open, reload, adopt a loaded scene, save.
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
 #include "numbered_file.h"
 #include "rayview/scene_writer.h"
@@ -19,6 +20,12 @@ std::string suggestedSaveAsPath(const std::string& scenePath) {
 
 }  // namespace
 
+RenderSettings ViewerApp::initialSettings() const {
+  RenderSettings settings;
+  applyKnobs(options_.knobs, {nullptr, &settings});
+  return settings;
+}
+
 void ViewerApp::open(const std::string& path) { requestLoad(path, path == scenePath_ && session_ != nullptr); }
 
 void ViewerApp::reload() { requestLoad(scenePath_, session_ != nullptr); }
@@ -32,8 +39,8 @@ void ViewerApp::requestLoad(const std::string& path, bool isReload) {
   stopTradeoff("cancelled: a scene is loading", true);
   LoadRequest request;
   request.path = path;
-  request.options = LoadOptions{command_.strict, true};
-  request.accel = session_ ? session_->settings().accel : command_.settings.accel;
+  request.options = LoadOptions{options_.strict, true};
+  request.accel = session_ ? session_->settings().accel : initialSettings().accel;
   loadError_.clear();  // the error panel shows the outcome of the newest attempt
   awaitedLoad_ = loader_.request(std::move(request));
   awaitedIsReload_ = isReload;
@@ -64,18 +71,20 @@ bool ViewerApp::pollLoader() {
 }
 
 void ViewerApp::adoptScene(LoadOutcome& outcome) {
-  RenderSettings settings = command_.settings;
+  RenderSettings settings = initialSettings();
   std::optional<Camera> keptCamera;
   if (session_) {
     // Later scenes keep the user's render settings; the depth is each scene's own.
     settings = session_->settings();
-    settings.maxDepthOverride = -1;
     // A reload keeps the user's view unless the file's own camera changed.
-    if (awaitedIsReload_ && sameCamera(session_->loaded().camera, outcome.parts.scene->camera))
+    if (awaitedIsReload_ && session_->loaded().camera == outcome.parts.scene->camera)
       keptCamera = session_->edits().camera;
   }
   navigation_.cancel();
-  session_ = std::make_unique<SceneSession>(std::move(outcome.parts), settings);
+  // The command line's knobs go into the first scene that loads, once (its depth, for one).
+  std::span<const KnobAssignment> knobs;
+  if (!std::exchange(knobsApplied_, true)) knobs = options_.knobs;
+  session_ = std::make_unique<SceneSession>(std::move(outcome.parts), settings, knobs);
   if (keptCamera) session_->edits().camera = *keptCamera;
   scenePath_ = outcome.request.path;
   warnings_ = std::move(outcome.warnings);

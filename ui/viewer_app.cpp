@@ -14,13 +14,13 @@
 
 namespace rayview {
 
-ViewerApp::ViewerApp(const CommandLine& command, std::optional<Script> script)
-    : command_(command),
+ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
+    : options_(options),
       window_("rayview", kInitialWindowWidth, kInitialWindowHeight),
       imgui_(window_.handle(), window_.contentScale(), window_.framebufferScale()),
-      renderer_(command.threads),
+      renderer_(options.threads),
       recent_(RecentFiles::defaultStorage()),
-      tradeoff_(command.threads) {
+      tradeoff_(options.threads) {
   if (script) script_.emplace(std::move(*script));
   stats_.threads = renderer_.threads();
   // Wake the UI loop when a pass is published, so it can sleep while passes render.
@@ -33,7 +33,7 @@ ViewerApp::~ViewerApp() {
 }
 
 int ViewerApp::run() {
-  requestLoad(command_.scenePath, false);
+  requestLoad(options_.scenePath, false);
   double waitSeconds = 0.0;
   while (!quit_) {
     window_.waitEvents(waitSeconds);

@@ -10,7 +10,6 @@
 #include <string>
 #include <vector>
 
-#include "command_line.h"
 #include "file_watch.h"
 #include "image_texture.h"
 #include "imgui_layer.h"
@@ -22,6 +21,7 @@
 #include "scene_session.h"
 #include "script_runner.h"
 #include "tradeoff_task.h"
+#include "viewer.h"
 #include "window.h"
 
 namespace rayview {
@@ -51,7 +51,7 @@ inline constexpr int kInitialWindowHeight = 800;
 class ViewerApp final : public ScriptHost {
  public:
   // Throws DisplayUnavailable when no window can be opened.
-  ViewerApp(const CommandLine& command, std::optional<Script> script);
+  ViewerApp(const ViewerOptions& options, std::optional<Script> script);
   ~ViewerApp() override;
 
   // Runs until the window closes, Ctrl+Q, or the script quits or fails. Returns the exit code.
@@ -87,6 +87,8 @@ class ViewerApp final : public ScriptHost {
 
   // Loading
   void requestLoad(const std::string& path, bool isReload);
+  // The default render settings with the command line's knobs: what the first scene is loaded and rendered with.
+  RenderSettings initialSettings() const;
   bool pollLoader();
   void adoptScene(LoadOutcome& outcome);
   bool pollFileWatch(Clock::time_point now);
@@ -115,7 +117,8 @@ class ViewerApp final : public ScriptHost {
   void saveFrameReporting();
   void saveSceneReporting(const std::string& path);
 
-  CommandLine command_;
+  ViewerOptions options_;
+  bool knobsApplied_ = false;  // the command line's knobs went into the first scene loaded
   Window window_;
   ImGuiLayer imgui_;
   ImageTexture texture_;

@@ -1,15 +1,16 @@
 // runViewer(): from the command line to a running window, or one clear line when there is no display.
-#include "viewer_main.h"
+#include "viewer.h"
 
 #include <cstdio>
 
 #include "automation_script.h"
+#include "rayview/exit_codes.h"
 #include "viewer_app.h"
 
 namespace rayview {
 namespace {
 
-int noDisplay(const CommandLine& command, const std::string& why) {
+int noDisplay(const ViewerOptions& command, const std::string& why) {
   const std::string scene = command.scenePath.empty() ? "SCENE" : command.scenePath;
   std::fprintf(stderr, "rayview: no display (%s); to render without a window: rayview render %s -o out.png\n",
                why.c_str(), scene.c_str());
@@ -18,7 +19,7 @@ int noDisplay(const CommandLine& command, const std::string& why) {
 
 }  // namespace
 
-int runViewer(const CommandLine& command) {
+int runViewer(const ViewerOptions& command) {
   // The script is read and checked first: a typo fails before any window opens.
   std::optional<Script> script;
   if (!command.scriptPath.empty()) {

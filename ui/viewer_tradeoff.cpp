@@ -40,13 +40,7 @@ void ViewerApp::startRequestedTradeoff(const Layout& l) {
     tradeoffPanel_.message = tradeoffError_;
     return;
   }
-  TradeoffRequest request;
-  request.source = session_->loadedShared();  // copied, with the edits applied, on the worker
-  request.edits = session_->committedEdits();
-  request.options.resolutionScale = scale;
-  request.options.baselineAccel = session_->settings().accel;
-  request.options.triangularLightModel = session_->settings().triangularLightModel;
-  request.options.secondaryRayStart = session_->settings().secondaryRayStart;
+  TradeoffRequest request = tradeoffRequestFor(*session_, scale);
   // A quick look, not a benchmark: a run slowed by other processes is repeated once, not up to five times with
   // growing pauses (which can turn seconds into a minute on a busy machine); the notes still count them.
   request.options.slowedRetries = kViewerSlowedRetries;

@@ -48,4 +48,41 @@ void hintText(const char* text) {
   ImGui::PopStyleColor();
 }
 
+bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& settings) {
+  const std::string label(knob.label);
+  const int value = knob.get(parameters, settings);
+  if (!knob.lockedReason.empty()) {
+    const std::string text = label + ": " +
+                             (knob.isChoice() ? std::string(knob.choices[value].label) : std::to_string(value)) + " (" +
+                             std::string(knob.lockedReason) + ")";
+    ImGui::TextUnformatted(text.c_str());
+    return false;
+  }
+  ImGui::BeginDisabled(!knob.matters(parameters, settings));
+  int edited = value;
+  bool changed = false;
+  if (knob.isChoice()) {
+    if (ImGui::BeginCombo(label.c_str(), std::string(knob.choices[value].label).c_str())) {
+      for (int i = 0; i < static_cast<int>(knob.choices.size()); ++i) {
+        const bool selected = i == value;
+        if (ImGui::Selectable(std::string(knob.choices[i].label).c_str(), selected)) {
+          edited = i;
+          changed = i != value;
+        }
+        if (selected) ImGui::SetItemDefaultFocus();
+      }
+      ImGui::EndCombo();
+    }
+  } else if (ImGui::InputInt(label.c_str(), &edited)) {
+    edited = std::clamp(edited, knob.min, knob.max);
+    changed = edited != value;
+  }
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("%s (--%s, or `set %s` in scripts)", std::string(knob.help).c_str(), std::string(knob.name).c_str(),
+                      std::string(knob.name).c_str());
+  ImGui::EndDisabled();
+  if (changed) knob.set(parameters, settings, edited);
+  return changed;
+}
+
 }  // namespace rayview

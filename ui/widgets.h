@@ -5,11 +5,16 @@
 
 #include <glm/vec3.hpp>
 
+#include "rayview/knobs.h"
 #include "rayview/scene.h"
 
 namespace rayview {
 
 // Drag to change, double-click (or Ctrl+click) to type. Full precision kept (no rounding to the display).
+// A render knob (rayview/knobs.h) as the table describes it: its label, limits or choices, and its help as the
+// tooltip; greyed out where it changes nothing for this scene, shown as text where the build offers one value.
+bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& settings);
+
 bool editPoint(const char* label, glm::dvec3& value, double speed);
 bool editDoubles(const char* label, double* values, int count, double speed, double minimum, double maximum);
 // A colour in radiance units (0..255 and beyond, lights and background).

@@ -271,16 +271,16 @@ TEST(ScriptRunner, WaitFinalTimesOut) {
 
 TEST(SceneEdits, ClassifiesWhatAChangeCosts) {
   const Scene scene = loadSceneFile(kViewerScene).scene;
-  const SceneEdits before = editsOf(scene);
+  const SceneParameters before = scene.parameters();
   const RenderSettings settings;
   EXPECT_EQ(classifyEdit(before, settings, before, settings), EditEffect::None);
-  SceneEdits camera = before;
+  SceneParameters camera = before;
   camera.camera.position.x += 1e-9;
   EXPECT_EQ(classifyEdit(before, settings, camera, settings), EditEffect::Restart);
-  SceneEdits material = before;
+  SceneParameters material = before;
   material.materials[1].phongExponent += 1.0f;
   EXPECT_EQ(classifyEdit(before, settings, material, settings), EditEffect::Restart);
-  SceneEdits light = before;
+  SceneParameters light = before;
   light.triangularLights[0].vertex2.z = 0.5;
   EXPECT_EQ(classifyEdit(before, settings, light, settings), EditEffect::Restart);
   RenderSettings samples = settings;
@@ -292,9 +292,9 @@ TEST(SceneEdits, ClassifiesWhatAChangeCosts) {
 }
 
 TEST(SceneEdits, RefusesWhatCannotBeRendered) {
-  const SceneEdits good = editsOf(loadSceneFile(kViewerScene).scene);
+  const SceneParameters good = loadSceneFile(kViewerScene).scene.parameters();
   EXPECT_EQ(editProblem(good, RenderSettings{}), "");
-  SceneEdits e = good;
+  SceneParameters e = good;
   e.camera.gaze = glm::dvec3(0.0);
   EXPECT_NE(editProblem(e, RenderSettings{}).find("camera"), std::string::npos);
   e = good;
@@ -333,11 +333,10 @@ TEST(SceneSession, CommitRestartsOnlyOnChangeAndKeepsMeshesOutOfSnapshots) {
 }
 
 TEST(SceneSession, DepthOverrideBecomesTheScenesDepth) {
-  RenderSettings settings;
-  settings.maxDepthOverride = 5;
-  SceneSession session(loadParts(), settings);
+  const KnobAssignment depth{&depthKnob(), 5};  // --depth 5
+  SceneSession session(loadParts(), RenderSettings{}, {&depth, 1});
   EXPECT_EQ(session.edits().maxRayDepth, 5);
-  EXPECT_EQ(session.settings().maxDepthOverride, -1);
+  EXPECT_EQ(session.committedEdits().maxRayDepth, 5);
   EXPECT_EQ(session.editedScene().maxRayDepth, 5);
 }
 
@@ -366,9 +365,11 @@ TEST(Tradeoff, TheMeasuredSceneHasTheMeshesAndTheCommittedEdits) {
   ASSERT_NE(session.commit(problem), nullptr);
   session.edits().maxRayDepth = 7;  // not committed yet: not measured
 
-  const std::shared_ptr<const Scene> scene = measuringScene(session.loaded(), session.committedEdits());
-  EXPECT_EQ(scene->triangles.size(), session.loaded().triangles.size());
-  EXPECT_FALSE(scene->triangles.empty());
+  const TradeoffRequest request = tradeoffRequestFor(session, 0.25);
+  EXPECT_EQ(request.geometry->triangles.size(), session.loaded().triangles.size());
+  EXPECT_EQ(request.geometry.get(), session.geometry().source.get());  // shared, never copied
+  EXPECT_FALSE(request.geometry->triangles.empty());
+  const SceneParameters* scene = &request.parameters;
   EXPECT_EQ(scene->maxRayDepth, 5);
   EXPECT_EQ(scene->camera.position, glm::dvec3(1.0, 2.0, 3.0));
   EXPECT_EQ(scene->pointLights[0].intensity, Color(1.0f, 2.0f, 3.0f));
@@ -411,10 +412,7 @@ TEST(Tradeoff, AdviceNamesTheFastestSettingCloseToTheBestImage) {
 }
 
 TradeoffRequest smallRequest(SceneSession& session) {
-  TradeoffRequest request;
-  request.source = session.loadedShared();
-  request.edits = session.committedEdits();
-  request.options.resolutionScale = 0.1;
+  TradeoffRequest request = tradeoffRequestFor(session, 0.1);
   request.options.maxLightSamples = 4;
   request.options.referenceLightSamples = 4;
   request.options.timedRuns = 1;

@@ -1,6 +1,6 @@
 #pragma once
 // What a render computes, one pixel at a time. The progressive renderer and the tests see only this;
-// TracedImage is the real one (a scene snapshot, its geometry and the settings, owned together).
+// TracedImage is the real one (scene parameters, its geometry and the settings, owned together).
 
 #include <memory>
 
@@ -18,20 +18,19 @@ class PixelSource {
   virtual Color pixel(int x, int y, RayCounts& counts) const = 0;
 };
 
-// A scene snapshot, its prepared geometry and the settings, kept alive together for as long as a render
-// uses them. The viewer edits its own copy of the scene and hands a new snapshot to each restart; the
-// snapshot may be parametersOf(scene): meshes are read from the geometry's own scene.
+// A parameter snapshot, the prepared geometry and the settings, kept alive together for as long as a render
+// uses them. The viewer edits its own SceneParameters and hands a new snapshot to each restart.
 class TracedImage final : public PixelSource {
  public:
-  TracedImage(std::shared_ptr<const Scene> scene, std::shared_ptr<const PreparedGeometry> geometry,
+  TracedImage(std::shared_ptr<const SceneParameters> parameters, std::shared_ptr<const PreparedGeometry> geometry,
               const RenderSettings& settings);
-  int width() const override { return scene_->camera.width; }
-  int height() const override { return scene_->camera.height; }
+  int width() const override { return parameters_->camera.width; }
+  int height() const override { return parameters_->camera.height; }
   Color pixel(int x, int y, RayCounts& counts) const override { return tracer_.tracePixel(x, y, counts); }
   const Tracer& tracer() const { return tracer_; }
 
  private:
-  std::shared_ptr<const Scene> scene_;
+  std::shared_ptr<const SceneParameters> parameters_;
   std::shared_ptr<const PreparedGeometry> geometry_;
   Tracer tracer_;
 };

@@ -54,7 +54,7 @@ class Accel {
 // Progress in [0, 1]; return false to cancel the build (buildAccel then returns nullptr).
 using BuildProgress = bool (*)(void* user, double fraction);
 
-std::unique_ptr<Accel> buildAccel(const Scene& scene, AccelKind kind, const glm::dvec3& origin,
+std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                   BuildProgress progress = nullptr, void* progressUser = nullptr);
 
 }  // namespace rayview

@@ -1,12 +1,13 @@
 #pragma once
-// Every knob of a render, with its default: the command line, the viewer and restarts all use this one struct.
+// How to render a scene, as opposed to what the scene is (SceneParameters): the choices a user makes that no
+// scene file states. Each field is a row of the knob table (knobs.h), which gives its name, limits and help.
 
-#include <string>
 #include <string_view>
+
+#include "rayview/triangular_light.h"
 
 namespace rayview {
 
-enum class TriangularLightModel { Area, Directional };
 enum class AccelKind { Embree, Reference };
 
 // Where shadow and mirror rays start. Offset: off the surface (by <shadowrayepsilon> when the scene sets
@@ -15,7 +16,6 @@ enum class AccelKind { Embree, Reference };
 enum class SecondaryRayStart { Offset, ExcludeHitTriangle };
 
 struct RenderSettings {
-  int maxDepthOverride = -1;  // -1: the scene's <maxraytracedepth>
   TriangularLightModel triangularLightModel = TriangularLightModel::Area;
   int lightSamples = 1;       // samples per triangular light (area model); 1 = the centroid
   AccelKind accel = AccelKind::Embree;  // falls back to Reference when built without Embree
@@ -24,11 +24,7 @@ struct RenderSettings {
   bool operator==(const RenderSettings&) const = default;
 };
 
-inline constexpr int kMaxLightSamples = 4096;
-
-std::string_view toString(TriangularLightModel model);
 std::string_view toString(AccelKind kind);
-bool parseTriangularLightModel(std::string_view text, TriangularLightModel& out);
 bool parseAccelKind(std::string_view text, AccelKind& out);
 std::string_view toString(SecondaryRayStart start);
 bool parseSecondaryRayStart(std::string_view text, SecondaryRayStart& out);

@@ -10,6 +10,7 @@
 
 #include "rayview/prepared_scene.h"
 #include "rayview/grid_render.h"
+#include "rayview/knobs.h"
 #include "rayview/tracer.h"
 
 namespace rayview {
@@ -82,6 +83,7 @@ bool renderStrided(const Tracer& tracer, int width, int height, int stride, Thre
 // One distinct render: several knob settings may share it.
 struct Render {
   int stride = 1;
+  int depth = 0;
   RenderSettings settings;
   std::string description;  // of the first knob setting that needs it
   std::vector<double> timesMs;
@@ -114,24 +116,23 @@ std::string csvField(const std::string& text) {
 }  // namespace
 
 std::string_view toString(TradeoffKnob knob) {
+  static const std::string depthName = depthKnob().csvName(), samplesName = lightSamplesKnob().csvName(),
+                           accelName = accelKnob().csvName();
   switch (knob) {
     case TradeoffKnob::Reference: return "reference";
     case TradeoffKnob::Preview: return "preview";
-    case TradeoffKnob::Depth: return "depth";
-    case TradeoffKnob::LightSamples: return "light_samples";
-    case TradeoffKnob::Accel: return "accel";
+    case TradeoffKnob::Depth: return depthName;
+    case TradeoffKnob::LightSamples: return samplesName;
+    case TradeoffKnob::Accel: return accelName;
   }
   return "?";
 }
 
-std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const TradeoffOptions& options) {
+std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, const TradeoffOptions& options) {
   const int maxDepth = std::max(0, scene.maxRayDepth);
-  RenderSettings baseline;
-  baseline.maxDepthOverride = maxDepth;
+  RenderSettings baseline = options.baseline;
   baseline.lightSamples = 1;
-  baseline.accel = availableAccel(options.baselineAccel);
-  baseline.triangularLightModel = options.triangularLightModel;
-  baseline.secondaryRayStart = options.secondaryRayStart;
+  baseline.accel = availableAccel(baseline.accel);
   const bool samplesMatter =
       !scene.triangularLights.empty() && baseline.triangularLightModel == TriangularLightModel::Area;
 
@@ -142,14 +143,12 @@ std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const Tradeof
   list.push_back({TradeoffKnob::Reference,
                   "depth=" + std::to_string(maxDepth) + " samples=" + std::to_string(best.lightSamples) +
                       " accel=" + std::string(toString(best.accel)),
-                  1, best});
+                  1, maxDepth, best});
 
-  for (int stride : kPreviewStrides) list.push_back({TradeoffKnob::Preview, previewLabel(stride), stride, baseline});
+  for (int stride : kPreviewStrides) list.push_back({TradeoffKnob::Preview, previewLabel(stride), stride, maxDepth, baseline});
 
   for (int depth : depthsToList(maxDepth, scene.hasMirrors())) {
-    RenderSettings s = baseline;
-    s.maxDepthOverride = depth;
-    list.push_back({TradeoffKnob::Depth, std::to_string(depth), 1, s});
+    list.push_back({TradeoffKnob::Depth, std::to_string(depth), 1, depth, baseline});
   }
 
   if (samplesMatter) {
@@ -157,7 +156,7 @@ std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const Tradeof
     for (int n = 1;; n = std::min(2 * n, most)) {
       RenderSettings s = baseline;
       s.lightSamples = n;
-      list.push_back({TradeoffKnob::LightSamples, std::to_string(n), 1, s});
+      list.push_back({TradeoffKnob::LightSamples, std::to_string(n), 1, maxDepth, s});
       if (n == most) break;
     }
   }
@@ -166,20 +165,22 @@ std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const Tradeof
     if (availableAccel(kind) != kind) continue;
     RenderSettings s = baseline;
     s.accel = kind;
-    list.push_back({TradeoffKnob::Accel, std::string(toString(kind)), 1, s});
+    list.push_back({TradeoffKnob::Accel, std::string(toString(kind)), 1, maxDepth, s});
   }
   return list;
 }
 
-TradeoffReport measureTradeoff(std::shared_ptr<const Scene> scene, const TradeoffOptions& options, ThreadPool& pool,
+TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> sceneGeometry,
+                               const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
                                const std::atomic<bool>* cancel, const TradeoffProgressFn& progress) {
   const auto start = Clock::now();
   TradeoffReport report;
-  report.sceneName = scene->sourcePath.empty() ? "default" : scene->sourcePath.stem().string();
+  report.sceneName = sceneName;
   report.threads = pool.size();
 
-  // Camera, lights and materials from a resized copy; the meshes are read from the geometry's own scene.
-  Scene view = parametersOf(*scene);
+  // Camera, lights and materials from a resized copy; the meshes are read from the geometry.
+  const SceneParameters* scene = &parameters;
+  SceneParameters view = parameters;
   const auto scaled = [&](int pixels) {
     return std::max(1, static_cast<int>(std::lround(pixels * options.resolutionScale)));
   };
@@ -199,10 +200,12 @@ TradeoffReport measureTradeoff(std::shared_ptr<const Scene> scene, const Tradeof
   std::vector<std::size_t> renderOf;
   for (const KnobSetting& k : settings) {
     const auto same = std::find_if(renders.begin(), renders.end(),
-                                   [&](const Render& r) { return r.stride == k.stride && r.settings == k.settings; });
+                                   [&](const Render& r) {
+                                     return r.stride == k.stride && r.depth == k.depth && r.settings == k.settings;
+                                   });
     renderOf.push_back(static_cast<std::size_t>(same - renders.begin()));
     if (same == renders.end())
-      renders.push_back({k.stride, k.settings, std::string(toString(k.knob)) + " " + k.label, {}, {}, 0});
+      renders.push_back({k.stride, k.depth, k.settings, std::string(toString(k.knob)) + " " + k.label, {}, {}, 0});
   }
 
   const auto isCancelled = [&] { return cancel && cancel->load(); };
@@ -226,7 +229,7 @@ TradeoffReport measureTradeoff(std::shared_ptr<const Scene> scene, const Tradeof
     if (built) continue;
     if (isCancelled()) return cancelledReport();
     tell("building the " + std::string(toString(r.settings.accel)) + " BVH");
-    built = prepareGeometry(scene, r.settings.accel, cancel ? buildCancelled : nullptr,
+    built = prepareGeometry(sceneGeometry, parameters.camera.position, r.settings.accel, cancel ? buildCancelled : nullptr,
                             const_cast<std::atomic<bool>*>(cancel));
     if (!built || isCancelled()) return cancelledReport();
     (r.settings.accel == AccelKind::Embree ? report.embreeBuildMs : report.referenceBuildMs) = built->buildMs;
@@ -248,6 +251,7 @@ TradeoffReport measureTradeoff(std::shared_ptr<const Scene> scene, const Tradeof
       if (round > 0 && round >= runsFor(r)) continue;
       if (isCancelled()) return cancelledReport();
       tell(r.description);
+      view.maxRayDepth = r.depth;
       const Tracer tracer(view, *geometry[static_cast<int>(r.settings.accel)], r.settings);
       Run run;
       // A run during which other processes held the cores is repeated (a few times at most): on a shared

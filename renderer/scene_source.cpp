@@ -1,6 +1,5 @@
-#include "scene_source.h"
+#include "rayview/scene_source.h"
 
-#include "default_scene.h"
 
 namespace rayview {
 

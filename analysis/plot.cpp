@@ -219,7 +219,7 @@ void drawLegend(PlotCanvas& canvas, const Axes& axes, const TradeoffReport& repo
   for (const TradeoffPoint& p : report.points)
     if (p.setting.knob == TradeoffKnob::Reference) notes.push_back("reference: " + p.setting.label);
   if (const TradeoffPoint* b = findPoint(report, TradeoffKnob::Preview, "1"))
-    notes.push_back("baseline: preview 1, depth=" + std::to_string(b->setting.settings.maxDepthOverride) +
+    notes.push_back("baseline: preview 1, depth=" + std::to_string(b->setting.depth) +
                     " samples=" + std::to_string(b->setting.settings.lightSamples) +
                     " accel=" + std::string(toString(b->setting.settings.accel)));
   notes.insert(notes.end(), report.notes.begin(), report.notes.end());

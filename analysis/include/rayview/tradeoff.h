@@ -41,7 +41,8 @@ namespace rayview {
 
 enum class TradeoffKnob { Reference, Preview, Depth, LightSamples, Accel };
 
-// "reference", "preview", "depth", "light_samples", "accel" (the CSV's knob column).
+// "reference", "preview", and the knob table's CSV names ("depth", "light_samples", "accel"): the CSV's knob
+// column.
 std::string_view toString(TradeoffKnob knob);
 
 inline constexpr int kPreviewStrides[] = {16, 8, 4, 2, 1};
@@ -51,10 +52,10 @@ struct TradeoffOptions {
   double resolutionScale = 1.0;     // the camera resolution is multiplied by this (rounded, at least 1 pixel)
   int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
   int referenceLightSamples = 256;  // samples per triangular light in the highest-quality image
-  AccelKind baselineAccel = AccelKind::Embree;  // what the other knobs use (falls back to the reference BVH)
-  // Kept for every setting, the reference image included: the user's choices, not knobs measured here.
-  TriangularLightModel triangularLightModel = TriangularLightModel::Area;
-  SecondaryRayStart secondaryRayStart = SecondaryRayStart::Offset;
+  // What every setting starts from. Its accel is what the other knobs use (falls back to the reference BVH);
+  // the knobs not measured here (the triangular-light model, the ray start) are kept for every setting, the
+  // reference image included. Light samples are 1 except where the light_samples knob varies them.
+  RenderSettings baseline;
   int timedRuns = 3;                // the time is the median of this many runs, except:
   double singleRunMs = 10000.0;     //   a setting whose first run takes longer than this is run once,
   double fastRunMs = 250.0;         //   one whose first run takes less than this (noisier) ...
@@ -71,11 +72,12 @@ struct KnobSetting {
   TradeoffKnob knob = TradeoffKnob::Reference;
   std::string label;        // the CSV's setting column: "1/16", "3", "64", "embree"
   int stride = 1;           // pixel stride of the grid rendered; 1 = every pixel
-  RenderSettings settings;  // depth always explicit (maxDepthOverride >= 0)
+  int depth = 0;            // the max ray depth rendered (SceneParameters::maxRayDepth)
+  RenderSettings settings;
 };
 
 // The settings measured for `scene`, the reference first, then knob by knob in the order listed above.
-std::vector<KnobSetting> enumerateKnobSettings(const Scene& scene, const TradeoffOptions& options);
+std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, const TradeoffOptions& options);
 
 struct TradeoffPoint {
   KnobSetting setting;
@@ -104,15 +106,15 @@ struct TradeoffProgress {
 using TradeoffProgressFn = std::function<void(const TradeoffProgress&)>;
 
 // Measures every setting of enumerateKnobSettings(*scene, options) on `pool`.
-// - `scene` must hold the meshes: the viewer can pass its PreparedGeometry::source, not a parametersOf()
-//   snapshot. The BVHs are built here, once per accelerator, and are not part of any time.
+// - `parameters` are what is rendered (the viewer's current edits); `geometry` the scene's geometry. The BVHs are built here, once per accelerator, and are not part of any time.
 // - Blocks the calling thread for as long as the renders take (seconds to minutes): the viewer calls it from a
 //   worker thread of its own, never from the UI thread, and pauses its progressive renderer meanwhile, or the
 //   times mean little.
 // - Raising `*cancel` stops within one tile of rendering; the report then says cancelled.
 // - `progress` is called on the calling thread before every BVH build and every render.
 // Throws std::invalid_argument for a camera without pixels or a resolution scale <= 0.
-TradeoffReport measureTradeoff(std::shared_ptr<const Scene> scene, const TradeoffOptions& options, ThreadPool& pool,
+TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> geometry,
+                               const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
                                const std::atomic<bool>* cancel = nullptr, const TradeoffProgressFn& progress = {});
 
 // The CSV the bench writes: a header line, then one line per point of every report.

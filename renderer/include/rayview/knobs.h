@@ -1,0 +1,81 @@
+#pragma once
+// The render knobs, one table: each row is a setting a user can turn to trade speed for accuracy or to pick a
+// rendering rule, with everything the rest of the program needs to know of it. The command line (options and
+// --help), the automation `set` commands, the viewer's Render panel and the trade-off bench all read this
+// table; adding a knob is one row here plus the code that uses the value.
+//
+// Each knob has one home: a field of SceneParameters (what the scene file can say, e.g. the depth) or of
+// RenderSettings (how to render it). Values are integers: the number itself, or the index of a choice.
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rayview/render_settings.h"
+#include "rayview/scene.h"
+
+namespace rayview {
+
+enum class KnobHome { Parameters, Settings };
+
+struct KnobChoice {
+  std::string_view name;   // on the command line and in scripts: "area"
+  std::string_view label;  // in the panel: "area"
+};
+
+// Where a knob's value is read and written. A home left null is not there yet (the command line knows the
+// settings before the scene is loaded, and the parameters only after).
+struct KnobTarget {
+  SceneParameters* parameters = nullptr;
+  RenderSettings* settings = nullptr;
+};
+
+struct Knob {
+  std::string_view name;       // --NAME, `set NAME`, the trade-off CSV (with '_' for '-')
+  std::string_view label;      // the panel's label
+  std::string_view help;       // --help and the panel's tooltip
+  KnobHome home = KnobHome::Settings;
+  int min = 0, max = 0;        // integer knobs; choice knobs take 0 .. choices.size() - 1
+  std::span<const KnobChoice> choices = {};  // empty for an integer knob
+  bool measuredByTradeoff = false;      // the trade-off bench varies it: `bench` takes no option for it
+  std::string_view lockedReason = {};   // non-empty: this build offers one value only (says why)
+  int (*get)(const SceneParameters&, const RenderSettings&) = nullptr;
+  void (*set)(SceneParameters&, RenderSettings&, int) = nullptr;
+  // Whether the knob changes anything for this scene and these settings (the panel greys it out otherwise).
+  bool (*matters)(const SceneParameters&, const RenderSettings&) = nullptr;
+
+  bool isChoice() const { return !choices.empty(); }
+  // "N", or the choices: "area|directional".
+  std::string valueName() const;
+  // "an integer from 0 to 1000000", or "'area' or 'directional'".
+  std::string expectation() const;
+  // The value `text` names (a number in range, or a choice's name), or nothing.
+  std::optional<int> parse(std::string_view text) const;
+  // The text of `value`: the number, or the choice's name.
+  std::string format(int value) const;
+  // The trade-off CSV's name: `name` with '_' for '-'.
+  std::string csvName() const;
+};
+
+// Every knob, in the order --help and the panel show them.
+std::span<const Knob> knobTable();
+// The row called `name`, or nullptr.
+const Knob* findKnob(std::string_view name);
+
+// The depth knob's row, and the others the trade-off bench refers to.
+const Knob& depthKnob();
+const Knob& lightSamplesKnob();
+const Knob& accelKnob();
+
+// A value given for a knob (by an option or a script) before it is written into its home.
+struct KnobAssignment {
+  const Knob* knob = nullptr;
+  int value = 0;
+};
+
+// Writes each assignment whose home `target` has; the others are left for a later call.
+void applyKnobs(std::span<const KnobAssignment> assignments, KnobTarget target);
+
+}  // namespace rayview

@@ -1,0 +1,34 @@
+#pragma once
+// A scene's geometry ready to render: the geometry plus what is built from it once per load (the traversal
+// structure and the shading geometry, both relative to an origin). Any SceneParameters can be rendered with
+// it (see Tracer): an edit of the camera, lights or materials never rebuilds anything.
+
+#include <functional>
+#include <memory>
+
+#include "rayview/accel.h"
+#include "rayview/scene.h"
+#include "rayview/tracer.h"
+
+namespace rayview {
+
+struct PreparedGeometry {
+  std::shared_ptr<const SceneGeometry> source;  // the geometry it came from (read while tracing)
+  std::unique_ptr<Accel> accel;
+  ShadingGeometry shading;
+  double buildMs = 0.0;
+};
+
+// Builds the accelerator relative to `origin` (the camera's position: coordinates relative to the camera,
+// taken in double before anything becomes float, SPEC section 6). Returns nullptr when `progress` cancels.
+std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const SceneGeometry> geometry,
+                                                        const glm::dvec3& origin, AccelKind kind,
+                                                        BuildProgress progress = nullptr, void* progressUser = nullptr);
+// The same for a loaded scene, relative to its camera; shares `scene` (no copy of its meshes).
+std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
+                                                        BuildProgress progress = nullptr, void* progressUser = nullptr);
+// Same, on a copy of the scene's geometry.
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind,
+                                                        BuildProgress progress = nullptr, void* progressUser = nullptr);
+
+}  // namespace rayview

@@ -1,0 +1,115 @@
+#pragma once
+// The scene as plain data, exactly what a file describes (SPEC sections 2-5), in two parts:
+// - SceneParameters: what an edit changes (camera, lights, materials, background, ambient light, depth,
+//   epsilon). Small, copied freely, compared with ==: edits, snapshots, undo work on it alone.
+// - SceneGeometry: what the traversal structure is built from (vertices, triangles, normals, texture
+//   coordinates, texture). Large, loaded once, shared, never edited.
+// A Scene is both, as the loader reads them. No acceleration data, no GL.
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "rayview/color.h"
+#include "rayview/point_light.h"
+#include "rayview/triangular_light.h"
+
+namespace rayview {
+
+struct Camera {
+  glm::dvec3 position{0.0};
+  glm::dvec3 gaze{0.0, 0.0, -1.0};
+  glm::dvec3 up{0.0, 1.0, 0.0};
+  double left = -1.0, right = 1.0, bottom = -1.0, top = 1.0;  // <nearplane> l r b t
+  double nearDistance = 1.0;
+  int width = 0;   // <imageresolution> nx
+  int height = 0;  // <imageresolution> ny
+
+  bool operator==(const Camera&) const = default;
+};
+
+struct Material {
+  std::string id;
+  Color ambient{0.0f}, diffuse{0.0f}, specular{0.0f};
+  float phongExponent = 1.0f;
+  Color mirror{0.0f};         // <mirrorreflectance>
+  float textureFactor = 0.0f;  // <texturefactor>, 2025 variant
+
+  bool isMirror() const { return mirror.x != 0.0f || mirror.y != 0.0f || mirror.z != 0.0f; }
+  bool operator==(const Material&) const = default;
+};
+
+// The deepest mirror recursion any scene, option or edit may ask for (<maxraytracedepth>, --depth, the
+// panel, scripts). Tracing is iterative, so the limit is about time, not the stack.
+inline constexpr int kMaxRayDepth = 1000000;
+
+struct SceneParameters {
+  int maxRayDepth = 0;  // 0 .. kMaxRayDepth
+  Color background{0.0f};
+  // <shadowrayepsilon>: when set, secondary rays start at p + e*n; otherwise the robust offset is used.
+  std::optional<double> shadowRayEpsilon;
+
+  Camera camera;
+  Color ambientLight{0.0f};
+  std::vector<PointLight> pointLights;
+  std::vector<TriangularLight> triangularLights;
+  std::vector<Material> materials;  // ids and order as loaded: triangles refer to them by index
+
+  // Mirror reflections can happen: a mirror material and a depth above 0.
+  bool hasMirrors() const;
+  bool operator==(const SceneParameters&) const = default;
+};
+
+inline constexpr std::int32_t kNoIndex = -1;
+
+// One face, already resolved to 0-based indices into the scene's arrays.
+struct Triangle {
+  std::uint32_t vertex[3] = {0, 0, 0};
+  std::int32_t texCoord[3] = {kNoIndex, kNoIndex, kNoIndex};  // into SceneGeometry::texCoords
+  std::int32_t normal[3] = {kNoIndex, kNoIndex, kNoIndex};    // into SceneGeometry::normals
+  std::uint32_t material = 0;                                 // into SceneParameters::materials
+  std::uint32_t mesh = 0;                                     // into SceneGeometry::meshes
+
+  bool hasTexCoords() const { return texCoord[0] != kNoIndex; }
+  bool hasNormals() const { return normal[0] != kNoIndex; }
+};
+
+struct Mesh {
+  std::string id;
+  std::uint32_t material = 0;
+  std::uint32_t firstTriangle = 0;
+  std::uint32_t triangleCount = 0;
+};
+
+// 8-bit RGB texture, rows top to bottom as stored in the image file.
+struct Texture {
+  int width = 0;
+  int height = 0;
+  std::vector<std::uint8_t> rgb;
+};
+
+struct SceneGeometry {
+  std::vector<glm::dvec3> vertices;
+  std::vector<glm::vec2> texCoords;   // <texturedata>
+  std::vector<glm::vec3> normals;     // <normaldata>
+  std::vector<Mesh> meshes;
+  std::vector<Triangle> triangles;    // all meshes, mesh by mesh
+
+  std::string textureImage;           // <textureimage> as written in the file ("" when absent)
+  std::optional<Texture> texture;     // loaded image, when it could be read
+};
+
+struct Scene : SceneParameters, SceneGeometry {
+  std::filesystem::path sourcePath;   // the file it came from ("" for an embedded scene)
+
+  SceneParameters& parameters() { return *this; }
+  const SceneParameters& parameters() const { return *this; }
+  const SceneGeometry& geometry() const { return *this; }
+};
+
+}  // namespace rayview

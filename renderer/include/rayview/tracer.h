@@ -1,0 +1,82 @@
+#pragma once
+// The Whitted integrator (SPEC sections 4-6): ambient + Blinn-Phong with I/d^2, hard shadows, recursive
+// mirrors, texture blend, triangular lights. One Tracer per render: it reads the scene and settings and
+// never changes them, so any number of threads may call tracePixel() at once.
+
+#include <cstdint>
+#include <vector>
+
+#include "rayview/accel.h"
+#include "rayview/camera_rays.h"
+#include "rayview/render_settings.h"
+#include "rayview/scene.h"
+
+namespace rayview {
+
+// Rays traced, by kind.
+struct RayCounts {
+  std::uint64_t camera = 0;
+  std::uint64_t shadow = 0;
+  std::uint64_t reflection = 0;
+
+  std::uint64_t total() const { return camera + shadow + reflection; }
+  RayCounts& operator+=(const RayCounts& o) {
+    camera += o.camera;
+    shadow += o.shadow;
+    reflection += o.reflection;
+    return *this;
+  }
+};
+
+// Geometry relative to the accelerator's origin, computed once per scene load.
+struct ShadingGeometry {
+  std::vector<glm::dvec3> vertices;    // scene vertices minus origin, in double: hit points lie on the plane
+  std::vector<glm::dvec3> faceNormals; // normalize((v2-v1) x (v3-v1)), never flipped
+};
+
+ShadingGeometry prepareShadingGeometry(const SceneGeometry& scene, const glm::dvec3& origin);
+
+// Clamp to [0, 255] and round to nearest; NaN becomes 0.
+std::uint8_t quantizeChannel(float value);
+
+struct PreparedGeometry;
+
+class Tracer {
+ public:
+  // Camera, lights, materials and depth from `parameters`; triangles, normals, texture coordinates and the
+  // texture from the geometry, which may have been prepared from another copy of the scene: an edit makes a
+  // new SceneParameters and never copies the meshes.
+  Tracer(const SceneParameters& parameters, const PreparedGeometry& geometry, const RenderSettings& settings);
+  // Everything from `scene`, which must be the scene `accel` and `shading` were built from.
+  Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& shading, const RenderSettings& settings);
+
+  // Radiance (0..255 units, unclamped) of pixel (column i, row j from the top).
+  Color tracePixel(int i, int j, RayCounts& counts) const;
+
+  int maxDepth() const { return parameters_.maxRayDepth; }
+
+ private:
+  // What one surface hit along a mirror path adds: its own light, and how much of the next hit it passes on.
+  struct PathVertex;
+
+  Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, const Accel& accel,
+         const ShadingGeometry& shading, const RenderSettings& settings);
+  Color tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const;
+  // The hit's own light (ambient, lights, shadows); sets `mirrorRay` and returns its weight when the path goes on.
+  PathVertex shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
+                      Ray& mirrorRay) const;
+  Color sampleTexture(const Triangle& triangle, const Hit& hit) const;
+
+  const SceneParameters& parameters_;  // camera, lights, materials, depth
+  const SceneGeometry& meshes_;        // triangles, normals, texture coordinates, texture
+  const Accel& accel_;
+  const ShadingGeometry& shading_;
+  RenderSettings settings_;
+  CameraBasis basis_;
+  glm::dvec3 eyeRelative_{0.0};
+  std::vector<PointLightShading> pointLights_;
+  std::vector<TriangularLightShading> triangularLights_;
+  bool useTexture_ = false;
+};
+
+}  // namespace rayview
