@@ -138,18 +138,23 @@ std::string formatNumber(float value) {
 }
 
 std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
+  return sceneToXml(scene.parameters(), scene.geometry(), textureImage);
+}
+
+std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& geometry,
+                       const std::string& textureImage) {
   std::string out;
   // Faces dominate the size of big scenes: about 3 indices of up to 8 digits per triangle.
-  out.reserve(4096 + scene.vertices.size() * 64 + scene.triangles.size() * 40 +
-              (scene.texCoords.size() + scene.normals.size()) * 48);
+  out.reserve(4096 + geometry.vertices.size() * 64 + geometry.triangles.size() * 40 +
+              (geometry.texCoords.size() + geometry.normals.size()) * 48);
   XmlWriter xml(out);
   out += "<!-- written by rayview " RAYVIEW_VERSION " -->\n";
   xml.open(0, "scene");
-  xml.element(1, "maxraytracedepth", scene.maxRayDepth);
-  xml.element(1, "background", scene.background);
-  if (scene.shadowRayEpsilon) xml.element(1, "shadowrayepsilon", *scene.shadowRayEpsilon);
+  xml.element(1, "maxraytracedepth", parameters.maxRayDepth);
+  xml.element(1, "background", parameters.background);
+  if (parameters.shadowRayEpsilon) xml.element(1, "shadowrayepsilon", *parameters.shadowRayEpsilon);
 
-  const Camera& c = scene.camera;
+  const Camera& c = parameters.camera;
   xml.open(1, "camera");
   xml.element(2, "position", c.position);
   xml.element(2, "gaze", c.gaze);
@@ -160,14 +165,14 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
   xml.close(1, "camera");
 
   xml.open(1, "lights");
-  xml.element(2, "ambientlight", scene.ambientLight);
-  for (const PointLight& light : scene.pointLights) {
+  xml.element(2, "ambientlight", parameters.ambientLight);
+  for (const PointLight& light : parameters.pointLights) {
     xml.open(2, "pointlight", light.id, true);
     xml.element(3, "position", light.position);
     xml.element(3, "intensity", light.intensity);
     xml.close(2, "pointlight");
   }
-  for (const TriangularLight& light : scene.triangularLights) {
+  for (const TriangularLight& light : parameters.triangularLights) {
     xml.open(2, "triangularlight", light.id, true);
     xml.element(3, "vertex1", light.vertex1);
     xml.element(3, "vertex2", light.vertex2);
@@ -178,7 +183,7 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
   xml.close(1, "lights");
 
   xml.open(1, "materials");
-  for (const Material& m : scene.materials) {
+  for (const Material& m : parameters.materials) {
     xml.open(2, "material", m.id, true);
     xml.element(3, "ambient", m.ambient);
     xml.element(3, "diffuse", m.diffuse);
@@ -192,24 +197,24 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
   xml.close(1, "materials");
 
   xml.open(1, "vertexdata");
-  for (const glm::dvec3& v : scene.vertices) {
+  for (const glm::dvec3& v : geometry.vertices) {
     xml.indent(2);
     Line(out) << v;
     out += '\n';
   }
   xml.close(1, "vertexdata");
-  if (!scene.texCoords.empty()) {
+  if (!geometry.texCoords.empty()) {
     xml.open(1, "texturedata");
-    for (const glm::vec2& t : scene.texCoords) {
+    for (const glm::vec2& t : geometry.texCoords) {
       xml.indent(2);
       Line(out) << t;
       out += '\n';
     }
     xml.close(1, "texturedata");
   }
-  if (!scene.normals.empty()) {
+  if (!geometry.normals.empty()) {
     xml.open(1, "normaldata");
-    for (const glm::vec3& n : scene.normals) {
+    for (const glm::vec3& n : geometry.normals) {
       xml.indent(2);
       Line(out) << n;
       out += '\n';
@@ -219,15 +224,15 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
   if (!textureImage.empty()) xml.text(1, "textureimage", textureImage);
 
   xml.open(1, "objects");
-  for (const Mesh& mesh : scene.meshes) {
+  for (const Mesh& mesh : geometry.meshes) {
     xml.open(2, "mesh", mesh.id, true);
-    xml.text(3, "materialid", mesh.material < scene.materials.size() ? scene.materials[mesh.material].id : "");
+    xml.text(3, "materialid", mesh.material < parameters.materials.size() ? parameters.materials[mesh.material].id : "");
     xml.open(3, "faces");
-    const std::size_t end = std::min<std::size_t>(scene.triangles.size(),
+    const std::size_t end = std::min<std::size_t>(geometry.triangles.size(),
                                                   static_cast<std::size_t>(mesh.firstTriangle) + mesh.triangleCount);
     for (std::size_t i = mesh.firstTriangle; i < end; ++i) {
       xml.indent(4);
-      appendFace(out, scene.triangles[i]);
+      appendFace(out, geometry.triangles[i]);
       out += '\n';
     }
     xml.close(3, "faces");
@@ -239,6 +244,7 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
 }
 
 std::string textureReferenceFor(const Scene& scene, const fs::path& outputPath) {
+  // Only the geometry's texture name and the file the scene came from matter here.
   if (scene.textureImage.empty()) return {};
   const fs::path sourceDirectory = scene.sourcePath.parent_path();
   const fs::path outputDirectory = outputPath.parent_path().empty() ? fs::path(".") : outputPath.parent_path();
@@ -255,8 +261,12 @@ std::string textureReferenceFor(const Scene& scene, const fs::path& outputPath) 
   return scene.textureImage;  // never found: keep what the author wrote (it stays a warning on load)
 }
 
+void writeSceneFile(const fs::path& outputPath, const SceneParameters& parameters, const Scene& loaded) {
+  writeFileAtomically(outputPath, sceneToXml(parameters, loaded.geometry(), textureReferenceFor(loaded, outputPath)));
+}
+
 void writeSceneFile(const fs::path& outputPath, const Scene& scene) {
-  writeFileAtomically(outputPath, sceneToXml(scene, textureReferenceFor(scene, outputPath)));
+  writeSceneFile(outputPath, scene.parameters(), scene);
 }
 
 }  // namespace rayview

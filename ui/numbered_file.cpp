@@ -60,11 +60,11 @@ fs::path saveFrameNumbered(const Image& image, const std::string& scenePath) {
                            [&](const fs::path& temporary) { writeImageFile(temporary, image); });
 }
 
-fs::path saveSceneNumbered(const Scene& scene, const std::string& scenePath) {
+fs::path saveSceneNumbered(const SceneParameters& parameters, const Scene& loaded, const std::string& scenePath) {
   const fs::path base = numberedFileBase(scenePath);
   return writeNumberedFile(fs::path(base.string() + "_edited"), ".xml", [&](const fs::path& temporary) {
     // The texture reference is computed for the final directory, which is the temporary's directory.
-    writeSceneFile(temporary, scene);
+    writeSceneFile(temporary, parameters, loaded);
   });
 }
 

@@ -25,6 +25,7 @@ std::filesystem::path writeNumberedFile(const std::filesystem::path& base, const
 
 // Ctrl+S: the displayed frame as a PNG. Ctrl+Shift+S: the edited scene as XML.
 std::filesystem::path saveFrameNumbered(const Image& image, const std::string& scenePath);
-std::filesystem::path saveSceneNumbered(const Scene& scene, const std::string& scenePath);
+std::filesystem::path saveSceneNumbered(const SceneParameters& parameters, const Scene& loaded,
+                                        const std::string& scenePath);
 
 }  // namespace rayview

@@ -137,10 +137,10 @@ std::filesystem::path ViewerApp::saveFrame(const std::string& path) {
 std::filesystem::path ViewerApp::saveScene(const std::string& path) {
   if (!session_) throw ImageIoError("no scene to save yet");
   // What is on screen: the committed edits (identical to the fields unless a field holds an invalid value).
-  const Scene scene = session_->editedScene();
+  const SceneParameters& parameters = session_->committedEdits();
   std::filesystem::path saved = path;
-  if (path.empty()) saved = saveSceneNumbered(scene, scenePath_);
-  else writeSceneFile(path, scene);
+  if (path.empty()) saved = saveSceneNumbered(parameters, session_->loaded(), scenePath_);
+  else writeSceneFile(path, parameters, session_->loaded());
   filePanel_.lastSaved = "saved scene " + saved.string();
   std::printf("saved scene %s\n", saved.string().c_str());
   std::fflush(stdout);

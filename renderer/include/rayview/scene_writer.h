@@ -14,6 +14,7 @@
 namespace rayview {
 
 // The whole file. `textureImage` is what to write in <textureimage> (nothing is written when empty).
+std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& geometry, const std::string& textureImage);
 std::string sceneToXml(const Scene& scene, const std::string& textureImage);
 
 // What <textureimage> must say in a file written to `outputPath` so that it still finds the image the
@@ -21,6 +22,9 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage);
 std::string textureReferenceFor(const Scene& scene, const std::filesystem::path& outputPath);
 
 // Writes the file whole (temporary file + rename). Throws ImageIoError (the file-writing error type).
+// `parameters` (the viewer's edits) over the geometry of `loaded`, the scene as it was read (its texture is
+// found relative to the file it came from): no copy of the meshes.
+void writeSceneFile(const std::filesystem::path& outputPath, const SceneParameters& parameters, const Scene& loaded);
 void writeSceneFile(const std::filesystem::path& outputPath, const Scene& scene);
 
 // Shortest decimal text that parses (as a double, as the loader does) back to exactly `value`.
