@@ -16,7 +16,7 @@ namespace scene_loading {
 
 LoadedScene Loader::load(std::string_view text) {
   detail::RepairedXml repaired = detail::repairXml(text, file_, options_.strict);
-  for (Diagnostic& d : repaired.repairs) result_.warnings.push_back(std::move(d));
+  for (Diagnostic& d : repaired.repairs) warnings_.add(std::move(d));
   std::string_view xml = repaired.changed ? std::string_view(repaired.text) : text;
 
   tinyxml2::XMLDocument doc(true, tinyxml2::PRESERVE_WHITESPACE);
@@ -36,8 +36,7 @@ LoadedScene Loader::load(std::string_view text) {
 
   readScene(root);
   finish(root);
-  std::stable_sort(result_.warnings.begin(), result_.warnings.end(),
-                   [](const Diagnostic& a, const Diagnostic& b) { return a.where.line < b.where.line; });
+  result_.warnings = warnings_.take();
   return std::move(result_);
 }
 

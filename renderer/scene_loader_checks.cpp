@@ -20,10 +20,6 @@ void Loader::finish(const XMLElement* root) {
   }
   resolveIndices(rootLine);
   loadTexture();
-
-  for (std::size_t i = 0; i < result_.warnings.size(); ++i)
-    if (warningCounts_.size() > i && warningCounts_[i] > 1)
-      result_.warnings[i].message += " (" + std::to_string(warningCounts_[i]) + " times; the first is shown)";
 }
 
 std::string Loader::definedMaterials() const {

@@ -5,15 +5,29 @@
 
 namespace rayview::scene_loading {
 
+void WarningList::add(Diagnostic diagnostic) {
+  auto [it, inserted] = index_.emplace(diagnostic.message, entries_.size());
+  if (inserted) entries_.push_back({std::move(diagnostic), 1});
+  else ++entries_[it->second].count;
+}
+
+std::vector<Diagnostic> WarningList::take() {
+  std::vector<Diagnostic> out;
+  out.reserve(entries_.size());
+  for (Entry& entry : entries_) {
+    if (entry.count > 1) entry.diagnostic.message += " (" + std::to_string(entry.count) + " times; the first is shown)";
+    out.push_back(std::move(entry.diagnostic));
+  }
+  entries_.clear();
+  index_.clear();
+  std::stable_sort(out.begin(), out.end(),
+                   [](const Diagnostic& a, const Diagnostic& b) { return a.where.line < b.where.line; });
+  return out;
+}
+
 // Warnings with the same text are reported once, at the first line, with a count.
 void Loader::warn(int line, const std::string& message) {
-  auto [it, inserted] = warningIndex_.emplace(message, result_.warnings.size());
-  if (!inserted) {
-    ++warningCounts_[it->second];
-    return;
-  }
-  result_.warnings.push_back(Diagnostic{Severity::Warning, {file_, line}, message});
-  warningCounts_.push_back(1);
+  warnings_.add(Diagnostic{Severity::Warning, {file_, line}, message});
 }
 
 // Something the format does not allow but that we can read anyway: an error in strict mode.

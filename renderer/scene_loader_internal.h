@@ -126,6 +126,24 @@ struct IndexRange {
   bool any() const { return max >= 0; }
 };
 
+// The loader's warnings and how often each was met: one owner for both, so a warning can only be added
+// with its count (issue 9: repair messages once reached the list but not the counts, and a repeated
+// warning then wrote past the end of the counts). The same message again is counted, not listed.
+class WarningList {
+ public:
+  void add(Diagnostic diagnostic);
+  // The warnings sorted by line, each repeated one with "(N times; the first is shown)".
+  std::vector<Diagnostic> take();
+
+ private:
+  struct Entry {
+    Diagnostic diagnostic;
+    std::size_t count = 1;
+  };
+  std::vector<Entry> entries_;
+  std::unordered_map<std::string, std::size_t> index_;  // message -> entry
+};
+
 class Loader {
  public:
   Loader(const std::string& file, fs::path baseDirectory, const LoadOptions& options)
@@ -272,8 +290,7 @@ class Loader {
   fs::path baseDirectory_;
   LoadOptions options_;
   LoadedScene result_;
-  std::unordered_map<std::string, std::size_t> warningIndex_;
-  std::vector<int> warningCounts_;
+  WarningList warnings_;
 
   bool haveDepth_ = false, haveBackground_ = false, haveAmbient_ = false;
   int cameraLine_ = 0;
