@@ -3,24 +3,32 @@
 // This file: the entry points. The loader's three jobs live in scene_loader_elements.cpp (element
 // readers), scene_loader_walk.cpp (the walk) and scene_loader_checks.cpp (checks after the walk).
 
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
-#include <memory>
 
+#include "file_read.h"
 #include "scene_loader_internal.h"
 
 namespace rayview {
 
 namespace scene_loading {
 
+// A binary file or one in another encoding is named for what it is, before any XML message about '<'.
+void refuseWhatIsNotText(const std::string& file, std::string_view text) {
+  if (std::string kind = detail::binaryFileKind(text.substr(0, detail::kFileStartBytes)); !kind.empty())
+    throwSceneError({file, 0}, "the file " + kind);
+  if (const void* nul = std::memchr(text.data(), '\0', text.size()))
+    throwSceneError({file, 1 + detail::countNewlines(text.data(), static_cast<const char*>(nul))},
+                    "the file contains NUL bytes: a binary file, not a scene file");
+}
+
 LoadedScene Loader::load(std::string_view text) {
+  refuseWhatIsNotText(file_, text);
   detail::RepairedXml repaired = detail::repairXml(text, file_, options_.strict);
   for (Diagnostic& d : repaired.repairs) warnings_.add(std::move(d));
   std::string_view xml = repaired.changed ? std::string_view(repaired.text) : text;
 
   tinyxml2::XMLDocument doc(true, tinyxml2::PRESERVE_WHITESPACE);
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) xmlError(doc);
+  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) xmlError(doc, text);
 
   const XMLElement* root = doc.RootElement();
   if (!root) fail(0, "no <scene> element: the file has no elements");
@@ -59,25 +67,16 @@ LoadedScene loadSceneText(std::string_view xml, const std::string& displayName, 
 
 LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   const std::string display = path.string();
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throwSceneError({display, 0}, "cannot read the scene file: it is a directory");
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) throwSceneError({display, 0}, std::string("cannot open the scene file: ") + std::strerror(errno));
-  std::string text;
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (!ec && size > kMaxFileBytes)
-    throwSceneError({display, 0}, "the scene file is too large (" + std::to_string(size) + " bytes; the limit is 2 GiB)");
-  if (!ec) text.reserve(static_cast<std::size_t>(size));
-  char buffer[1 << 16];
-  std::size_t got;
-  while ((got = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
-    text.append(buffer, got);
-    if (text.size() > kMaxFileBytes) throwSceneError({display, 0}, "the scene file is too large (the limit is 2 GiB)");
-  }
-  if (std::ferror(file.get())) throwSceneError({display, 0}, "cannot read the scene file");
-  file.reset();
+  // The start of the file is checked before the rest is read: a large binary file is refused at once.
+  detail::UserFileRead file = detail::readUserFile(path, kMaxFileBytes, [&](std::string_view start) {
+    scene_loading::refuseWhatIsNotText(display, start);
+    return std::string();
+  });
+  if (file.notFound || file.problem.rfind("cannot be opened", 0) == 0)
+    throwSceneError({display, 0}, "cannot open the scene file: " + file.problem.substr(file.problem.find(": ") + 2));
+  if (!file.problem.empty()) throwSceneError({display, 0}, "the scene file " + file.problem);
   fs::path directory = path.parent_path();
-  LoadedScene loaded = loadSceneText(text, display, directory.empty() ? fs::path(".") : directory, options);
+  LoadedScene loaded = loadSceneText(file.bytes, display, directory.empty() ? fs::path(".") : directory, options);
   loaded.scene.sourcePath = path;
   return loaded;
 }

@@ -36,10 +36,24 @@ void Loader::nonconforming(int line, const std::string& message) {
   warn(line, message);
 }
 
-void Loader::xmlError(const tinyxml2::XMLDocument& doc) {
+void Loader::xmlError(const tinyxml2::XMLDocument& doc, std::string_view text) {
   std::string what;
   switch (doc.ErrorID()) {
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: fail(0, "no <scene> element: the file is empty");
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: {
+      // No element: either nothing at all, or text (which the repair pass set aside) with no markup.
+      const char* first = text.data();
+      const char* end = text.data() + text.size();
+      if (text.substr(0, 3) == "\xEF\xBB\xBF") first += 3;
+      while (first < end && detail::isXmlSpace(*first)) ++first;
+      if (first == end) fail(0, "no <scene> element: the file is empty");
+      if (std::memchr(first, '<', static_cast<std::size_t>(end - first)))
+        fail(0, "no <scene> element: the file has no elements");
+      const char* lineEnd = first;
+      while (lineEnd < end && *lineEnd != '\n' && *lineEnd != '\r') ++lineEnd;
+      fail(1 + detail::countNewlines(text.data(), first),
+           "the file is not XML: no element found (it starts with " +
+               quoted(std::string_view(first, static_cast<std::size_t>(lineEnd - first))) + ")");
+    }
     case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE: what = "malformed attribute"; break;
     case tinyxml2::XML_ERROR_PARSING_ELEMENT: what = "malformed element"; break;
     case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT: what = "mismatched closing tag"; break;

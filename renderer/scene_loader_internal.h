@@ -144,6 +144,9 @@ class WarningList {
   std::unordered_map<std::string, std::size_t> index_;  // message -> entry
 };
 
+// Throws, naming what the file is, when `text` is binary or not UTF-8/ASCII (see file_read.h).
+void refuseWhatIsNotText(const std::string& file, std::string_view text);
+
 class Loader {
  public:
   Loader(const std::string& file, fs::path baseDirectory, const LoadOptions& options)
@@ -161,7 +164,8 @@ class Loader {
   // Something the format does not allow but that we can read anyway: an error in strict mode.
   void nonconforming(int line, const std::string& message);
 
-  void xmlError(const tinyxml2::XMLDocument& doc);
+  // `text` is the file as read, for what an empty document really was.
+  void xmlError(const tinyxml2::XMLDocument& doc, std::string_view text);
 
   // Built with append: GCC 12 warns (-Wrestrict, a false positive) on "<" + std::string(...).
   static std::string elementName(const XMLElement* e);
