@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <filesystem>
 
+#include "rayview/accel.h"
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
@@ -14,6 +15,10 @@ namespace {
 
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+std::string sceneName(const CommandLine& command) {
+  return command.scenePath.empty() ? std::string("default scene") : command.scenePath;
 }
 
 }  // namespace
@@ -38,6 +43,10 @@ int runRenderCommand(const CommandLine& command) {
     for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
 
   const Scene& scene = loaded.scene;
+  if (availableAccel(command.settings.accel) == AccelKind::Embree)
+    if (const std::string problem = embreeRangeProblem(scene, scene.camera.position); !problem.empty())
+      std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName(command).c_str(),
+                   problem.c_str());
   std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, command.settings.accel);
   ThreadPool pool(command.threads);
   const Tracer tracer(scene, *geometry->accel, geometry->shading, command.settings);

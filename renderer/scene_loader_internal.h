@@ -23,6 +23,7 @@
 #include <tinyxml2.h>
 
 #include "number_list.h"
+#include "rayview/accel.h"
 #include "texture_image.h"
 #include "xml_repair.h"
 

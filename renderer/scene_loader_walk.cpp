@@ -36,6 +36,11 @@ void Loader::readScene(const XMLElement* root) {
       case Tag::ShadowRayEpsilon: {
         double epsilon = readScalar(e, false);
         if (epsilon < 0.0) fail(e->GetLineNum(), elementName(e) + ": must be >= 0, found " + trimmedText(e));
+        // Larger than any distance rayview traces (Embree's coordinates stop at kEmbreeCoordinateLimit):
+        // such an epsilon is a typo, and would push every shadow ray out of range.
+        if (epsilon > kEmbreeCoordinateLimit)
+          fail(e->GetLineNum(), elementName(e) + ": " + trimmedText(e) + " is larger than any distance rayview can trace "
+                                "(the limit is 1e18)");
         scene.shadowRayEpsilon = epsilon;
         return true;
       }
