@@ -1,5 +1,8 @@
 #include "render_command.h"
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -8,13 +11,47 @@
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
+#include "file_read.h"
 #include "scene_source.h"
+#include "texture_image.h"
 
 namespace rayview {
 namespace {
 
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+// SIGINT / SIGTERM during a render: remove the image's temporary file if it is being written, exit
+// 130 / 143 as a shell would report the signal. The existing output is never touched before the rename.
+extern "C" void onInterrupt(int signal) {
+  if (const char* temporary = temporaryFileInProgress()) ::unlink(temporary);
+  ::_exit(128 + signal);
+}
+
+void removeTemporaryOnInterrupt() {
+  struct sigaction action {};
+  action.sa_handler = onInterrupt;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+// The output may never be the scene or its texture image, by any path (hard link, symlink, ./).
+std::string outputOverwritesInput(const std::filesystem::path& output, const CommandLine& command,
+                                  const LoadedScene* loaded) {
+  if (!command.scenePath.empty() && detail::sameFile(output, command.scenePath))
+    return "the output " + output.string() + " is the scene file " + command.scenePath + "; choose another name";
+  if (!loaded) return {};
+  const Scene& scene = loaded->scene;
+  if (!scene.textureImage.empty() && scene.texture) {
+    const std::filesystem::path dir = scene.sourcePath.parent_path();
+    for (const std::filesystem::path& candidate : detail::textureCandidates(dir.empty() ? "." : dir, scene.textureImage))
+      if (detail::sameFile(output, candidate))
+        return "the output " + output.string() + " is the scene's texture image " + candidate.string() +
+               "; choose another name";
+  }
+  return {};
 }
 
 std::string sceneName(const CommandLine& command) {
@@ -30,6 +67,10 @@ int runRenderCommand(const CommandLine& command) {
     return kExitBadInput;
   }
 
+  if (const std::string problem = outputOverwritesInput(output, command, nullptr); !problem.empty()) {
+    std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
+    return kExitBadInput;
+  }
   const auto loadStart = std::chrono::steady_clock::now();
   LoadedScene loaded;
   try {
@@ -39,6 +80,11 @@ int runRenderCommand(const CommandLine& command) {
     return kExitBadInput;
   }
   const double loadMs = msSince(loadStart);
+  if (const std::string problem = outputOverwritesInput(output, command, &loaded); !problem.empty()) {
+    std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
+    return kExitBadInput;
+  }
+  removeTemporaryOnInterrupt();
   if (!command.quiet)
     for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
 
