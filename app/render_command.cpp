@@ -1,9 +1,13 @@
 #include "render_command.h"
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 
+#include "rayview/accel.h"
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
@@ -16,6 +20,25 @@ double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+// SIGINT / SIGTERM during a render: remove the image's temporary file if it is being written, exit
+// 130 / 143 as a shell would report the signal. The existing output is never touched before the rename.
+extern "C" void onInterrupt(int signal) {
+  if (const char* temporary = temporaryFileInProgress()) ::unlink(temporary);
+  ::_exit(128 + signal);
+}
+
+void removeTemporaryOnInterrupt() {
+  struct sigaction action {};
+  action.sa_handler = onInterrupt;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+std::string sceneName(const CommandLine& command) {
+  return command.scenePath.empty() ? std::string("default scene") : command.scenePath;
+}
+
 }  // namespace
 
 int runRenderCommand(const CommandLine& command) {
@@ -25,6 +48,10 @@ int runRenderCommand(const CommandLine& command) {
     return kExitBadInput;
   }
 
+  if (const std::string problem = outputOverwritesInput(output, command.scenePath, nullptr); !problem.empty()) {
+    std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
+    return kExitBadInput;
+  }
   const auto loadStart = std::chrono::steady_clock::now();
   LoadedScene loaded;
   try {
@@ -34,6 +61,11 @@ int runRenderCommand(const CommandLine& command) {
     return kExitBadInput;
   }
   const double loadMs = msSince(loadStart);
+  if (const std::string problem = outputOverwritesInput(output, command.scenePath, &loaded.scene); !problem.empty()) {
+    std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
+    return kExitBadInput;
+  }
+  removeTemporaryOnInterrupt();
   if (!command.quiet)
     for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
 
@@ -41,6 +73,12 @@ int runRenderCommand(const CommandLine& command) {
   Scene& scene = loaded.scene;
   RenderSettings settings;
   applyKnobs(command.knobs, {&scene.parameters(), &settings});
+  if (availableAccel(settings.accel) == AccelKind::Embree)
+    if (const std::string problem = embreeRangeProblem(scene, scene, scene.camera.position); !problem.empty()) {
+      std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName(command).c_str(),
+                   problem.c_str());
+      settings.accel = AccelKind::Reference;
+    }
   std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, settings.accel);
   ThreadPool pool(command.threads);
   const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);

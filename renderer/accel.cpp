@@ -1,13 +1,77 @@
 #include "rayview/accel.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
 #include "accel_backends.h"
 
 namespace rayview {
 
+namespace {
+
+std::string scientific(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", v);
+  return buffer;
+}
+
+double largestComponent(const glm::dvec3& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+
+// The farthest point, relative to `origin`, that rays start at or reach, and what it is.
+struct Reach {
+  double distance = 0.0;
+  const char* what = "the camera";
+  void consider(const glm::dvec3& p, const glm::dvec3& origin, const char* name) {
+    const double r = largestComponent(p - origin);
+    if (std::isfinite(r) && r > distance) distance = r, what = name;
+  }
+};
+
+// Non-finite vertices are left out: their triangles have no surface, and Embree skips invalid boxes.
+Reach geometryReach(const SceneGeometry& geometry, const glm::dvec3& origin) {
+  Reach reach;
+  for (const Triangle& t : geometry.triangles)
+    for (std::uint32_t v : t.vertex)
+      if (v < geometry.vertices.size()) reach.consider(geometry.vertices[v], origin, "a vertex");
+  return reach;
+}
+
+std::string beyond(const Reach& reach, double epsilon) {
+  const double limit = kEmbreeCoordinateLimit;
+  if (reach.distance * (1.0 + 0x1p-10) + epsilon <= limit) return {};
+  return reach.what + std::string(" is ") + scientific(reach.distance) + " from the camera" +
+         (epsilon > 0.0 ? " (with <shadowrayepsilon> " + scientific(epsilon) + ")" : std::string()) +
+         ", beyond the " + scientific(limit) + " Embree can represent";
+}
+
+}  // namespace
+
+std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeometry& geometry,
+                               const glm::dvec3& origin) {
+  // Rays start at the eye or on a surface, pushed off it by <shadowrayepsilon> (or a relative offset far
+  // below 1 %); their directions are unit vectors except camera rays, which go through the near plane.
+  Reach reach = geometryReach(geometry, origin);
+  reach.consider(parameters.camera.position, origin, "the camera");
+  for (const PointLight& light : parameters.pointLights) reach.consider(light.position, origin, "a point light");
+  for (const TriangularLight& light : parameters.triangularLights)
+    for (const glm::dvec3* p : {&light.vertex1, &light.vertex2, &light.vertex3})
+      reach.consider(*p, origin, "a triangular light");
+  const double epsilon = parameters.shadowRayEpsilon.value_or(0.0);
+  const Camera& c = parameters.camera;
+  const double nearPlane = c.nearDistance + std::max({std::fabs(c.left), std::fabs(c.right), std::fabs(c.bottom),
+                                                      std::fabs(c.top)});
+  if (!(nearPlane <= kEmbreeCoordinateLimit))
+    return "the camera's near plane reaches " + scientific(nearPlane) + ", beyond the " +
+           scientific(kEmbreeCoordinateLimit) + " Embree can represent";
+  return beyond(reach, epsilon);
+}
+
 std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                   BuildProgress progress, void* progressUser) {
 #ifdef RAYVIEW_HAVE_EMBREE
-  if (kind == AccelKind::Embree) return makeEmbreeAccel(scene, origin, progress, progressUser);
+  if (kind == AccelKind::Embree && beyond(geometryReach(scene, origin), 0.0).empty())
+    return makeEmbreeAccel(scene, origin, progress, progressUser);
 #endif
   (void)kind;
   return makeReferenceAccel(scene, origin, progress, progressUser);

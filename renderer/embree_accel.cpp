@@ -166,6 +166,7 @@ class EmbreeAccel final : public Accel {
   bool valid() const { return scene_ != nullptr; }
 
   std::optional<Hit> closestHit(const Ray& ray) const override {
+    if (!representable(ray)) return closestHitWithoutEmbree(ray);
     QueryContext query;
     initContext(query, ray);
     RTCRayHit rayHit;
@@ -178,6 +179,7 @@ class EmbreeAccel final : public Accel {
   }
 
   bool occluded(const Ray& ray) const override {
+    if (!representable(ray)) return occludedWithoutEmbree(ray);
     QueryContext query;
     initContext(query, ray);
     RTCRay r;
@@ -189,6 +191,46 @@ class EmbreeAccel final : public Accel {
   AccelKind kind() const override { return AccelKind::Embree; }
 
  private:
+  // buildAccel() only builds this back-end for scenes whose rays stay within kEmbreeCoordinateLimit, but a
+  // caller may still trace a ray from elsewhere (the viewer's camera moved far from the build origin).
+  // Embree asserts on such a ray: it is answered here by testing every triangle, in double.
+  static bool representable(const Ray& ray) {
+    const double limit = kEmbreeCoordinateLimit;
+    for (int k = 0; k < 3; ++k)
+      if (!(std::fabs(ray.origin[k]) <= limit) || !(std::fabs(ray.direction[k]) <= limit)) return false;
+    return ray.tNear >= 0.0 && !std::isnan(ray.tFar);
+  }
+
+  std::optional<Hit> closestHitWithoutEmbree(const Ray& ray) const {
+    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
+    std::optional<Hit> best;
+    for (std::uint32_t i = 0; i < data_.triangles.size(); ++i) {
+      if (i == ray.excludedTriangle) continue;
+      const auto& t = data_.triangles[i];
+      TriangleHit hit;
+      const double tFar = best ? std::min(ray.tFar, tieSearchLimit(best->t)) : ray.tFar;
+      if (!intersectWatertight(prepared, data_.vertices[t[0]], data_.vertices[t[1]], data_.vertices[t[2]], ray.tNear,
+                               tFar, hit))
+        continue;
+      if (best && !replacesClosestHit(hit.t, i, best->t, best->triangle)) continue;
+      best = Hit{hit.t, i, hit.b1, hit.b2};
+    }
+    return best;
+  }
+
+  bool occludedWithoutEmbree(const Ray& ray) const {
+    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
+    for (std::uint32_t i = 0; i < data_.triangles.size(); ++i) {
+      if (i == ray.excludedTriangle) continue;
+      const auto& t = data_.triangles[i];
+      TriangleHit hit;
+      if (intersectWatertight(prepared, data_.vertices[t[0]], data_.vertices[t[1]], data_.vertices[t[2]], ray.tNear,
+                              ray.tFar, hit))
+        return true;
+    }
+    return false;
+  }
+
   // The float copy Embree traverses its boxes with; the interval rounded outward.
   static void fill(RTCRay& out, const Ray& ray) {
     out.org_x = static_cast<float>(ray.origin.x);

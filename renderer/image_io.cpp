@@ -1,4 +1,5 @@
 #include <algorithm>
+#include <atomic>
 #include <cctype>
 #include <cerrno>
 #include <cstdio>
@@ -41,7 +42,13 @@ std::string encodePpm(const Image& image) {
   return bytes;
 }
 
+// One write at a time registers its temporary file here (the command line writes one image).
+char g_temporaryPath[4096];
+std::atomic<bool> g_temporaryActive{false};
+
 }  // namespace
+
+const char* temporaryFileInProgress() { return g_temporaryActive.load() ? g_temporaryPath : nullptr; }
 
 bool isSupportedImageExtension(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
@@ -51,6 +58,18 @@ bool isSupportedImageExtension(const std::filesystem::path& path) {
 void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes) {
   std::filesystem::path temporary = path;
   temporary += ".tmp-" + std::to_string(std::random_device{}());
+  // Registered before the file exists, cleared after it is renamed or removed.
+  const bool registered = temporary.native().size() < sizeof g_temporaryPath && !g_temporaryActive.load();
+  if (registered) {
+    std::memcpy(g_temporaryPath, temporary.c_str(), temporary.native().size() + 1);
+    g_temporaryActive.store(true);
+  }
+  struct Unregister {
+    bool registered;
+    ~Unregister() {
+      if (registered) g_temporaryActive.store(false);
+    }
+  } unregister{registered};
   {
     std::FILE* file = std::fopen(temporary.c_str(), "wb");
     if (!file) throw ImageIoError("cannot write " + path.string() + ": " + std::strerror(errno));

@@ -17,17 +17,30 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
   return prepared;
 }
 
+namespace {
+
+// Embree for a scene whose rays all stay within its range (its lights and epsilon included), else the
+// reference BVH.
+AccelKind accelFor(const Scene& scene, AccelKind kind) {
+  if (availableAccel(kind) == AccelKind::Embree && !embreeRangeProblem(scene, scene, scene.camera.position).empty())
+    return AccelKind::Reference;
+  return kind;
+}
+
+}  // namespace
+
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BuildProgress progress, void* progressUser) {
   const glm::dvec3 origin = scene->camera.position;
+  kind = accelFor(*scene, kind);
   return prepareGeometry(std::shared_ptr<const SceneGeometry>(scene, &scene->geometry()), origin, kind, progress,
                          progressUser);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind, BuildProgress progress,
                                                         void* progressUser) {
-  return prepareGeometry(std::make_shared<const SceneGeometry>(scene.geometry()), scene.camera.position, kind,
-                         progress, progressUser);
+  return prepareGeometry(std::make_shared<const SceneGeometry>(scene.geometry()), scene.camera.position,
+                         accelFor(scene, kind), progress, progressUser);
 }
 
 }  // namespace rayview

@@ -1,11 +1,30 @@
 #include "rayview/scene_source.h"
 
+#include "file_read.h"
+#include "texture_image.h"
+
 
 namespace rayview {
 
 LoadedScene loadSceneOrDefault(const std::string& path, const LoadOptions& options) {
   if (path.empty()) return loadSceneText(defaultSceneXml(), kDefaultSceneName, {}, options);
   return loadSceneFile(path, options);
+}
+
+std::string outputOverwritesInput(const std::filesystem::path& output, const std::string& scenePath,
+                                  const Scene* loaded) {
+  if (!scenePath.empty() && detail::sameFile(output, scenePath))
+    return "the output " + output.string() + " is the scene file " + scenePath + "; choose another name";
+  if (!loaded) return {};
+  const Scene& scene = *loaded;
+  if (!scene.textureImage.empty() && scene.texture) {
+    const std::filesystem::path dir = scene.sourcePath.parent_path();
+    for (const std::filesystem::path& candidate : detail::textureCandidates(dir.empty() ? "." : dir, scene.textureImage))
+      if (detail::sameFile(output, candidate))
+        return "the output " + output.string() + " is the scene's texture image " + candidate.string() +
+               "; choose another name";
+  }
+  return {};
 }
 
 }  // namespace rayview

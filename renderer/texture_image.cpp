@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <memory>
 
+#include "file_read.h"
+
 // The one translation unit of the project that compiles stb_image.
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_NO_STDIO_DEPRECATION
@@ -14,18 +16,20 @@ namespace rayview::detail {
 namespace fs = std::filesystem;
 
 std::optional<Texture> readTextureImage(const fs::path& path, std::string& reason) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) {
+  // The size is checked before reading and the file is never opened for a blocking read (file_read.h).
+  UserFileRead file = readUserFile(path, kMaxTextureFileBytes);
+  if (file.notFound) {
     reason = "not found";
     return std::nullopt;
   }
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) {
-    reason = "cannot be opened";
+  if (!file.problem.empty()) {
+    reason = file.problem;
     return std::nullopt;
   }
+  const auto* bytes = reinterpret_cast<const stbi_uc*>(file.bytes.data());
+  const int length = static_cast<int>(file.bytes.size());  // kMaxTextureFileBytes fits an int
   int width = 0, height = 0, channels = 0;
-  if (!stbi_info_from_file(file.get(), &width, &height, &channels)) {
+  if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
     reason = std::string("not a readable image (") + stbi_failure_reason() + ")";
     return std::nullopt;
   }
@@ -33,7 +37,7 @@ std::optional<Texture> readTextureImage(const fs::path& path, std::string& reaso
     reason = "image too large (" + std::to_string(width) + " x " + std::to_string(height) + ")";
     return std::nullopt;
   }
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_file(file.get(), &width, &height, &channels, 3),
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes, length, &width, &height, &channels, 3),
                                                    &stbi_image_free);
   if (!pixels) {
     reason = std::string("cannot be decoded (") + stbi_failure_reason() + ")";

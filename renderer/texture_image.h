@@ -1,6 +1,7 @@
 #pragma once
 // Reading a <textureimage> from disk with stb_image (PNG, JPEG, binary PPM/PGM, BMP, TGA).
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -12,6 +13,9 @@ namespace rayview::detail {
 
 // Largest texture accepted, in pixels (refused before decoding, from the header alone).
 inline constexpr long long kMaxTexturePixels = 1LL << 28;
+// Largest texture file read, in bytes (refused from its size, before reading): 1 GiB holds the largest
+// accepted image even uncompressed (2^28 pixels x 3 bytes), and stb_image takes an int length.
+inline constexpr std::uintmax_t kMaxTextureFileBytes = 1ULL << 30;
 
 // Decodes an image file to 8-bit RGB. On failure returns nullopt and sets `reason` (never throws).
 std::optional<Texture> readTextureImage(const std::filesystem::path& path, std::string& reason);

@@ -90,7 +90,14 @@ struct OpenElement {
   std::string_view name;
   int line = 0;
   bool hasChildren = false;
+  std::string canonicalName;  // computed once, compared for every closing tag below it
 };
+
+// The deepest nesting accepted: tinyxml2's own limit (TINYXML2_MAX_ELEMENT_DEPTH), which refuses
+// anything deeper anyway; the format itself nests 4 deep. Every closing tag looks at the open elements,
+// so this bound is what keeps the pass linear in the file size (issue 9: 20 000 nested elements with
+// misspelled closing tags took 6 s, 200 000 did not finish in minutes).
+constexpr std::size_t kMaxNesting = 100;
 
 class Repairer {
  public:
@@ -157,7 +164,13 @@ class Repairer {
       fail(lineAt(i), "the file ends inside the tag <" + std::string(name) + "; the file looks truncated");
     const bool selfClosing = text_[j - 1] == '/';
     if (!stack_.empty()) stack_.back().hasChildren = true;
-    if (!selfClosing) stack_.push_back({name, lineAt(i), false});
+    if (!selfClosing) {
+      if (stack_.size() >= kMaxNesting)
+        fail(lineAt(i), "XML syntax error: elements nested too deeply (<" + std::string(name) + "> is " +
+                            std::to_string(kMaxNesting + 1) + " levels deep; the limit is " +
+                            std::to_string(kMaxNesting) + ")");
+      stack_.push_back({name, lineAt(i), false, canonical(name)});
+    }
     return j + 1;
   }
 
@@ -179,7 +192,7 @@ class Repairer {
       blank(i, end);
       return end;
     }
-    const OpenElement top = stack_.back();
+    const OpenElement& top = stack_.back();
     const std::string t = tag(top.name, false);
     if (equalsIgnoreCase(name, top.name)) {
       // Names are case-insensitive in this format but not in XML: make the case match, silently.
@@ -189,8 +202,9 @@ class Repairer {
     }
     // The closing name is exactly an outer open element: the inner one was left open.
     std::size_t outer = stack_.size();
+    const std::string closingCanonical = canonical(name);
     for (std::size_t k = stack_.size() - 1; k-- > 0;)
-      if (equalsIgnoreCase(name, stack_[k].name) || canonical(name) == canonical(stack_[k].name)) {
+      if (closingCanonical == stack_[k].canonicalName) {
         outer = k;
         break;
       }

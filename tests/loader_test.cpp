@@ -200,6 +200,24 @@ TEST(Loader, SameAliasIsReportedOnceWithACount) {
   EXPECT_TRUE(hasWarning(loaded, 25, "(2 times; the first is shown)"));
 }
 
+// Issue 9: a repair by the XML pass followed by a repeated loader warning once wrote past the end of the
+// repeat counts (ASan: heap-buffer-overflow) and lost the "(N times)" note. Both kinds share one list now.
+TEST(Loader, RepeatCountIsRightAfterAnXmlRepair) {
+  std::string xml = with("<ambient>1 0 0</ambient>", "<ambient>1 0 0</ambinet>");  // repaired, line 21
+  xml = with("<mirrorreflectance>0 0 0</mirrorreflectance>", "<mirrorreflactance>0 0 0</mirrorreflactance>", xml);
+  for (int extra = 0; extra < 3; ++extra)
+    xml = with("</materials>",
+               "<material id=\"m" + std::to_string(extra) + "\"><ambient>0 0 0</ambient><diffuse>0 0 0</diffuse>"
+               "<specular>0 0 0</specular><phongexponent>1</phongexponent>"
+               "<mirrorreflactance>0 0 0</mirrorreflactance></material></materials>",
+               xml);
+  const LoadedScene loaded = load(xml);
+  EXPECT_TRUE(hasWarning(loaded, 21, "closing tag </ambinet> read as </ambient>"));
+  EXPECT_TRUE(hasWarning(loaded, 25, "<mirrorreflactance> read as <mirrorreflectance> (misspelled element name) "
+                                     "(4 times; the first is shown)"));
+  EXPECT_EQ(loaded.warnings.size(), 2u);
+}
+
 // ---------------------------------------------------------------- closing-tag repairs
 
 TEST(Loader, MisspelledClosingTagsAreRepaired) {

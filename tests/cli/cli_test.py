@@ -7,8 +7,10 @@ Each check prints one line; the script exits 1 on the first failure.
 import argparse
 import os
 import shutil
+import signal
 import subprocess
 import sys
+import time
 
 
 def run(args, rayview):
@@ -87,7 +89,81 @@ def main():
     r = run(["render", "-o", os.path.join(a.scratch, "default.png"), "--quiet"], a.rayview)
     check(r.returncode == 0 and os.path.getsize(os.path.join(a.scratch, "default.png")) > 1000,
           "without a scene, the embedded default renders")
+    check_output_is_never_an_input(a)
+    check_interrupted_render_leaves_output(a, scene)
     print("cli: all checks passed")
+
+
+def check_output_is_never_an_input(a):
+    """Issue 9: `rayview render s.png -o s.png` once replaced its own input. The output is refused when it
+    is the scene or its texture image by any path: the same name, ./, a symlink, a hard link."""
+    d = os.path.join(a.scratch, "same")
+    os.makedirs(d)
+    texture = os.path.join(d, "tex.png")
+    shutil.copy(os.path.join(a.scratch, "bunny.png"), texture)
+    with open(os.path.join(a.shared, "conformance", "ceng477", "bunny.xml")) as f:
+        xml = f.read()
+    scene_png = os.path.join(d, "s.png")  # a scene file named .png: the one name that can be both
+    with open(scene_png, "w") as f:
+        f.write(xml.replace("</Scene>", "<textureimage>tex.png</textureimage></Scene>")
+                   .replace("</scene>", "<textureimage>tex.png</textureimage></scene>"))
+    os.symlink("s.png", os.path.join(d, "link.png"))
+    os.link(scene_png, os.path.join(d, "hard.png"))
+    os.symlink("tex.png", os.path.join(d, "texlink.png"))
+    before = {n: open(os.path.join(d, n), "rb").read() for n in ("s.png", "tex.png")}
+    for out in ("s.png", "./s.png", "link.png", "hard.png", os.path.join("..", "same", "s.png")):
+        r = subprocess.run([a.rayview, "render", "s.png", "-o", out, "--quiet"], capture_output=True, text=True,
+                           timeout=300, cwd=d)
+        check(r.returncode == 2 and "is the scene file s.png" in r.stderr,
+              f"-o {out} (the scene itself) exits 2 naming it: {r.stderr.strip()}")
+    for out in ("tex.png", "texlink.png"):
+        r = subprocess.run([a.rayview, "render", "s.png", "-o", out, "--quiet"], capture_output=True, text=True,
+                           timeout=300, cwd=d)
+        check(r.returncode == 2 and "is the scene's texture image" in r.stderr,
+              f"-o {out} (the texture image) exits 2 naming it: {r.stderr.strip()}")
+    for n, data in before.items():
+        check(open(os.path.join(d, n), "rb").read() == data, f"{n} is byte-identical afterwards")
+    check(not [n for n in os.listdir(d) if ".tmp-" in n], "no temporary file is left behind")
+
+
+# A quad under a triangular light at 1024 x 1024: with 4096 light samples a render takes minutes.
+SLOW_SCENE = """<scene>
+<maxraytracedepth>0</maxraytracedepth><background>0 0 0</background>
+<camera><position>0 0 0</position><gaze>0 0 -1</gaze><up>0 1 0</up><nearplane>-1 1 -1 1</nearplane>
+<neardistance>1</neardistance><imageresolution>1024 1024</imageresolution></camera>
+<lights><ambientlight>0 0 0</ambientlight><triangularlight id="1"><vertex1>-1 1 -1</vertex1>
+<vertex2>1 1 -1</vertex2><vertex3>0 1 -2</vertex3><intensity>100 100 100</intensity></triangularlight></lights>
+<materials><material id="1"><ambient>0 0 0</ambient><diffuse>1 1 1</diffuse><specular>0 0 0</specular>
+<phongexponent>1</phongexponent><mirrorreflectance>0 0 0</mirrorreflectance></material></materials>
+<vertexdata>-5 -1 0 5 -1 0 5 -1 -10 -5 -1 -10</vertexdata>
+<objects><mesh id="floor"><materialid>1</materialid><faces>1 2 3 1 3 4</faces></mesh></objects>
+</scene>
+"""
+
+
+def check_interrupted_render_leaves_output(a, scene):
+    """SIGINT or SIGTERM during a render: exit 130 / 143, the existing output byte-identical, no temporary
+    file left in the directory."""
+    d = os.path.join(a.scratch, "interrupt")
+    os.makedirs(d)
+    out = os.path.join(d, "out.png")
+    with open(out, "wb") as f:
+        f.write(b"the previous image")
+    slow = os.path.join(a.scratch, "slow.xml")  # outside d: d must hold only out.png
+    with open(slow, "w") as f:
+        f.write(SLOW_SCENE)
+    for sig, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+        p = subprocess.Popen([a.rayview, "render", slow, "-o", out, "--light-samples", "4096", "--threads", "1"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        time.sleep(1.5)
+        check(p.poll() is None, f"the slow render is still running after 1.5 s (before {sig.name})")
+        p.send_signal(sig)
+        p.wait(timeout=60)
+        print(f"  $ rayview render ... then {sig.name} -> exit {p.returncode}")
+        check(p.returncode == code, f"{sig.name} during the render exits {code}")
+        with open(out, "rb") as f:
+            check(f.read() == b"the previous image", f"after {sig.name} the old output is byte-identical")
+        check(os.listdir(d) == ["out.png"], f"after {sig.name} no temporary file remains")
 
 
 if __name__ == "__main__":

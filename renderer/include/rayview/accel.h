@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include <glm/vec3.hpp>
 
@@ -54,6 +55,18 @@ class Accel {
 // Progress in [0, 1]; return false to cancel the build (buildAccel then returns nullptr).
 using BuildProgress = bool (*)(void* user, double fraction);
 
+// Embree takes floats and refuses (asserts on, or silently drops the primitives of) anything beyond its
+// FLT_LARGE, 1.844e18: rayview never hands it a coordinate, relative to the accel's origin, above this
+// bound (docs/numerics.md, "What Embree can represent").
+inline constexpr double kEmbreeCoordinateLimit = 1e18;
+
+// Why Embree cannot trace `geometry` lit and seen as `parameters` say, with coordinates relative to `origin`
+// ("" when it can): a vertex, a light, the camera or its near plane, or a vertex pushed off by
+// <shadowrayepsilon> is beyond kEmbreeCoordinateLimit. Callers then choose the reference BVH.
+std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeometry& geometry,
+                               const glm::dvec3& origin);
+
+// The Embree back-end when asked for and the geometry is within Embree's range, else the reference BVH.
 std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                   BuildProgress progress = nullptr, void* progressUser = nullptr);
 

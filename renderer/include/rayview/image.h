@@ -38,4 +38,9 @@ bool isSupportedImageExtension(const std::filesystem::path& path);
 // Writes `bytes` to `path` whole (temporary file + rename). Throws ImageIoError.
 void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes);
 
+// The temporary file writeFileAtomically() is writing right now, or nullptr. Safe to call from a signal
+// handler (a lock-free atomic and a static buffer), which can remove the file before the process exits:
+// after the rename the name no longer exists, so removing it then does nothing.
+const char* temporaryFileInProgress();
+
 }  // namespace rayview

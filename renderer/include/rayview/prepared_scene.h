@@ -24,7 +24,8 @@ struct PreparedGeometry {
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const SceneGeometry> geometry,
                                                         const glm::dvec3& origin, AccelKind kind,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
-// The same for a loaded scene, relative to its camera; shares `scene` (no copy of its meshes).
+// The same for a loaded scene, relative to its camera; shares `scene` (no copy of its meshes). Embree is
+// used only when every ray of the scene stays in its range (embreeRangeProblem), else the reference BVH.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
 // Same, on a copy of the scene's geometry.

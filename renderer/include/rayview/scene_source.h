@@ -2,6 +2,7 @@
 // Where a scene comes from: a file the user named, or the embedded default (scenes/default.xml, compiled
 // in) when none was named.
 
+#include <filesystem>
 #include <string>
 #include <string_view>
 
@@ -15,5 +16,10 @@ std::string_view defaultSceneXml();
 
 // Throws SceneError (located) when the file cannot be read as a scene.
 LoadedScene loadSceneOrDefault(const std::string& path, const LoadOptions& options);
+
+// Why writing `output` would destroy an input ("" when it would not): it is the scene file `scenePath`, or
+// (once the scene is loaded) the texture image it read, by any path (hard link, symlink, ./).
+std::string outputOverwritesInput(const std::filesystem::path& output, const std::string& scenePath,
+                                  const Scene* loaded);
 
 }  // namespace rayview

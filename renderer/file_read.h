@@ -1,0 +1,42 @@
+#pragma once
+// Reading a file the user named (a scene, a texture image): never blocks, never reads past a limit, and
+// says what the file is when it is not what was expected (issue 9).
+
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <string_view>
+
+namespace rayview::detail {
+
+struct UserFileRead {
+  std::string bytes;    // the whole file when `problem` is empty
+  std::string problem;  // "" on success, else why not, to follow the file name: "is a directory", ...
+  bool notFound = false;
+};
+
+// How many bytes `checkStart` sees before the rest of the file is read.
+inline constexpr std::size_t kFileStartBytes = 64 * 1024;
+
+// Reads `path` whole. Refuses, without opening it for a blocking read, anything but a regular file (a
+// directory, a FIFO, a device, a socket): stat first, open with O_NONBLOCK, fstat the open descriptor and
+// check it is the same regular file. Refuses a file larger than `maxBytes` from its size before reading,
+// and stops reading at the limit should the file grow meanwhile. `checkStart`, when given, sees the first
+// bytes (at most kFileStartBytes) and can refuse the file before the rest is read by returning a problem.
+UserFileRead readUserFile(const std::filesystem::path& path, std::uintmax_t maxBytes,
+                          const std::function<std::string(std::string_view start)>& checkStart = {});
+
+// What a file's first bytes say it is when it cannot be the text of a scene: "is a PNG image, not a scene
+// file", "is UTF-16 text; save it as UTF-8". "" when it may be text (NUL bytes are the caller's check,
+// which can give their line).
+std::string binaryFileKind(std::string_view start);
+
+// "2.0 GiB", "512 MiB", "12 bytes": sizes as messages show them.
+std::string describeSize(std::uintmax_t bytes);
+
+// Are the two paths the same file (same device and inode; any spelling, hard link or symlink)? False when
+// either does not exist.
+bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b);
+
+}  // namespace rayview::detail

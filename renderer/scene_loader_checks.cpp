@@ -1,0 +1,169 @@
+// The scene loader's checks after the walk: material references, the face index base and ranges,
+// degenerate and repeated faces, the texture image.
+
+#include "scene_loader_internal.h"
+
+namespace rayview::scene_loading {
+
+void Loader::finish(const XMLElement* root) {
+  const int rootLine = root->GetLineNum();
+  if (cameraLine_ == 0) fail(rootLine, "no <camera> element");
+  if (!haveDepth_) warn(rootLine, "no <maxraytracedepth>: using 0 (no mirror reflections)");
+  if (!haveBackground_) warn(rootLine, "no <background>: using black (0 0 0)");
+  if (!haveAmbient_) warn(rootLine, "no <ambientlight>: using black (0 0 0)");
+
+  for (PendingMesh& mesh : meshes_) {
+    auto it = materialIndex_.find(mesh.materialId);
+    if (it == materialIndex_.end())
+      fail(mesh.materialIdLine, meshName(mesh) + ": material \"" + mesh.materialId + "\" is not defined" +
+                                    definedMaterials());
+  }
+  resolveIndices(rootLine);
+  loadTexture();
+}
+
+std::string Loader::definedMaterials() const {
+  const auto& materials = result_.scene.materials;
+  if (materials.empty()) return " (the file defines no materials)";
+  std::string list = " (defined:";
+  for (std::size_t i = 0; i < materials.size() && i < 8; ++i) list += " \"" + materials[i].id + "\"";
+  if (materials.size() > 8) list += " ...";
+  return list + ")";
+}
+
+// 1-based (the handout) unless the indices of a kind contain 0 and never reach the count (SPEC section 2).
+void Loader::resolveIndices(int rootLine) {
+  Scene& scene = result_.scene;
+  const std::int64_t counts[3] = {static_cast<std::int64_t>(scene.vertices.size()),
+                                  static_cast<std::int64_t>(scene.texCoords.size()),
+                                  static_cast<std::int64_t>(scene.normals.size())};
+  const IndexRange* ranges[3] = {&vertexRange_, &textureRange_, &normalRange_};
+  const char* kinds[3] = {"vertex", "texture", "normal"};
+  std::int64_t base[3] = {1, 1, 1};
+  std::string zeroBased;
+  int zeroLine = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (ranges[k]->any() && ranges[k]->min == 0 && ranges[k]->max < counts[k]) {
+      base[k] = 0;
+      zeroBased += zeroBased.empty() ? kinds[k] : std::string(", ") + kinds[k];
+      if (zeroLine == 0 || ranges[k]->firstZeroLine < zeroLine) zeroLine = ranges[k]->firstZeroLine;
+    }
+  }
+  if (!zeroBased.empty())
+    nonconforming(zeroLine ? zeroLine : rootLine,
+                  "face indices are 0-based (" + zeroBased + " indices include 0 and never reach the count); "
+                  "read as 0-based, the format's indices start at 1");
+
+  std::vector<Triangle>& triangles = scene.triangles;
+  std::size_t kept = 0;
+  for (std::uint32_t m = 0; m < meshes_.size(); ++m) {
+    PendingMesh& pending = meshes_[m];
+    const std::uint32_t material = materialIndex_.at(pending.materialId);
+    const std::uint32_t first = static_cast<std::uint32_t>(kept);
+    std::size_t degenerate = 0;
+    for (std::uint32_t i = 0; i < pending.triangleCount; ++i) {
+      Triangle t = triangles[pending.firstTriangle + i];
+      for (int c = 0; c < 3; ++c) {
+        const std::int64_t raw[3] = {t.vertex[c], t.texCoord[c], t.normal[c]};
+        for (int k = 0; k < 3; ++k) {
+          if (k > 0 && raw[k] < 0) continue;
+          const std::int64_t index = raw[k] - base[k];
+          if (index < 0 || index >= counts[k]) indexOutOfRange(pending, i * 3 + c, kinds[k], raw[k], base[k], counts[k]);
+        }
+        t.vertex[c] = static_cast<std::uint32_t>(raw[0] - base[0]);
+        if (raw[1] >= 0) t.texCoord[c] = static_cast<std::int32_t>(raw[1] - base[1]);
+        if (raw[2] >= 0) t.normal[c] = static_cast<std::int32_t>(raw[2] - base[2]);
+      }
+      if (isDegenerate(t)) {
+        ++degenerate;
+        continue;
+      }
+      t.material = material;
+      t.mesh = m;
+      triangles[kept++] = t;
+    }
+    if (degenerate > 0)
+      warn(pending.line, meshName(pending) + ": " + plural(degenerate, "degenerate triangle", "degenerate triangles") +
+                             " skipped (zero area or a repeated vertex)");
+    scene.meshes.push_back(Mesh{pending.id, material, first, static_cast<std::uint32_t>(kept - first)});
+  }
+  triangles.resize(kept);
+  triangles.shrink_to_fit();
+  warnAboutDuplicatedFaces();
+}
+
+// Faces listed twice (same three vertices, any order or winding) are coincident surfaces: which one a
+// ray sees is a tie, which rayview gives to the face listed first. Real files do this (a wall written once
+// as a mirror and once as a colour), and the picture then depends on that rule: say so.
+void Loader::warnAboutDuplicatedFaces() {
+  const std::vector<Triangle>& triangles = result_.scene.triangles;
+  std::vector<std::array<std::uint32_t, 4>> keys(triangles.size());  // sorted vertices, then the face index
+  for (std::uint32_t i = 0; i < triangles.size(); ++i) {
+    std::array<std::uint32_t, 4> key{triangles[i].vertex[0], triangles[i].vertex[1], triangles[i].vertex[2], i};
+    std::sort(key.begin(), key.begin() + 3);
+    keys[i] = key;
+  }
+  std::sort(keys.begin(), keys.end());
+  std::size_t repeats = 0;
+  std::uint32_t firstRepeat = 0;
+  for (std::size_t k = 1; k < keys.size(); ++k)
+    if (std::equal(keys[k].begin(), keys[k].begin() + 3, keys[k - 1].begin())) {
+      if (repeats == 0 || keys[k][3] < firstRepeat) firstRepeat = keys[k][3];
+      ++repeats;
+    }
+  if (repeats == 0) return;
+  const PendingMesh& mesh = meshes_[triangles[firstRepeat].mesh];
+  warn(mesh.line, plural(repeats, "face repeats", "faces repeat") +
+                      " the three vertices of an earlier face (the first in " + meshName(mesh) +
+                      "): coincident surfaces, where rayview shows the face listed first");
+}
+
+bool Loader::isDegenerate(const Triangle& t) const {
+  if (t.vertex[0] == t.vertex[1] || t.vertex[1] == t.vertex[2] || t.vertex[0] == t.vertex[2]) return true;
+  const auto& v = result_.scene.vertices;
+  const glm::dvec3 n = glm::cross(v[t.vertex[1]] - v[t.vertex[0]], v[t.vertex[2]] - v[t.vertex[0]]);
+  if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return true;
+  return n.x == 0.0 && n.y == 0.0 && n.z == 0.0;
+}
+
+// Finds the line of the corner-th index token of the mesh's <faces> (only on this error path).
+void Loader::indexOutOfRange(const PendingMesh& mesh, std::size_t corner, const char* kind, std::int64_t raw,
+                                  std::int64_t base, std::int64_t count) {
+  int line = mesh.faces->GetLineNum();
+  std::size_t seen = 0;
+  for (const Piece& piece : textOf(mesh.faces)) {
+    detail::TokenScanner scanner(piece.text);
+    for (std::string_view token = scanner.nextToken(); !token.empty(); token = scanner.nextToken())
+      if (seen++ == corner) {
+        line = lineIn(piece, token.data());
+        goto found;
+      }
+  }
+found:
+  const char* data = kind[0] == 'v' ? "vertices" : (kind[0] == 't' ? "<texturedata> coordinates" : "<normaldata> normals");
+  std::string range = count == 0 ? std::string("the file has no ") + data
+                                 : "the file has " + std::to_string(count) + " " + data + ", indices " +
+                                       std::to_string(base) + ".." + std::to_string(count - 1 + base) +
+                                       (base == 0 ? ", read as 0-based" : "");
+  fail(line, meshName(mesh) + ": " + kind + " index " + std::to_string(raw) + " is out of range (" + range + ")");
+}
+
+void Loader::loadTexture() {
+  Scene& scene = result_.scene;
+  if (scene.textureImage.empty() || !options_.loadTexture) return;
+  std::string tried;
+  std::string lastReason;
+  for (const fs::path& candidate : detail::textureCandidates(baseDirectory_, scene.textureImage)) {
+    std::string reason;
+    if (auto texture = detail::readTextureImage(candidate, reason)) {
+      scene.texture = std::move(*texture);
+      return;
+    }
+    if (reason != "not found") lastReason = candidate.string() + ": " + reason + "; ";
+    tried += (tried.empty() ? "" : ", ") + candidate.string();
+  }
+  warn(textureImageLine_, "texture image \"" + scene.textureImage + "\" could not be read (" + lastReason +
+                              "tried " + tried + "); rendering without the texture");
+}
+
+}  // namespace rayview::scene_loading

@@ -1,0 +1,309 @@
+#pragma once
+// What the scene loader's files share (private to renderer/): the element names, the pieces of text and
+// pending meshes the walk collects, and the Loader class whose members are defined in three files:
+//   scene_loader_elements.cpp  tolerant element readers (messages, names, numbers, text)
+//   scene_loader_walk.cpp      the element walk that fills Scene
+//   scene_loader_checks.cpp    checks after the walk: materials, index base and ranges, the texture
+
+#include "rayview/scene_loader.h"
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <cfloat>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <string_view>
+#include <unordered_map>
+
+#include <glm/geometric.hpp>
+#include <tinyxml2.h>
+
+#include "number_list.h"
+#include "rayview/accel.h"
+#include "texture_image.h"
+#include "xml_repair.h"
+
+namespace rayview::scene_loading {
+
+namespace fs = std::filesystem;
+using detail::NumberStatus;
+using tinyxml2::XMLElement;
+using tinyxml2::XMLNode;
+
+// --- limits (SPEC section 2: refuse up front what cannot fit) ---
+constexpr std::int64_t kMaxRayDepthLimit = kMaxRayDepth;  // the depth's one limit (scene.h)
+// 16384 x 16384: with a 16-byte-per-pixel accumulation buffer this is a 4 GiB framebuffer.
+constexpr std::int64_t kMaxImagePixels = 1LL << 28;
+constexpr std::uintmax_t kMaxFileBytes = (1ULL << 31) - 1;  // tinyxml2 and line numbers use int
+
+// --- element names ---
+enum class Tag {
+  Unknown, Scene, MaxRayTraceDepth, Background, ShadowRayEpsilon, Camera, Position, Gaze, Up, NearPlane,
+  NearDistance, ImageResolution, Lights, AmbientLight, PointLight, Intensity, TriangularLight, Vertex1,
+  Vertex2, Vertex3, Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
+  TextureFactor, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
+  Count
+};
+
+struct TagName {
+  std::string_view name;
+  Tag tag;
+};
+
+inline constexpr TagName kTagNames[] = {
+    {"scene", Tag::Scene}, {"maxraytracedepth", Tag::MaxRayTraceDepth}, {"background", Tag::Background},
+    {"shadowrayepsilon", Tag::ShadowRayEpsilon}, {"camera", Tag::Camera}, {"position", Tag::Position},
+    {"gaze", Tag::Gaze}, {"up", Tag::Up}, {"nearplane", Tag::NearPlane}, {"neardistance", Tag::NearDistance},
+    {"imageresolution", Tag::ImageResolution}, {"lights", Tag::Lights}, {"ambientlight", Tag::AmbientLight},
+    {"pointlight", Tag::PointLight}, {"intensity", Tag::Intensity}, {"triangularlight", Tag::TriangularLight},
+    {"vertex1", Tag::Vertex1}, {"vertex2", Tag::Vertex2}, {"vertex3", Tag::Vertex3},
+    {"materials", Tag::Materials}, {"material", Tag::Material}, {"ambient", Tag::Ambient},
+    {"diffuse", Tag::Diffuse}, {"specular", Tag::Specular}, {"phongexponent", Tag::PhongExponent},
+    {"mirrorreflectance", Tag::MirrorReflectance}, {"texturefactor", Tag::TextureFactor},
+    {"vertexdata", Tag::VertexData}, {"texturedata", Tag::TextureData}, {"normaldata", Tag::NormalData},
+    {"textureimage", Tag::TextureImage}, {"objects", Tag::Objects}, {"mesh", Tag::Mesh},
+    {"materialid", Tag::MaterialId}, {"faces", Tag::Faces},
+};
+
+inline std::string toLower(std::string_view s) {
+  std::string out(s);
+  for (char& c : out)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  return out;
+}
+
+inline std::string_view tagName(Tag tag) {
+  for (const TagName& t : kTagNames)
+    if (t.tag == tag) return t.name;
+  return "?";
+}
+
+// A token as it appears in a message: quoted, shortened.
+inline std::string quoted(std::string_view token) {
+  constexpr std::size_t kMax = 32;
+  std::string out = "'";
+  out.append(token.substr(0, kMax));
+  if (token.size() > kMax) out += "...";
+  return out + "'";
+}
+
+inline std::string plural(std::size_t n, const char* one, const char* many) {
+  return std::to_string(n) + " " + (n == 1 ? one : many);
+}
+
+// The text of an element, in pieces (text nodes split by comments), each with its line.
+struct Piece {
+  std::string_view text;
+  int line;  // tinyxml2 reports a text node at its first non-space character
+};
+
+struct FaceCorner {
+  std::int64_t v, t, n;  // -1 when absent
+};
+
+struct PendingMesh {
+  std::string id;
+  int line = 0;
+  std::string materialId;
+  int materialIdLine = 0;
+  const XMLElement* faces = nullptr;
+  std::uint32_t firstTriangle = 0;
+  std::uint32_t triangleCount = 0;
+};
+
+struct IndexRange {
+  std::int64_t min = INT64_MAX, max = -1;
+  int firstZeroLine = 0;
+  void add(std::int64_t i, int line) {
+    if (i < 0) return;
+    if (i == 0 && min != 0) firstZeroLine = line;
+    min = std::min(min, i);
+    max = std::max(max, i);
+  }
+  bool any() const { return max >= 0; }
+};
+
+// The loader's warnings and how often each was met: one owner for both, so a warning can only be added
+// with its count (issue 9: repair messages once reached the list but not the counts, and a repeated
+// warning then wrote past the end of the counts). The same message again is counted, not listed.
+class WarningList {
+ public:
+  void add(Diagnostic diagnostic);
+  // The warnings sorted by line, each repeated one with "(N times; the first is shown)".
+  std::vector<Diagnostic> take();
+
+ private:
+  struct Entry {
+    Diagnostic diagnostic;
+    std::size_t count = 1;
+  };
+  std::vector<Entry> entries_;
+  std::unordered_map<std::string, std::size_t> index_;  // message -> entry
+};
+
+// Throws, naming what the file is, when `text` is binary or not UTF-8/ASCII (see file_read.h).
+void refuseWhatIsNotText(const std::string& file, std::string_view text);
+
+class Loader {
+ public:
+  Loader(const std::string& file, fs::path baseDirectory, const LoadOptions& options)
+      : file_(file), baseDirectory_(std::move(baseDirectory)), options_(options) {}
+
+  LoadedScene load(std::string_view text);
+
+ private:
+  // ---------------------------------------------------------------- messages
+  [[noreturn]] void fail(int line, const std::string& message) { throwSceneError({file_, line}, message); }
+
+  // Warnings with the same text are reported once, at the first line, with a count.
+  void warn(int line, const std::string& message);
+
+  // Something the format does not allow but that we can read anyway: an error in strict mode.
+  void nonconforming(int line, const std::string& message);
+
+  // `text` is the file as read, for what an empty document really was.
+  void xmlError(const tinyxml2::XMLDocument& doc, std::string_view text);
+
+  // Built with append: GCC 12 warns (-Wrestrict, a false positive) on "<" + std::string(...).
+  static std::string elementName(const XMLElement* e);
+
+  // ---------------------------------------------------------------- names
+  static bool isName(const XMLElement* e, std::string_view lowercase);
+
+  // The element's tag, after case folding and aliases (an alias is reported once per spelling).
+  Tag identify(const XMLElement* e);
+
+  void unknownElement(const XMLElement* e, const std::string& where);
+
+  void strayText(const tinyxml2::XMLText* text);
+
+  // Calls `onElement(child, tag)` for each child element, warning about text and (through the callback
+  // returning false) unexpected elements. Checks that single-valued children appear once.
+  template <class F>
+  void forEachChild(const XMLElement* parent, const std::string& where, F&& onElement) {
+    int seen[static_cast<int>(Tag::Count)] = {};
+    for (const XMLNode* node = parent->FirstChild(); node; node = node->NextSibling()) {
+      if (const tinyxml2::XMLText* text = node->ToText()) {
+        strayText(text);
+        continue;
+      }
+      const XMLElement* child = node->ToElement();
+      if (!child) continue;  // comments, declarations
+      const Tag tag = identify(child);
+      if (tag == Tag::Unknown) {
+        unknownElement(child, where);
+        continue;
+      }
+      const bool repeatable = tag == Tag::PointLight || tag == Tag::TriangularLight || tag == Tag::Material ||
+                              tag == Tag::Mesh || tag == Tag::Lights || tag == Tag::Materials || tag == Tag::Objects;
+      int& first = seen[static_cast<int>(tag)];
+      if (first != 0 && !repeatable)
+        fail(child->GetLineNum(), "duplicate " + elementName(child) + " " + where + " (the first is at line " +
+                                      std::to_string(first) + ")");
+      if (first == 0) first = child->GetLineNum();
+      if (!onElement(child, tag)) unknownElement(child, where);
+    }
+  }
+
+  // ---------------------------------------------------------------- text and numbers
+  std::vector<Piece> textOf(const XMLElement* e);
+
+  static int lineIn(const Piece& piece, const char* p);
+
+  // Reads every number of an element into `out` (appending). `asFloat` also refuses values beyond float.
+  void readNumbers(const XMLElement* e, std::vector<double>& out, bool asFloat);
+
+  // Exactly `count` finite numbers.
+  void readFixed(const XMLElement* e, std::size_t count, double* values, bool asFloat);
+
+  glm::dvec3 readPoint(const XMLElement* e);
+  Color readColor(const XMLElement* e);
+  double readScalar(const XMLElement* e, bool asFloat);
+
+  // Exactly `count` integers; `what` describes them for the message ("a non-negative integer").
+  void readIntegers(const XMLElement* e, std::size_t count, std::int64_t* values, std::int64_t minimum,
+                    const std::string& what);
+
+  std::string attribute(const XMLElement* e, std::string_view name);
+  bool hasAttribute(const XMLElement* e, std::string_view name);
+
+  std::string trimmedText(const XMLElement* e);
+
+  // ---------------------------------------------------------------- the METU CENG477 format
+  void detectCeng477(const XMLElement* root);
+
+  // ---------------------------------------------------------------- the scene
+  void readScene(const XMLElement* root);
+
+  void readCamera(const XMLElement* cameraElement);
+
+  static std::string trimmedNumber(double v);
+
+  void readLights(const XMLElement* lights);
+
+  // <pointlight id="1"> as written, for messages.
+  std::string describe(const XMLElement* e);
+
+  void readMaterials(const XMLElement* materials);
+
+  // ---------------------------------------------------------------- geometry
+  // Numbers of a big block straight into `out`, `stride` per item.
+  void readBlock(const XMLElement* e, std::size_t stride, const char* itemName, std::vector<double>& numbers,
+                 bool asFloat);
+
+  void readVertices(const XMLElement* e);
+  void readTexCoords(const XMLElement* e);
+  void readNormals(const XMLElement* e);
+
+  void readObjects(const XMLElement* objects);
+
+  std::string meshName(const PendingMesh& mesh) const;
+
+  // Face tokens: v, v/t, v//n or v/t/n; stored raw (file numbering) until the index base is known.
+  void readFaces(PendingMesh& mesh);
+
+  static bool parseIndex(const char*& p, const char* end, std::int64_t& value);
+
+  static bool parseCorner(std::string_view token, FaceCorner& corner);
+
+  // ---------------------------------------------------------------- after the walk
+  void finish(const XMLElement* root);
+
+  std::string definedMaterials() const;
+
+  // 1-based (the handout) unless the indices of a kind contain 0 and never reach the count (SPEC section 2).
+  void resolveIndices(int rootLine);
+
+  // Faces listed twice (same three vertices, any order or winding) are coincident surfaces: which one a
+  // ray sees is a tie, which rayview gives to the face listed first. Real files do this (a wall written once
+  // as a mirror and once as a colour), and the picture then depends on that rule: say so.
+  void warnAboutDuplicatedFaces();
+
+  bool isDegenerate(const Triangle& t) const;
+
+  // Finds the line of the corner-th index token of the mesh's <faces> (only on this error path).
+  [[noreturn]] void indexOutOfRange(const PendingMesh& mesh, std::size_t corner, const char* kind, std::int64_t raw,
+                                    std::int64_t base, std::int64_t count);
+
+  void loadTexture();
+
+  const std::string& file_;
+  fs::path baseDirectory_;
+  LoadOptions options_;
+  LoadedScene result_;
+  WarningList warnings_;
+
+  bool haveDepth_ = false, haveBackground_ = false, haveAmbient_ = false;
+  int cameraLine_ = 0;
+  int textureImageLine_ = 0;
+  std::unordered_map<std::string, int> materialLines_;
+  std::unordered_map<std::string, std::uint32_t> materialIndex_;
+  std::vector<PendingMesh> meshes_;
+  IndexRange vertexRange_, textureRange_, normalRange_;
+};
+
+}  // namespace rayview::scene_loading

@@ -1,0 +1,355 @@
+// The scene loader's element walk: <scene> and its children into Scene, faces kept in file numbering
+// until the checks after the walk (scene_loader_checks.cpp) know the index base.
+
+#include "scene_loader_internal.h"
+
+namespace rayview::scene_loading {
+
+void Loader::detectCeng477(const XMLElement* root) {
+  if (!isName(root, "scene")) return;
+  for (const XMLElement* child = root->FirstChildElement(); child; child = child->NextSiblingElement())
+    if (isName(child, "cameras"))
+      fail(child->GetLineNum(),
+           "this looks like a METU CENG477 scene (<Cameras>, <MaxRecursionDepth>, <AmbientReflectance>...), not the "
+           "CSE 461 PA1 format: it has <" + std::string(child->Name()) + "> where the format has one <camera>; "
+           "convert it to the CSE 461 format first");
+}
+
+void Loader::readScene(const XMLElement* root) {
+  Scene& scene = result_.scene;
+  forEachChild(root, "inside <scene>", [&](const XMLElement* e, Tag tag) {
+    switch (tag) {
+      case Tag::MaxRayTraceDepth: {
+        std::int64_t depth = 0;
+        readIntegers(e, 1, &depth, 0, "a non-negative integer");
+        if (depth > kMaxRayDepthLimit)
+          fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(depth) + " is above the limit of " +
+                                    std::to_string(kMaxRayDepthLimit));
+        scene.maxRayDepth = static_cast<int>(depth);
+        haveDepth_ = true;
+        return true;
+      }
+      case Tag::Background:
+        scene.background = readColor(e);
+        haveBackground_ = true;
+        return true;
+      case Tag::ShadowRayEpsilon: {
+        double epsilon = readScalar(e, false);
+        if (epsilon < 0.0) fail(e->GetLineNum(), elementName(e) + ": must be >= 0, found " + trimmedText(e));
+        // Larger than any distance rayview traces (Embree's coordinates stop at kEmbreeCoordinateLimit):
+        // such an epsilon is a typo, and would push every shadow ray out of range.
+        if (epsilon > kEmbreeCoordinateLimit)
+          fail(e->GetLineNum(), elementName(e) + ": " + trimmedText(e) + " is larger than any distance rayview can trace "
+                                "(the limit is 1e18)");
+        scene.shadowRayEpsilon = epsilon;
+        return true;
+      }
+      case Tag::Camera: readCamera(e); return true;
+      case Tag::Lights: readLights(e); return true;
+      case Tag::Materials: readMaterials(e); return true;
+      case Tag::VertexData: readVertices(e); return true;
+      case Tag::TextureData: readTexCoords(e); return true;
+      case Tag::NormalData: readNormals(e); return true;
+      case Tag::TextureImage:
+        scene.textureImage = trimmedText(e);
+        textureImageLine_ = e->GetLineNum();
+        return true;
+      case Tag::Objects: readObjects(e); return true;
+      default: return false;
+    }
+  });
+}
+
+void Loader::readCamera(const XMLElement* cameraElement) {
+  Camera& camera = result_.scene.camera;
+  const int line = cameraElement->GetLineNum();
+  cameraLine_ = line;
+  unsigned have = 0;
+  auto bit = [](Tag t) { return 1u << (static_cast<unsigned>(t) - static_cast<unsigned>(Tag::Position)); };
+  forEachChild(cameraElement, "inside <camera>", [&](const XMLElement* e, Tag tag) {
+    switch (tag) {
+      case Tag::Position: camera.position = readPoint(e); break;
+      case Tag::Gaze: camera.gaze = readPoint(e); break;
+      case Tag::Up: camera.up = readPoint(e); break;
+      case Tag::NearPlane: {
+        double v[4];
+        readFixed(e, 4, v, false);
+        camera.left = v[0], camera.right = v[1], camera.bottom = v[2], camera.top = v[3];
+        break;
+      }
+      case Tag::NearDistance: camera.nearDistance = readScalar(e, false); break;
+      case Tag::ImageResolution: {
+        std::int64_t v[2];
+        readIntegers(e, 2, v, INT64_MIN, "2 integers (nx ny)");
+        if (v[0] > 0 && v[1] > 0 && (v[0] > kMaxImagePixels || v[1] > kMaxImagePixels || v[0] * v[1] > kMaxImagePixels))
+          fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(v[0]) + " x " + std::to_string(v[1]) +
+                                    " pixels is too large (the limit is " + std::to_string(kMaxImagePixels) +
+                                    " pixels, 16384 x 16384)");
+        camera.width = static_cast<int>(std::clamp<std::int64_t>(v[0], INT32_MIN, INT32_MAX));
+        camera.height = static_cast<int>(std::clamp<std::int64_t>(v[1], INT32_MIN, INT32_MAX));
+        break;
+      }
+      default: return false;
+    }
+    have |= bit(tag);
+    return true;
+  });
+  for (Tag t : {Tag::Position, Tag::Gaze, Tag::Up, Tag::NearPlane, Tag::NearDistance, Tag::ImageResolution})
+    if (!(have & bit(t))) fail(line, "<camera> has no <" + std::string(tagName(t)) + ">");
+
+  // SPEC section 3: a camera that cannot make an image.
+  if (glm::length(camera.gaze) == 0.0) fail(line, "camera: <gaze> is the zero vector");
+  if (glm::length(camera.up) == 0.0) fail(line, "camera: <up> is the zero vector");
+  const glm::dvec3 side = glm::cross(glm::normalize(camera.gaze), glm::normalize(camera.up));
+  if (!(glm::length(side) > 1e-9)) fail(line, "camera: <up> is parallel to <gaze>");
+  if (camera.left == camera.right)
+    fail(line, "camera: <nearplane> left and right are equal (" + trimmedNumber(camera.left) + "), the image has no width");
+  if (camera.bottom == camera.top)
+    fail(line, "camera: <nearplane> bottom and top are equal (" + trimmedNumber(camera.bottom) + "), the image has no height");
+  if (!(camera.nearDistance > 0.0))
+    fail(line, "camera: <neardistance> must be positive, found " + trimmedNumber(camera.nearDistance));
+  if (camera.width <= 0 || camera.height <= 0)
+    fail(line, "camera: <imageresolution> must be positive, found " + std::to_string(camera.width) + " x " +
+                   std::to_string(camera.height));
+}
+
+void Loader::readLights(const XMLElement* lights) {
+  Scene& scene = result_.scene;
+  forEachChild(lights, "inside <lights>", [&](const XMLElement* e, Tag tag) {
+    switch (tag) {
+      case Tag::AmbientLight:
+        scene.ambientLight = readColor(e);
+        haveAmbient_ = true;
+        return true;
+      case Tag::PointLight: {
+        PointLight light;
+        light.id = attribute(e, "id");
+        bool position = false, intensity = false;
+        forEachChild(e, "inside " + elementName(e), [&](const XMLElement* c, Tag t) {
+          if (t == Tag::Position) light.position = readPoint(c), position = true;
+          else if (t == Tag::Intensity) light.intensity = readColor(c), intensity = true;
+          else return false;
+          return true;
+        });
+        if (!position) fail(e->GetLineNum(), describe(e) + " has no <position>");
+        if (!intensity) fail(e->GetLineNum(), describe(e) + " has no <intensity>");
+        scene.pointLights.push_back(std::move(light));
+        return true;
+      }
+      case Tag::TriangularLight: {
+        TriangularLight light;
+        light.id = attribute(e, "id");
+        unsigned have = 0;
+        forEachChild(e, "inside " + elementName(e), [&](const XMLElement* c, Tag t) {
+          if (t == Tag::Vertex1) light.vertex1 = readPoint(c), have |= 1;
+          else if (t == Tag::Vertex2) light.vertex2 = readPoint(c), have |= 2;
+          else if (t == Tag::Vertex3) light.vertex3 = readPoint(c), have |= 4;
+          else if (t == Tag::Intensity) light.intensity = readColor(c), have |= 8;
+          else return false;
+          return true;
+        });
+        const char* names[] = {"<vertex1>", "<vertex2>", "<vertex3>", "<intensity>"};
+        for (int i = 0; i < 4; ++i)
+          if (!(have & (1u << i))) fail(e->GetLineNum(), describe(e) + " has no " + names[i]);
+        scene.triangularLights.push_back(std::move(light));
+        return true;
+      }
+      default: return false;
+    }
+  });
+}
+
+void Loader::readMaterials(const XMLElement* materials) {
+  Scene& scene = result_.scene;
+  forEachChild(materials, "inside <materials>", [&](const XMLElement* e, Tag tag) {
+    if (tag != Tag::Material) return false;
+    if (!hasAttribute(e, "id")) fail(e->GetLineNum(), elementName(e) + " has no id attribute");
+    Material material;
+    material.id = attribute(e, "id");
+    auto [it, inserted] = materialLines_.emplace(material.id, e->GetLineNum());
+    if (!inserted)
+      fail(e->GetLineNum(), "duplicate material id \"" + material.id + "\" (the first is at line " +
+                                std::to_string(it->second) + ")");
+    unsigned have = 0;
+    forEachChild(e, "inside " + elementName(e), [&](const XMLElement* c, Tag t) {
+      switch (t) {
+        case Tag::Ambient: material.ambient = readColor(c), have |= 1; break;
+        case Tag::Diffuse: material.diffuse = readColor(c), have |= 2; break;
+        case Tag::Specular: material.specular = readColor(c), have |= 4; break;
+        case Tag::PhongExponent: {
+          double p = readScalar(c, true);
+          if (p < 0.0) fail(c->GetLineNum(), elementName(c) + ": must be >= 0, found " + trimmedText(c));
+          material.phongExponent = static_cast<float>(p);
+          have |= 8;
+          break;
+        }
+        case Tag::MirrorReflectance: material.mirror = readColor(c), have |= 16; break;
+        case Tag::TextureFactor: material.textureFactor = static_cast<float>(readScalar(c, true)); break;
+        default: return false;
+      }
+      return true;
+    });
+    const char* names[] = {"<ambient>", "<diffuse>", "<specular>", "<phongexponent>"};
+    for (int i = 0; i < 4; ++i)
+      if (!(have & (1u << i))) fail(e->GetLineNum(), describe(e) + " has no " + names[i]);
+    if (!(have & 16))
+      warn(e->GetLineNum(), describe(e) + " has no <mirrorreflectance>; using 0 0 0 (not a mirror)");
+    materialIndex_.emplace(material.id, static_cast<std::uint32_t>(scene.materials.size()));
+    scene.materials.push_back(std::move(material));
+    return true;
+  });
+}
+
+// Numbers of a big block straight into `out`, `stride` per item.
+void Loader::readBlock(const XMLElement* e, std::size_t stride, const char* itemName, std::vector<double>& numbers,
+               bool asFloat) {
+  numbers.clear();
+  std::size_t textSize = 0;
+  for (const XMLNode* node = e->FirstChild(); node; node = node->NextSibling())
+    if (node->ToText()) textSize += std::strlen(node->Value());
+  numbers.reserve(textSize / 8 + 16);
+  readNumbers(e, numbers, asFloat);
+  if (numbers.size() % stride != 0)
+    fail(e->GetLineNum(), elementName(e) + ": expected " + std::to_string(stride) + " numbers per " + itemName +
+                              ", found " + std::to_string(numbers.size()) + " numbers (not a multiple of " +
+                              std::to_string(stride) + ")");
+  if (numbers.size() / stride > static_cast<std::size_t>(INT32_MAX))
+    fail(e->GetLineNum(), elementName(e) + ": too many " + itemName + "s");
+}
+
+void Loader::readVertices(const XMLElement* e) {
+  std::vector<double> numbers;
+  readBlock(e, 3, "vertex", numbers, false);
+  auto& vertices = result_.scene.vertices;
+  vertices.resize(numbers.size() / 3);
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    vertices[i] = glm::dvec3(numbers[3 * i], numbers[3 * i + 1], numbers[3 * i + 2]);
+}
+
+void Loader::readTexCoords(const XMLElement* e) {
+  std::vector<double> numbers;
+  readBlock(e, 2, "texture coordinate", numbers, true);
+  auto& uvs = result_.scene.texCoords;
+  uvs.resize(numbers.size() / 2);
+  for (std::size_t i = 0; i < uvs.size(); ++i)
+    uvs[i] = glm::vec2(static_cast<float>(numbers[2 * i]), static_cast<float>(numbers[2 * i + 1]));
+}
+
+void Loader::readNormals(const XMLElement* e) {
+  std::vector<double> numbers;
+  readBlock(e, 3, "normal", numbers, true);
+  auto& normals = result_.scene.normals;
+  normals.resize(numbers.size() / 3);
+  for (std::size_t i = 0; i < normals.size(); ++i)
+    normals[i] = glm::vec3(static_cast<float>(numbers[3 * i]), static_cast<float>(numbers[3 * i + 1]),
+                           static_cast<float>(numbers[3 * i + 2]));
+}
+
+void Loader::readObjects(const XMLElement* objects) {
+  forEachChild(objects, "inside <objects>", [&](const XMLElement* e, Tag tag) {
+    if (tag != Tag::Mesh) return false;
+    PendingMesh mesh;
+    mesh.id = attribute(e, "id");
+    mesh.line = e->GetLineNum();
+    bool haveMaterial = false;
+    forEachChild(e, "inside " + elementName(e), [&](const XMLElement* c, Tag t) {
+      if (t == Tag::MaterialId) {
+        mesh.materialId = trimmedText(c);
+        mesh.materialIdLine = c->GetLineNum();
+        haveMaterial = true;
+      } else if (t == Tag::Faces) {
+        mesh.faces = c;
+      } else {
+        return false;
+      }
+      return true;
+    });
+    if (!haveMaterial) fail(mesh.line, describe(e) + " has no <materialid>");
+    if (!mesh.faces) fail(mesh.line, describe(e) + " has no <faces>");
+    readFaces(mesh);
+    meshes_.push_back(std::move(mesh));
+    return true;
+  });
+}
+
+std::string Loader::meshName(const PendingMesh& mesh) const { return "mesh \"" + mesh.id + "\""; }
+
+// Face tokens: v, v/t, v//n or v/t/n; stored raw (file numbering) until the index base is known.
+void Loader::readFaces(PendingMesh& mesh) {
+  const XMLElement* e = mesh.faces;
+  std::vector<Triangle>& triangles = result_.scene.triangles;
+  if (triangles.size() > static_cast<std::size_t>(UINT32_MAX / 2))
+    fail(e->GetLineNum(), "too many triangles");
+  mesh.firstTriangle = static_cast<std::uint32_t>(triangles.size());
+  const std::vector<Piece> pieces = textOf(e);
+  std::size_t textSize = 0;
+  for (const Piece& piece : pieces) textSize += piece.text.size();
+  triangles.reserve(triangles.size() + textSize / 8 + 1);
+
+  FaceCorner corners[3];
+  int cornerCount = 0;
+  std::size_t indexCount = 0;
+  for (const Piece& piece : pieces) {
+    detail::TokenScanner scanner(piece.text);
+    for (std::string_view token = scanner.nextToken(); !token.empty(); token = scanner.nextToken()) {
+      FaceCorner& corner = corners[cornerCount];
+      if (!parseCorner(token, corner)) {
+        const int line = lineIn(piece, token.data());
+        if (token.find_first_not_of("+-0123456789/") == std::string_view::npos && token.find('-') != token.npos)
+          fail(line, meshName(mesh) + ": " + elementName(e) + ": face indices must be positive, found " + quoted(token));
+        fail(line, meshName(mesh) + ": " + elementName(e) + ": expected a vertex index (v, v/t, v//n or v/t/n), found " +
+                       quoted(token));
+      }
+      ++indexCount;
+      if (++cornerCount < 3) continue;
+      cornerCount = 0;
+      if ((corners[0].t < 0) != (corners[1].t < 0) || (corners[0].t < 0) != (corners[2].t < 0) ||
+          (corners[0].n < 0) != (corners[1].n < 0) || (corners[0].n < 0) != (corners[2].n < 0))
+        fail(lineIn(piece, token.data()), meshName(mesh) + ": a face mixes index forms (v, v/t, v//n, v/t/n) in " +
+                                              "its three corners; the last one is " + quoted(token));
+      Triangle triangle;
+      for (int k = 0; k < 3; ++k) {
+        triangle.vertex[k] = static_cast<std::uint32_t>(corners[k].v);
+        triangle.texCoord[k] = static_cast<std::int32_t>(corners[k].t);
+        triangle.normal[k] = static_cast<std::int32_t>(corners[k].n);
+      }
+      const bool needLine = corners[0].v == 0 || corners[1].v == 0 || corners[2].v == 0 || corners[0].t == 0 ||
+                            corners[1].t == 0 || corners[2].t == 0 || corners[0].n == 0 ||
+                            corners[1].n == 0 || corners[2].n == 0;
+      const int line = needLine ? lineIn(piece, token.data()) : 0;
+      for (int k = 0; k < 3; ++k) {
+        vertexRange_.add(corners[k].v, line);
+        textureRange_.add(corners[k].t, line);
+        normalRange_.add(corners[k].n, line);
+      }
+      triangles.push_back(triangle);
+    }
+  }
+  if (cornerCount != 0)
+    fail(e->GetLineNum(), meshName(mesh) + ": " + elementName(e) + " has " + std::to_string(indexCount) +
+                              " vertex indices, not a multiple of 3");
+  mesh.triangleCount = static_cast<std::uint32_t>(triangles.size() - mesh.firstTriangle);
+}
+
+bool Loader::parseIndex(const char*& p, const char* end, std::int64_t& value) {
+  auto [ptr, ec] = std::from_chars(p, end, value);
+  if (ptr == p || ec != std::errc() || value < 0 || value > INT32_MAX) return false;
+  p = ptr;
+  return true;
+}
+
+bool Loader::parseCorner(std::string_view token, FaceCorner& corner) {
+  const char* p = token.data();
+  const char* end = p + token.size();
+  corner = {-1, -1, -1};
+  if (!parseIndex(p, end, corner.v)) return false;
+  if (p == end) return true;
+  if (*p++ != '/') return false;
+  if (p < end && *p != '/' && !parseIndex(p, end, corner.t)) return false;
+  if (p == end) return corner.t >= 0;  // "v/" is not a form
+  if (*p++ != '/') return false;
+  if (!parseIndex(p, end, corner.n)) return false;
+  return p == end;
+}
+
+}  // namespace rayview::scene_loading
