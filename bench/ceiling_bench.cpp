@@ -13,8 +13,8 @@
 // Embree (camera ray per pixel; at each hit one shadow ray toward each point light and toward each
 // triangular light's centroid when the light can add something there, as rayview skips the others; a
 // reflection ray at mirror materials up to the scene's <maxraytracedepth>) and records those rays. Its
-// counts are printed ("generated"). They differ a little from rayview's (rayview decides with interpolated
-// normals, the generator with the geometric one), so the timed passes cast exactly rayview's count of each
+// counts are printed ("generated"). They differ a little from rayview's (float hit points and normals, no
+// texture, lights skipped by a simpler test), so the timed passes cast exactly rayview's count of each
 // kind: ray k of N is recorded ray floor(k * M / N) of the M generated, an even thinning or repetition over
 // the whole image that keeps the recorded (tile) order. Shadow and reflection rays are cast from memory,
 // so their generation and all shading are outside the Embree time: that is what makes it a ceiling.
@@ -147,11 +147,12 @@ class WhittedGenerator {
     basis_ = cameraBasis(scene.camera);
     origin_ = scene.camera.position;
     for (const PointLight& light : scene.pointLights)
-      if (light.intensity != Color(0.0f)) lights_.push_back({light.position - origin_, {0, 0, 0}, false});
+      if (light.intensity != Color(0.0f)) lights_.push_back({light.position - origin_, {0, 0, 0}, false, light.intensity});
     for (const TriangularLight& light : scene.triangularLights) {
       const glm::dvec3 n = glm::cross(light.vertex1 - light.vertex2, light.vertex1 - light.vertex3);
       if (!(glm::length(n) > 0.0) || light.intensity == Color(0.0f)) continue;
-      lights_.push_back({(light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - origin_, glm::normalize(n), true});
+      lights_.push_back(
+          {(light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - origin_, glm::normalize(n), true, light.intensity});
     }
   }
 
@@ -165,6 +166,7 @@ class WhittedGenerator {
     glm::dvec3 position;  // relative to the camera
     glm::dvec3 normal;    // triangular lights: the side the light leaves
     bool triangular;
+    Color intensity;
   };
 
   void trace(const RTCRay& ray, int depth, RecordedRays& out) const {
@@ -175,23 +177,38 @@ class WhittedGenerator {
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return;
     const glm::dvec3 d = glm::normalize(glm::dvec3(ray.dir_x, ray.dir_y, ray.dir_z));
     const glm::dvec3 p = glm::dvec3(ray.org_x, ray.org_y, ray.org_z) + double(rh.ray.tfar) * d;
-    glm::dvec3 n(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
-    const double length = glm::length(n);
-    n = length > 0.0 ? n / length : glm::dvec3(0.0, 0.0, 1.0);
-    const Material& material = scene_.materials[scene_.triangles[rh.hit.primID].material];
-    const bool diffuse = material.diffuse != Color(0.0f), specular = material.specular != Color(0.0f);
+    glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    const double length = glm::length(ng);
+    ng = length > 0.0 ? ng / length : glm::dvec3(0.0, 0.0, 1.0);
+    const Triangle& triangle = scene_.triangles[rh.hit.primID];
+    // Shading decisions with the file's normals when it has them (as rayview), which may even face the other
+    // way than the winding; ray origins step off along the geometric normal.
+    glm::dvec3 n = ng;
+    if (triangle.hasNormals()) {
+      const double b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0 - b1 - b2;
+      const glm::dvec3 interpolated = b0 * glm::dvec3(scene_.normals[triangle.normal[0]]) +
+                                      b1 * glm::dvec3(scene_.normals[triangle.normal[1]]) +
+                                      b2 * glm::dvec3(scene_.normals[triangle.normal[2]]);
+      if (glm::length(interpolated) > 0.0) n = glm::normalize(interpolated);
+    }
+    const Material& material = scene_.materials[triangle.material];
     const double offset = (1.0 / 32768.0) * std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z), 1e-30});
-    auto start = [&](const glm::dvec3& direction) { return glm::dot(n, direction) >= 0.0 ? p + offset * n : p - offset * n; };
+    auto start = [&](const glm::dvec3& direction) { return glm::dot(ng, direction) >= 0.0 ? p + offset * ng : p - offset * ng; };
 
     for (const LightPoint& light : lights_) {
       const glm::dvec3 toLight = light.position - p;
       const double distance = glm::length(toLight);
       if (!(distance > 0.0)) continue;
       const glm::dvec3 l = toLight / distance;
-      if (light.triangular && !(glm::dot(light.normal, -l) > 0.0)) continue;
-      // Blinn-Phong adds nothing when both lobes are zero: no shadow ray then.
-      const bool lit = (diffuse && glm::dot(n, l) > 0.0) || (specular && glm::dot(n, glm::normalize(l - d)) > 0.0);
-      if (!lit) continue;
+      const double cosine = light.triangular ? glm::dot(light.normal, -l) : 1.0;
+      if (!(cosine > 0.0)) continue;
+      // No shadow ray where Blinn-Phong adds nothing (both lobes zero, or underflowing in float).
+      const float irradiance = static_cast<float>(cosine / (distance * distance));
+      const glm::vec3 nf(n), lf(l), h = glm::normalize(glm::vec3(l) - glm::vec3(d));
+      const Color added = material.diffuse * light.intensity * irradiance * std::max(0.0f, glm::dot(nf, lf)) +
+                          material.specular * light.intensity * irradiance *
+                              std::pow(std::max(0.0f, glm::dot(nf, h)), material.phongExponent);
+      if (added == Color(0.0f)) continue;
       const glm::dvec3 o = start(l);
       const glm::dvec3 toTarget = light.position - o;
       const double targetDistance = glm::length(toTarget);
