@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <memory>
 #include <random>
 #include <system_error>
 #include <thread>
@@ -54,7 +55,9 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
   const int level = std::clamp(options.level, 1, 9);
   const auto bytes = static_cast<std::size_t>(length);
   const int parts = partCount(bytes, options.threads);
-  std::vector<std::vector<unsigned char>> out(static_cast<std::size_t>(parts));
+  // Uninitialised buffers: zero-filling deflateBound's worth for every part showed up in perf.
+  std::vector<std::unique_ptr<unsigned char[]>> out(static_cast<std::size_t>(parts));
+  std::vector<std::size_t> outBytes(static_cast<std::size_t>(parts), 0);
   std::vector<uLong> adlers(static_cast<std::size_t>(parts));
   std::vector<int> failed(static_cast<std::size_t>(parts), 0);
   auto work = [&](int k) {
@@ -68,16 +71,16 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
       const std::size_t dictionary = std::min(begin, kWindow);
       deflateSetDictionary(&s, data + begin - dictionary, static_cast<uInt>(dictionary));
     }
-    std::vector<unsigned char>& buffer = out[k];
-    buffer.resize(deflateBound(&s, static_cast<uLong>(end - begin)) + 64);
+    const std::size_t capacity = deflateBound(&s, static_cast<uLong>(end - begin)) + 64;
+    out[k].reset(new unsigned char[capacity]);
     s.next_in = data + begin;
     s.avail_in = static_cast<uInt>(end - begin);
-    s.next_out = buffer.data();
-    s.avail_out = static_cast<uInt>(buffer.size());
+    s.next_out = out[k].get();
+    s.avail_out = static_cast<uInt>(capacity);
     const bool last = k + 1 == parts;
     const int result = deflate(&s, last ? Z_FINISH : Z_SYNC_FLUSH);
     if ((last ? result != Z_STREAM_END : result != Z_OK) || s.avail_in != 0) failed[k] = 1;
-    buffer.resize(s.total_out);
+    outBytes[k] = s.total_out;
     deflateEnd(&s);
     adlers[k] = adler32(1L, data + begin, static_cast<uInt>(end - begin));
   };
@@ -93,7 +96,7 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
     adler = adler32_combine(adler, adlers[k], static_cast<z_off_t>(partBytes));
   }
   std::size_t total = 2 + 4;
-  for (const auto& part : out) total += part.size();
+  for (std::size_t bytesOfPart : outBytes) total += bytesOfPart;
   auto* stream = static_cast<unsigned char*>(std::malloc(total));
   if (!stream) return nullptr;
   // CMF: deflate, 32 KiB window; FLG: its check bits, no dictionary, level hint.
@@ -103,9 +106,9 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
   stream[0] = static_cast<unsigned char>(cmf);
   stream[1] = static_cast<unsigned char>(flg);
   std::size_t at = 2;
-  for (const auto& part : out) {
-    std::memcpy(stream + at, part.data(), part.size());
-    at += part.size();
+  for (int k = 0; k < parts; ++k) {
+    std::memcpy(stream + at, out[k].get(), outBytes[k]);
+    at += outBytes[k];
   }
   for (int shift = 24; shift >= 0; shift -= 8) stream[at++] = static_cast<unsigned char>(adler >> shift);
   *outLength = static_cast<int>(total);
