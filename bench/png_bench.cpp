@@ -3,12 +3,13 @@
 //
 // Usage: png_bench [--threads N] [--repeat R] SCENE.xml...
 // For each scene: render it (renderFrame, N threads), then encode the image with each variant R times
-// (median). Prints ms, bytes and the share of the render time; every rayview variant is decoded again and
+// (median). Prints wall and process CPU ms, bytes and the shares of the render's; every rayview variant is decoded again and
 // compared with the image (a mismatch exits 1).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -32,21 +33,31 @@ double medianOf(std::vector<double> v) {
   return v.empty() ? 0.0 : v[v.size() / 2];
 }
 
+// CPU time of the whole process (all threads): on a shared, loaded machine it is far steadier than wall time.
+double processCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec / 1e6;
+}
+
 struct Timed {
   double ms = 0.0;
+  double cpuMs = 0.0;
   std::size_t bytes = 0;
 };
 
 Timed timeIt(int repeat, const std::function<std::size_t()>& encode) {
-  std::vector<double> ms;
+  std::vector<double> ms, cpu;
   std::size_t bytes = 0;
   encode();  // warm-up
   for (int r = 0; r < repeat; ++r) {
     const auto start = Clock::now();
+    const double cpuStart = processCpuMs();
     bytes = encode();
+    cpu.push_back(processCpuMs() - cpuStart);
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
   }
-  return {medianOf(ms), bytes};
+  return {medianOf(ms), medianOf(cpu), bytes};
 }
 
 bool decodesTo(const std::string& png, const Image& image) {
@@ -86,16 +97,21 @@ int main(int argc, char** argv) {
     const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
     Image image;
     FrameStats stats;
-    std::vector<double> renders;
+    std::vector<double> renders, renderCpu;
     for (int r = 0; r < 3; ++r) {
+      const double cpuStart = processCpuMs();
       renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats);
+      renderCpu.push_back(processCpuMs() - cpuStart);
       renders.push_back(stats.renderMs);
     }
-    const double renderMs = medianOf(renders);
-    std::printf("\n%s, %dx%d, render %.1f ms (median of 3)\n\n", path.stem().c_str(), image.width, image.height, renderMs);
-    std::printf("| encoder | ms | bytes | %% of render |\n|---|---:|---:|---:|\n");
+    const double renderMs = medianOf(renders), renderCpuMs = medianOf(renderCpu);
+    std::printf("\n%s, %dx%d, render %.1f ms wall, %.1f ms CPU (median of 3)\n\n", path.stem().c_str(), image.width,
+                image.height, renderMs, renderCpuMs);
+    std::printf("| encoder | ms wall | ms CPU | bytes | wall %% of render wall | CPU %% of render CPU |\n"
+                "|---|---:|---:|---:|---:|---:|\n");
     auto row = [&](const std::string& name, const Timed& t) {
-      std::printf("| %s | %.1f | %zu | %.1f %% |\n", name.c_str(), t.ms, t.bytes, 100.0 * t.ms / renderMs);
+      std::printf("| %s | %.1f | %.1f | %zu | %.1f %% | %.1f %% |\n", name.c_str(), t.ms, t.cpuMs, t.bytes,
+                  100.0 * t.ms / renderMs, 100.0 * t.cpuMs / renderCpuMs);
       std::fflush(stdout);
     };
     row("stb (before): best-of-5 filter per row, stb deflate level 8",
