@@ -129,7 +129,7 @@ int breakdown(const std::string& path, int threads) {
   part("Embree BVH and the rest of the build step (measured: step's resident growth minus the above)", embreeBytes);
   part("image and the rest of the render step", afterRender.rss - afterBuild.rss);
   part("transient peak of the load above what it keeps (XML text, repaired copy, tinyxml2 DOM)", afterLoad.peak - afterLoad.rss);
-  std::printf("\nprocess peak (VmHWM since the last reset is per step; the largest step's end + its peak above it): "
+  std::printf("\nprocess peak (the highest of the steps' peaks; each step's VmHWM was reset at its start): "
               "%.0f MB = %.0f B/triangle\n",
               std::max({afterLoad.peak, afterBuild.peak, afterRender.peak}) / 1e6,
               std::max({afterLoad.peak, afterBuild.peak, afterRender.peak}) / n);
