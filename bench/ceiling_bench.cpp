@@ -433,7 +433,9 @@ int main(int argc, char** argv) {
   if (scenes.empty()) return usage();
 
   ThreadPool pool(threads);
-  std::printf("%d threads, median of %d rounds; share = Embree cast time / rayview render time\n\n", pool.size(), repeat);
+  std::printf("%d threads, median of %d rounds; share = Embree cast time / rayview render time. Embree casts exactly\n"
+              "rayview's count of each kind: ray k of N is generated ray floor(k*M/N) of the M its Whitted generator made.\n\n",
+              pool.size(), repeat);
   std::printf("| scene | triangles | image | camera rays | shadow rays | reflection rays | generated shadow / reflection "
               "| build ms rayview / Embree HIGH | rayview render ms | Embree 1-ray ms | Embree packet ms | share 1-ray "
               "| share packet |\n");
