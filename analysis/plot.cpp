@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "plot_canvas.h"
+#include "rayview/plot_canvas.h"
 
 namespace rayview {
 namespace {

@@ -1,4 +1,4 @@
-#include "plot_canvas.h"
+#include "rayview/plot_canvas.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,0 +1,89 @@
+#!/usr/bin/env python3
+"""Scale series (issue 8): load, build and render time and peak memory of `rayview render` on generated
+sphere, heightfield and random-soup scenes of 1e3..1e7 triangles at 1920x1080.
+
+Writes the scenes (once) to --work, runs `rayview render SCENE -o out.png --threads T` for each, reads the
+summary's times and the child's peak resident memory (os.wait4's ru_maxrss), prints a Markdown table,
+writes RESULTS.csv and the log-log plot, and with --breakdown runs `scale_series breakdown` on the scenes
+of at least 1e5 triangles. The 1e7 scenes take minutes and ~2 GB of XML each: scripts only, never CI.
+
+    bench/scale_series.py --build build/release [--work build/scale] [--sizes 1e3,1e4,1e5,1e6,1e7]
+                          [--kinds sphere,heightfield,soup] [--threads 2] [--breakdown] [--plot docs/images/scale.png]
+"""
+import argparse
+import os
+import re
+import subprocess
+import sys
+
+TIME_LINE = re.compile(r"time\s+load ([\d.]+) ms, BVH build ([\d.]+) ms, render ([\d.]+) ms")
+
+
+def measure(rayview, scene, threads, out_png):
+    # A small Python wrapper process reports the peak RSS of exactly one child through os.wait4.
+    wrapper = ("import os,sys\n"
+               "pid=os.fork()\n"
+               "if pid==0:\n os.execv(sys.argv[1], sys.argv[1:])\n"
+               "_,status,ru=os.wait4(pid,0)\n"
+               "sys.stderr.write('MAXRSS_KB %d\\n' % ru.ru_maxrss)\n"
+               "sys.exit(os.waitstatus_to_exitcode(status))\n")
+    result = subprocess.run([sys.executable, "-c", wrapper, rayview, "render", scene, "-o", out_png,
+                             "--threads", str(threads)], capture_output=True, text=True)
+    peak = re.search(r"MAXRSS_KB (\d+)", result.stderr)
+    times = TIME_LINE.search(result.stdout)
+    if result.returncode != 0 or not times:
+        raise RuntimeError(f"{scene}: rayview failed: {result.stderr.strip()[-300:]}")
+    return float(times.group(1)), float(times.group(2)), float(times.group(3)), int(peak.group(1)) * 1024
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--build", default="build/release")
+    parser.add_argument("--work", default="build/scale")
+    parser.add_argument("--sizes", default="1e3,1e4,1e5,1e6,1e7")
+    parser.add_argument("--kinds", default="sphere,heightfield,soup")
+    parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--breakdown", action="store_true")
+    parser.add_argument("--plot", default=None, help="PNG to write (default: WORK/scale.png)")
+    args = parser.parse_args()
+
+    rayview = os.path.join(args.build, "app", "rayview")
+    tool = os.path.join(args.build, "bench", "scale_series")
+    os.makedirs(args.work, exist_ok=True)
+    sizes = [int(float(s)) for s in args.sizes.split(",")]
+    kinds = args.kinds.split(",")
+    csv_path = os.path.join(args.work, "results.csv")
+    rows = []
+    print("| scene | triangles | XML MB | load ms | build ms | render ms | peak RSS MB | B/triangle |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    for kind in kinds:
+        for n in sizes:
+            scene = os.path.join(args.work, f"{kind}_{n}.xml")
+            if not os.path.exists(scene):
+                subprocess.run([tool, "write", kind, str(n), scene], check=True, stdout=subprocess.DEVNULL)
+            load, build, render, peak = measure(rayview, scene, args.threads, os.path.join(args.work, "out.png"))
+            triangles = n
+            xml_mb = os.path.getsize(scene) / 1e6
+            rows.append((kind, triangles, load, build, render, peak))
+            print(f"| {kind} | {triangles:.0e} | {xml_mb:.1f} | {load:.0f} | {build:.0f} | {render:.0f} | "
+                  f"{peak / 1e6:.0f} | {peak / triangles:.0f} |")
+            sys.stdout.flush()
+            with open(csv_path, "w") as f:
+                f.write("kind,triangles,load_ms,build_ms,render_ms,peak_bytes\n")
+                for r in rows:
+                    f.write(",".join(str(v) for v in r) + "\n")
+    plot = args.plot or os.path.join(args.work, "scale.png")
+    subprocess.run([tool, "plot", csv_path, plot], check=True)
+    if args.breakdown:
+        for kind in kinds:
+            for n in sizes:
+                if n < 100000:
+                    continue
+                print()
+                sys.stdout.flush()
+                subprocess.run([tool, "breakdown", os.path.join(args.work, f"{kind}_{n}.xml"), str(args.threads)],
+                               check=True)
+
+
+if __name__ == "__main__":
+    main()

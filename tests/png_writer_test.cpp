@@ -1,0 +1,81 @@
+// PNG output (renderer/image_io.cpp): zlib deflate in parallel parts, spliced into one stream. Whatever the
+// size, level and number of parts, the file must decode (with stb_image, an independent reader) to exactly
+// the pixels written.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <stb_image.h>
+
+#include "rayview/image.h"
+
+namespace rayview {
+namespace {
+
+// Flat regions, gradients and noise: long matches, short matches and literals all occur.
+Image testImage(int width, int height, std::uint32_t seed) {
+  Image image(width, height);
+  std::mt19937 random(seed);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      std::uint8_t* p = image.pixel(x, y);
+      if (x < width / 3) {
+        p[0] = 20, p[1] = 20, p[2] = 40;
+      } else if (x < 2 * width / 3) {
+        p[0] = static_cast<std::uint8_t>(x + y), p[1] = static_cast<std::uint8_t>(2 * y), p[2] = static_cast<std::uint8_t>(x);
+      } else {
+        const std::uint32_t r = random();
+        p[0] = static_cast<std::uint8_t>(r), p[1] = static_cast<std::uint8_t>(r >> 8), p[2] = static_cast<std::uint8_t>(r >> 16);
+      }
+    }
+  return image;
+}
+
+void expectDecodesTo(const std::string& png, const Image& image) {
+  int w = 0, h = 0, channels = 0;
+  stbi_uc* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(png.data()), static_cast<int>(png.size()),
+                                          &w, &h, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
+  EXPECT_EQ(w, image.width);
+  EXPECT_EQ(h, image.height);
+  EXPECT_EQ(channels, 3);
+  if (w == image.width && h == image.height) {
+    EXPECT_TRUE(std::equal(image.rgb.begin(), image.rgb.end(), pixels)) << "pixels differ";
+  }
+  stbi_image_free(pixels);
+}
+
+TEST(PngWriter, RoundTripsAtEveryLevelAndPartCount) {
+  // 1024x768 is large enough for several 256 KiB parts; the small sizes fit in one.
+  for (auto [w, h] : {std::pair{1, 1}, std::pair{7, 3}, std::pair{333, 211}, std::pair{1024, 768}})
+    for (int level : {1, 6, 9})
+      for (int threads : {1, 2, 3, 8}) {
+        SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " level " + std::to_string(level) + " threads " +
+                     std::to_string(threads));
+        const Image image = testImage(w, h, static_cast<std::uint32_t>(w * 31 + level));
+        expectDecodesTo(encodePng(image, PngOptions{level, threads}), image);
+      }
+}
+
+TEST(PngWriter, SameBytesForTheSameOptions) {
+  const Image image = testImage(800, 600, 5);
+  EXPECT_EQ(encodePng(image, PngOptions{1, 2}), encodePng(image, PngOptions{1, 2}));
+}
+
+TEST(PngWriter, WrittenFileReadsBack) {
+  const Image image = testImage(640, 480, 9);
+  const std::filesystem::path dir = std::filesystem::path(RAYVIEW_TEST_OUTPUT_DIR) / "png_writer";
+  std::filesystem::create_directories(dir);
+  const std::filesystem::path file = dir / "round_trip.png";
+  writeImageFile(file, image);
+  const Image back = readImageFile(file);
+  ASSERT_EQ(back.width, image.width);
+  ASSERT_EQ(back.height, image.height);
+  EXPECT_EQ(back.rgb, image.rgb);
+}
+
+}  // namespace
+}  // namespace rayview
