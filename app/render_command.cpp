@@ -79,12 +79,15 @@ int runRenderCommand(const CommandLine& command) {
                    problem.c_str());
       settings.accel = AccelKind::Reference;
     }
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, settings.accel);
+  // Shared, not copied: the geometry is the largest thing a big scene holds.
+  const auto shared = std::make_shared<const Scene>(std::move(scene));
+  const Scene& view = *shared;
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, settings.accel);
   ThreadPool pool(command.threads);
-  const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
+  const Tracer tracer(view.parameters(), *geometry, settings);
   Image image;
   FrameStats stats;
-  renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats);
+  renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
 
   try {
     writeImageFile(output, image);
@@ -96,8 +99,8 @@ int runRenderCommand(const CommandLine& command) {
   if (!command.quiet) {
     const RenderSettings& s = settings;
     std::printf("scene      %s: %zu triangles, %zu point lights, %zu triangular lights, %dx%d\n",
-                command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(), scene.triangles.size(),
-                scene.pointLights.size(), scene.triangularLights.size(), scene.camera.width, scene.camera.height);
+                command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(), view.triangles.size(),
+                view.pointLights.size(), view.triangularLights.size(), view.camera.width, view.camera.height);
     std::printf("settings   depth %d, triangular lights %s (%d sample%s), accel %s, %d threads\n", tracer.maxDepth(),
                 std::string(toString(s.triangularLightModel)).c_str(), s.lightSamples, s.lightSamples == 1 ? "" : "s",
                 std::string(toString(geometry->accel->kind())).c_str(), pool.size());

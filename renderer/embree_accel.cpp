@@ -15,6 +15,7 @@
 #include <glm/common.hpp>
 
 #include "accel_backends.h"
+#include "float_steps.h"
 #include "watertight_triangle.h"
 
 namespace rayview {
@@ -112,7 +113,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   query->tFar = std::min(query->ray->tFar, tieSearchLimit(hit.t));
   // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
   auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  rayHit->ray.tfar = std::nextafter(static_cast<float>(query->tFar), INFINITY);
+  rayHit->ray.tfar = nextFloatUp(static_cast<float>(query->tFar));
   rayHit->hit.primID = args->primID;
   rayHit->hit.geomID = args->geomID;
 }
@@ -239,8 +240,8 @@ class EmbreeAccel final : public Accel {
     out.dir_x = static_cast<float>(ray.direction.x);
     out.dir_y = static_cast<float>(ray.direction.y);
     out.dir_z = static_cast<float>(ray.direction.z);
-    out.tnear = std::max(0.0f, std::nextafter(static_cast<float>(ray.tNear), -INFINITY));
-    out.tfar = std::nextafter(static_cast<float>(ray.tFar), INFINITY);
+    out.tnear = std::max(0.0f, nextFloatDown(static_cast<float>(ray.tNear)));
+    out.tfar = nextFloatUp(static_cast<float>(ray.tFar));
     out.time = 0.0f;
     out.mask = std::numeric_limits<unsigned>::max();
     out.id = 0;

@@ -1,8 +1,12 @@
 // Ray-triangle intersection at the edges: shared edges and vertices, parallel rays, both back-ends.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
+#include "float_steps.h"
 #include "rayview/accel.h"
 #include "support/scene_builder.h"
 
@@ -72,6 +76,29 @@ TEST_P(AccelBasics, CoordinatesAreRelativeToTheOrigin) {
 
 INSTANTIATE_TEST_SUITE_P(BothBackEnds, AccelBasics, ::testing::Values(AccelKind::Embree, AccelKind::Reference),
                          [](const auto& info) { return std::string(toString(info.param)); });
+
+}  // namespace
+}  // namespace rayview
+
+namespace rayview {
+namespace {
+
+// The bit-step neighbours agree with std::nextafter everywhere it matters for ray intervals.
+TEST(FloatSteps, AgreeWithNextafter) {
+  const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-40f, -1e-40f, 3.4e38f, -3.4e38f,
+                          std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest(),
+                          std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(), 123.456f, -0.001f};
+  for (float v : values) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(nextFloatUp(v)),
+              std::bit_cast<std::uint32_t>(std::nextafter(v, std::numeric_limits<float>::infinity())))
+        << v;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(nextFloatDown(v)),
+              std::bit_cast<std::uint32_t>(std::nextafter(v, -std::numeric_limits<float>::infinity())))
+        << v;
+  }
+  EXPECT_TRUE(std::isnan(nextFloatUp(std::numeric_limits<float>::quiet_NaN())));
+}
 
 }  // namespace
 }  // namespace rayview
