@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "file_read.h"
+#include "rayview/file_read.h"
 #include "scene_loader_internal.h"
 
 namespace rayview {

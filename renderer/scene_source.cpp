@@ -1,6 +1,6 @@
 #include "rayview/scene_source.h"
 
-#include "file_read.h"
+#include "rayview/file_read.h"
 #include "texture_image.h"
 
 

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "file_read.h"
+#include "rayview/file_read.h"
 
 // The one translation unit of the project that compiles stb_image.
 #define STB_IMAGE_IMPLEMENTATION

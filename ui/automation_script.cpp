@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "rayview/file_read.h"
 #include "rayview/knobs.h"
 
 namespace rayview {
@@ -205,11 +206,10 @@ Script parseScript(const std::string& text, const std::string& file) {
 }
 
 Script readScriptFile(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw ScriptError(path.string() + ": cannot read the script");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScript(text.str(), path.string());
+  // As every file a user names: a FIFO or a device is refused without blocking, the size is checked first.
+  const detail::UserFileRead read = detail::readUserFile(path, kMaxScriptBytes);
+  if (!read.problem.empty()) throw ScriptError(path.string() + ": " + read.problem);
+  return parseScript(read.bytes, path.string());
 }
 
 }  // namespace rayview

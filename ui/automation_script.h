@@ -3,6 +3,7 @@
 // command per line; lines starting with `#` are comments. Parsing checks every line before the window
 // opens, so a typo fails at once with "FILE:LINE: ..." instead of halfway through a test.
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -28,6 +29,9 @@ struct Script {
   std::string file;
   std::vector<ScriptCommand> commands;
 };
+
+// The largest script read (a soak test's 10 000 commands take well under 1 MiB).
+inline constexpr std::uintmax_t kMaxScriptBytes = 64ull * 1024 * 1024;
 
 // Throws ScriptError with "FILE:LINE: message".
 Script parseScript(const std::string& text, const std::string& file);
