@@ -44,7 +44,8 @@ void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWa
         if (!imguiWantsMouse && session && e.y != 0.0) session->navigate([&](OrbitCamera& o) { o.dolly(e.y); });
         break;
       case InputEvent::Kind::Key:
-        handleKey(e, imguiWantsKeyboard, shortcuts);
+        // Keys typed right after Ctrl+O go to the path field, which takes the focus a frame later.
+        handleKey(e, imguiWantsKeyboard || shortcuts.focusOpen, shortcuts);
         break;
     }
   }

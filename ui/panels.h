@@ -33,8 +33,14 @@ struct FilePanelState {
   std::string openPath;
   std::string saveScenePath;
   std::string lastSaved;  // "saved /path/scene_001.png", shown under the buttons
+  bool lastSaveFailed = false;  // lastSaved is an error: shown in red, whole, wrapped
+  bool frameSavePending = false;  // Ctrl+S waits for the final pass
   bool reloadOnChange = true;
-  bool focusOpenPath = false;
+  // Ctrl+O: open the Scene section, focus the path field with its text selected. ImGui activates the field a
+  // frame or two after the request; characters typed meanwhile are held here and replayed into the field.
+  bool focusOpenPath = false;   // requested, the field is not active yet
+  int focusFrames = 0;          // frames since the request (the focus is requested again after a few)
+  std::vector<unsigned int> typeAhead;
 };
 
 struct DisplayOptions {

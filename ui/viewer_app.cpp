@@ -144,8 +144,15 @@ void ViewerApp::drawFrame() {
   const Layout l = layout();
 
   Shortcuts shortcuts;
-  navigation_.handle(window_.takeInput(), io.WantCaptureMouse, io.WantCaptureKeyboard, l.viewHeight,
-                     l.imageHeight > 0.0f ? l.imageHeight : l.viewHeight, session_.get(), shortcuts);
+  // While Ctrl+O's focus is on its way to the path field, typed keys belong to the field, not to shortcuts.
+  navigation_.handle(window_.takeInput(), io.WantCaptureMouse, io.WantCaptureKeyboard || filePanel_.focusOpenPath,
+                     l.viewHeight, l.imageHeight > 0.0f ? l.imageHeight : l.viewHeight, session_.get(), shortcuts);
+  if (shortcuts.focusOpen) {
+    // Before the panels are drawn, so the Scene panel already holds this frame's typed characters.
+    filePanel_.focusOpenPath = true;
+    filePanel_.focusFrames = 0;
+    filePanel_.typeAhead.clear();
+  }
   if (script_ && script_->running()) script_->step(*this);
 
   PanelActions actions;
@@ -181,6 +188,7 @@ void ViewerApp::drawFrame() {
       std::fflush(stdout);
     } catch (const ImageIoError& error) {
       filePanel_.lastSaved = std::string("screenshot failed: ") + error.what();
+      filePanel_.lastSaveFailed = true;
       std::fprintf(stderr, "rayview: %s\n", error.what());
     }
   }
@@ -198,6 +206,8 @@ void ViewerApp::afterSwap() {
     std::printf("final pass generation %llu\n", static_cast<unsigned long long>(frame_.generation));
     std::fflush(stdout);
   }
+  // Ctrl+S pressed while refining saves now that the final pass is on screen.
+  if (filePanel_.frameSavePending && finalFrameShown()) saveFrameReporting();
 }
 
 bool ViewerApp::finalFrameShown() const {
@@ -247,7 +257,6 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   if (actions.saveFrame || shortcuts.saveFrame) saveFrameReporting();
   if (actions.saveSceneNumbered || shortcuts.saveScene) saveSceneReporting({});
   if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
-  if (shortcuts.focusOpen) filePanel_.focusOpenPath = true;
   if (actions.cancelTradeoff) cancelTradeoff();
   if (actions.measureTradeoff) measureTradeoff(*actions.measureTradeoff);
   if (shortcuts.quit) quit(0);

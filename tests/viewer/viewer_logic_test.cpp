@@ -172,9 +172,13 @@ TEST(ScriptRunner, WaitsForTheFinalPassThenRunsOneCommandPerFrame) {
   EXPECT_EQ(session.edits().materials[static_cast<std::size_t>(findMaterial(session.edits(), "red"))].diffuse,
             Color(0, 1, 0));
   EXPECT_EQ(host.savedFrame, "-");
+  host.final = false;  // the edit restarted the render
   host.frame(runner);
+  host.frame(runner);
+  EXPECT_EQ(host.savedFrame, "-");  // save-frame saves the final pass, never a coarse one
+  host.final = true;
+  host.frame(runner);  // saved, and the next command runs
   EXPECT_EQ(host.savedFrame, "out.png");
-  host.frame(runner);
   EXPECT_EQ(host.exitCode, 4);
   EXPECT_FALSE(runner.running());
   EXPECT_FALSE(runner.failed());

@@ -14,6 +14,8 @@ Cases:
   hidpi        on a 192-dpi screen (content scale 2) the window, the text and the panels are twice as big
   idle-cpu     once the final pass is shown, the process uses (next to) no CPU
   no-display   without a display: exit code 1 and one line saying how to render headless
+  keys         F5 after a failed open loads the asked-for file; Ctrl+O into a collapsed Scene section replaces
+               the path with what is typed at once; Ctrl+S during a drag saves the final pass, not a coarse one
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -368,6 +370,62 @@ def case_reload(args, work):
         viewer.kill()
 
 
+def case_keys(args, work):
+    """Issue 10: F5 after a failed open, Ctrl+O into a collapsed Scene section, Ctrl+S while refining, failed saves."""
+    scene = os.path.join(work, "missing.xml")
+    other = copy_scene(work, "other.xml")
+    viewer = Viewer(args.rayview, [scene, "--threads", "2"], work)
+    try:
+        deadline = time.monotonic() + 30
+        while not any("missing.xml" in line for line in viewer.stderr):
+            if time.monotonic() > deadline:
+                raise Failure("no load error for the missing file\n" + viewer.output())
+            time.sleep(0.05)
+        window = viewer_window(viewer)
+        # The file appears; F5 loads it (not the embedded default scene).
+        copy_scene(work, "missing.xml")
+        key(window, "F5")
+        viewer.wait_for("loaded ", accept=lambda line: line.startswith(f"loaded {scene} "))
+        generation = viewer.wait_final()
+
+        # Collapse the Scene section (its header is the panel's first line), then Ctrl+O and type at once: the
+        # section opens, the field's text is selected and replaced, and no typed character is lost.
+        xdotool("mousemove", "--window", window, 150, 17)
+        xdotool("click", 1)
+        time.sleep(0.3)
+        xdotool("mousemove", "--window", window, *IMAGE_CENTRE)
+        xdotool("key", "--clearmodifiers", "ctrl+o")
+        xdotool("type", "--delay", "5", other)
+        time.sleep(0.3)
+        xdotool("key", "Return")
+        viewer.wait_for("loaded ", accept=lambda line: line.startswith(f"loaded {other} "))
+        generation = viewer.wait_final(after_generation=generation)
+
+        # Ctrl+S while a drag holds the coarse preview: it waits for the final pass and saves that.
+        x, y = IMAGE_CENTRE
+        xdotool("mousedown", 1)
+        for step in range(1, 6):
+            time.sleep(0.05)
+            xdotool("mousemove", "--window", window, x + 20 * step, y)
+        time.sleep(0.2)
+        xdotool("key", "ctrl+s")
+        viewer.wait_for("saving when the final pass is ready")
+        time.sleep(0.3)
+        if any(line.startswith("saved ") for line in viewer.stdout):
+            raise Failure("Ctrl+S saved a coarse pass during the drag\n" + viewer.output())
+        xdotool("mouseup", 1)
+        saved = viewer.wait_for("saved ").split(" ", 1)[1]
+        key(window, "ctrl+shift+s")
+        saved_scene = viewer.wait_for("saved scene ").split(" ", 2)[2]
+        expect_same(saved, render_headless(args.rayview, saved_scene, os.path.join(work, "dragged_reference.png")), 0)
+
+        key(window, "ctrl+q")
+        if viewer.finish() != 0:
+            raise Failure("rayview did not exit cleanly\n" + viewer.output())
+    finally:
+        viewer.kill()
+
+
 def case_screenshot(args, work):
     shot = os.path.join(work, "viewer.png")
     script = os.path.join(work, "screenshot.rvs")
@@ -531,7 +589,7 @@ def case_no_display(args, work):
 
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
-         "no-display": case_no_display}
+         "no-display": case_no_display, "keys": case_keys}
 
 
 def main():
