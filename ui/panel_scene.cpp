@@ -1,5 +1,7 @@
 // The "Scene" and "Save" panels: opening (path field, recent files, reload) and saving.
 #include <algorithm>
+#include <filesystem>
+#include <system_error>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -57,11 +59,16 @@ void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const Scen
   if ((ImGui::Button("Open") || entered) && !state.openPath.empty()) actions.open = state.openPath;
 
   if (ImGui::BeginCombo("Recent", recent.paths().empty() ? "(none yet)" : "choose a scene...")) {
-    for (const std::string& path : recent.paths())
-      if (ImGui::Selectable(path.c_str())) {
+    for (const std::string& path : recent.paths()) {
+      // Looked up only while the list is open: a file deleted or moved since is shown greyed out.
+      std::error_code error;
+      if (!std::filesystem::exists(path, error)) {
+        ImGui::Selectable((path + "  (missing)").c_str(), false, ImGuiSelectableFlags_Disabled);
+      } else if (ImGui::Selectable(path.c_str())) {
         state.openPath = path;
         actions.open = path;
       }
+    }
     ImGui::EndCombo();
   }
   if (ImGui::Button("Reload (F5)")) actions.reload = true;

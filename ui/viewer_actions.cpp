@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "numbered_file.h"
+#include "widgets.h"
 #include "rayview/scene_writer.h"
 #include "viewer_app.h"
 
@@ -118,8 +119,8 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
     filePanel_.saveScenePath = suggestedSaveAsPath(scenePath_);
   window_.setTitle("rayview - " + (scenePath_.empty() ? std::string("default scene") : scenePath_));
 
-  std::printf("loaded %s (%zu triangles, %zu warnings)\n", describe(scenePath_).c_str(), stats_.triangles,
-              warnings_.size());
+  std::printf("loaded %s (%s, %s)\n", describe(scenePath_).c_str(), counted(stats_.triangles, "triangle").c_str(),
+              counted(warnings_.size(), "warning").c_str());
   std::fflush(stdout);
   // A kept camera is committed before the first restart, so the file's view never flashes up.
   std::shared_ptr<const PixelSource> source = session_->commit(editProblem_);

@@ -42,6 +42,10 @@ void problemText(const std::string& problem) {
   ImGui::PopStyleColor();
 }
 
+std::string counted(std::size_t count, const char* singular) {
+  return std::to_string(count) + " " + singular + (count == 1 ? "" : "s");
+}
+
 void hintText(const char* text) {
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s", text);
