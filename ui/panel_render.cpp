@@ -12,6 +12,9 @@
 namespace rayview {
 namespace {
 
+// Above this, a directional triangular light saturates a white diffuse surface facing it.
+constexpr float kDirectionalIntensityLimit = 255.0f;
+
 struct StatLine {
   const char* name;
   std::string value;
@@ -30,13 +33,41 @@ std::string millisecondsOrPending(double ms) {
   return text;
 }
 
+// What the chosen triangular-light model does and the intensities it expects; a warning when the scene's
+// intensities are meant for the other model.
+void triangularLightHint(const SceneParameters& edits, const RenderSettings& settings) {
+  if (edits.triangularLights.empty()) return;
+  float brightest = 0.0f;
+  for (const TriangularLight& light : edits.triangularLights)
+    brightest = std::max({brightest, light.intensity.x, light.intensity.y, light.intensity.z});
+  if (settings.triangularLightModel == TriangularLightModel::Area) {
+    hintText("Area: each triangular light is N point lights spread over it (N = light samples; 1: its centroid), "
+             "each I/N times the cosine at the light over d^2. Intensities as for point lights (hundreds, "
+             "thousands).");
+    return;
+  }
+  hintText("Directional: light arrives along the triangle's normal with intensity I and no 1/d^2 fall-off, like "
+           "the sun. Expects I of about 0-255 per channel; light samples do not apply.");
+  if (brightest > kDirectionalIntensityLimit) {
+    char warning[256];
+    std::snprintf(warning, sizeof warning,
+                  "The triangular lights' intensities (up to %.0f) are meant for the area model: with no 1/d^2 "
+                  "fall-off they are far too bright and the image goes white. Lower them in Lights, or use area.",
+                  static_cast<double>(brightest));
+    problemText(warning);
+  }
+}
+
 }  // namespace
 
 void drawRenderSettingsPanel(SceneSession& session, bool& showStats) {
   if (!ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::Checkbox("Stats over the image", &showStats);  // display only: never restarts the render
   // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.
-  for (const Knob& knob : knobTable()) editKnob(knob, session.edits(), session.settings());
+  for (const Knob& knob : knobTable()) {
+    editKnob(knob, session.edits(), session.settings());
+    if (knob.name == "tri-light") triangularLightHint(session.edits(), session.settings());
+  }
   editRadiance("Background", session.edits().background);
 }
 

@@ -78,8 +78,11 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
   RenderSettings settings = initialSettings();
   std::optional<Camera> keptCamera;
   if (session_) {
-    // Later scenes keep the user's render settings; the depth is each scene's own.
+    // Later scenes keep the user's render settings, except the light samples: another scene's lights need their
+    // own count (128 on a small scene can be minutes on a big one), so they go back to the command line's.
+    // The depth is each scene's own.
     settings = session_->settings();
+    if (!awaitedIsReload_) settings.lightSamples = initialSettings().lightSamples;
     // A reload keeps the user's view unless the file's own camera changed.
     if (awaitedIsReload_ && session_->loaded().camera == outcome.parts.scene->camera)
       keptCamera = session_->edits().camera;
@@ -208,7 +211,9 @@ std::string ViewerApp::stateLine() const {
     const Camera& c = session_->edits().camera;
     line += " position=" + vector(c.position) + " gaze=" + vector(c.gaze) + " up=" + vector(c.up) +
             " resolution=" + std::to_string(c.width) + "x" + std::to_string(c.height) +
-            " depth=" + std::to_string(session_->edits().maxRayDepth);
+            " depth=" + std::to_string(session_->edits().maxRayDepth) +
+            " tri_light=" + std::string(toString(session_->settings().triangularLightModel)) +
+            " light_samples=" + std::to_string(session_->settings().lightSamples);
   }
   char timings[96];
   std::snprintf(timings, sizeof timings, " first_pass_ms=%.1f final_pass_ms=%.1f", stats_.editToFirstPassMs,

@@ -275,6 +275,7 @@ def case_interaction(args, work):
 
 def case_script(args, work):
     scene = copy_scene(work)
+    other = copy_scene(work, "other.xml")
     with open(SCENE) as f:
         text = f.read()
     broken = os.path.join(work, "broken.xml")
@@ -295,6 +296,10 @@ expect-error broken.xml:
 wait-final
 save-frame {work}/after_error.png
 print-state
+set light-samples 128
+set tri-light directional
+open {other}
+print-state
 quit
 """)
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
@@ -308,6 +313,9 @@ quit
     state = [line for line in viewer.stdout if line.startswith("state ")]
     if not state or "error=1" not in state[0] or not state[0].endswith("scene=" + scene):
         raise Failure("print-state should show the error and the first scene still open\n" + viewer.output())
+    # Another scene: the light samples go back to the command line's (here the default, 1); the model stays.
+    if len(state) != 2 or "light_samples=1 " not in state[1] or "tri_light=directional" not in state[1]:
+        raise Failure("after opening another scene the light samples should be 1 again\n" + viewer.output())
     if not any("broken.xml:" in line and "error" in line for line in viewer.stderr):
         raise Failure("the located load error should also be on stderr\n" + viewer.output())
     expect_same(f"{work}/before.png", render_headless(args.rayview, scene, f"{work}/before_reference.png"), 0)
