@@ -60,6 +60,7 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
   else if (control && e.key == GLFW_KEY_O) shortcuts.focusOpen = true;
   else if (control && e.key == GLFW_KEY_Q) shortcuts.quit = true;
   else if (e.key == GLFW_KEY_F5) shortcuts.reload = true;
+  else if (e.key == GLFW_KEY_F9) shortcuts.togglePanels = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
 }

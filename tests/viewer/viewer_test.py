@@ -15,7 +15,9 @@ Cases:
   idle-cpu     once the final pass is shown, the process uses (next to) no CPU
   no-display   without a display: exit code 1 and one line saying how to render headless
   keys         F5 after a failed open loads the asked-for file; Ctrl+O into a collapsed Scene section replaces
-               the path with what is typed at once; Ctrl+S during a drag saves the final pass, not a coarse one
+               the path with what is typed at once; Ctrl+S during a drag saves the final pass, not a coarse one;
+               F9 hides and shows the panels
+  small-window at 1000x640 the stats are one line
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -427,6 +429,12 @@ def case_keys(args, work):
         saved_scene = viewer.wait_for("saved scene ").split(" ", 2)[2]
         expect_same(saved, render_headless(args.rayview, saved_scene, os.path.join(work, "dragged_reference.png")), 0)
 
+        # F9 hides the panel column and shows it again.
+        key(window, "F9")
+        viewer.wait_for("panels hidden")
+        key(window, "F9")
+        viewer.wait_for("panels shown")
+
         key(window, "ctrl+q")
         if viewer.finish() != 0:
             raise Failure("rayview did not exit cleanly\n" + viewer.output())
@@ -467,6 +475,35 @@ def case_screenshot(args, work):
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(shot, target)
         print(f"  copied to {os.path.normpath(target)}")
+
+
+def case_small_window(args, work):
+    """At 1000x640 the stats take one line at the image's bottom right, not a box covering it."""
+    shot = os.path.join(work, "small.png")
+    script = os.path.join(work, "small.rvs")
+    with open(script, "w") as f:
+        f.write(f"resize 1000 640\nwait-frames 3\nwait-final\nscreenshot {shot}\nquit\n")
+    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
+    try:
+        if viewer.finish(timeout=120) != 0:
+            raise Failure("the small-window script failed\n" + viewer.output())
+    finally:
+        viewer.kill()
+    width, height, pixels = read_png(shot)
+    if (width, height) != (1000, 640):
+        raise Failure(f"the screenshot is {width}x{height}, expected 1000x640")
+    # The stats box's dark translucent background and text; the full box is 12 lines (about 200 pixels) high.
+    # Rows above the bottom 40 pixels at the right edge must be the image's (same as a few pixels further left).
+    text_rows = set()
+    for y in range(height - 260, height):
+        row = {pixels[(y * width + x) * 3:(y * width + x) * 3 + 3] for x in range(width - 200, width - 10)}
+        if b"\xff\xff\xff" in row:
+            text_rows.add(y)
+    if not text_rows:
+        raise Failure("no stats text at the bottom right")
+    if min(text_rows) < height - 40:
+        raise Failure(f"the stats reach {height - min(text_rows)} pixels above the bottom: not one line")
+    print(f"  {shot}: the stats take the bottom {height - min(text_rows)} pixels")
 
 
 def case_tradeoff(args, work):
@@ -597,7 +634,7 @@ def case_no_display(args, work):
 
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
-         "no-display": case_no_display, "keys": case_keys}
+         "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window}
 
 
 def main():
