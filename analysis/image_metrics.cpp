@@ -1,6 +1,8 @@
 #include "rayview/image_metrics.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -22,7 +24,7 @@ ImageError compareToReference(const Image& image, const Image& reference) {
   if (pixels == 0) return error;
   // Integer sums: exact whatever the image size (255^2 * 3 * 2^32 pixels still fits in 64 bits).
   std::uint64_t sumSquares = 0;
-  std::size_t offPixels = 0;
+  std::size_t offPixels = 0, exactPixels = 0;
   for (std::size_t p = 0; p < pixels; ++p) {
     int worst = 0;
     for (int c = 0; c < 3; ++c) {
@@ -31,12 +33,39 @@ ImageError compareToReference(const Image& image, const Image& reference) {
       if (d > worst) worst = d;
     }
     if (worst > 1) ++offPixels;
+    if (worst == 0) ++exactPixels;
     if (worst > error.maxChannelDifference) error.maxChannelDifference = worst;
   }
   error.rmse = std::sqrt(static_cast<double>(sumSquares) / (3.0 * static_cast<double>(pixels)));
   error.psnrDb = psnrFromRmse(error.rmse);
   error.pctOffByMoreThan1 = 100.0 * static_cast<double>(offPixels) / static_cast<double>(pixels);
+  error.pctExact = 100.0 * static_cast<double>(exactPixels) / static_cast<double>(pixels);
   return error;
+}
+
+Image differenceImage(const Image& image, const Image& reference) {
+  if (image.width != reference.width || image.height != reference.height)
+    throw std::invalid_argument("cannot compare a " + std::to_string(image.width) + "x" +
+                                std::to_string(image.height) + " image with a " + std::to_string(reference.width) +
+                                "x" + std::to_string(reference.height) + " reference");
+  Image diff(image.width, image.height);
+  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
+  for (std::size_t p = 0; p < pixels; ++p) {
+    int worst = 0;
+    for (int c = 0; c < 3; ++c)
+      worst = std::max(worst, std::abs(int(image.rgb[3 * p + c]) - int(reference.rgb[3 * p + c])));
+    std::uint8_t* out = &diff.rgb[3 * p];
+    if (worst == 0) {
+      for (int c = 0; c < 3; ++c) out[c] = static_cast<std::uint8_t>(reference.rgb[3 * p + c] / 4);
+    } else if (worst == 1) {
+      out[0] = 40, out[1] = 90, out[2] = 255;
+    } else if (worst <= 8) {
+      out[0] = 255, out[1] = 220, out[2] = 0;
+    } else {
+      out[0] = 255, out[1] = 0, out[2] = 0;
+    }
+  }
+  return diff;
 }
 
 }  // namespace rayview

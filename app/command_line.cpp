@@ -1,12 +1,32 @@
 #include "command_line.h"
 
+#include <algorithm>
 #include <charconv>
+#include <filesystem>
 #include <functional>
 
 namespace rayview {
 namespace {
 
-enum Applies : unsigned { kRender = 1u, kView = 2u, kBoth = kRender | kView, kBench = 4u, kAll = kBoth | kBench };
+// Which commands take an option. kAll: every command that renders (compare takes only its own).
+enum Applies : unsigned {
+  kRender = 1u,
+  kView = 2u,
+  kBoth = kRender | kView,
+  kBench = 4u,
+  kAll = kBoth | kBench,
+  kCompare = 8u
+};
+
+struct Subcommand {
+  const char* name;
+  CommandKind kind;
+  unsigned mode;
+};
+constexpr Subcommand kSubcommands[] = {{"render", CommandKind::Render, kRender},
+                                       {"view", CommandKind::View, kView},
+                                       {"bench", CommandKind::Bench, kBench},
+                                       {"compare", CommandKind::Compare, kCompare}};
 
 struct OptionSpec {
   std::string name;
@@ -35,7 +55,50 @@ double parsePositive(const std::string& option, const std::string& text, double 
 }
 
 const char* modeName(unsigned mode) {
+  if (mode == kCompare) return "'rayview compare'";
   return mode == kRender ? "'rayview render'" : (mode == kBench ? "'rayview bench'" : "the viewer");
+}
+
+double parsePercent(const std::string& option, const std::string& text) {
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc() || end != text.data() + text.size() || !(value >= 0.0 && value <= 100.0))
+    throw UsageError(option + " expects a percentage from 0 to 100, not '" + text + "'");
+  return value;
+}
+
+std::size_t editDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// A first argument that is no existing file and reads like a word ("rendr"), not like a path ("scene.xml").
+bool looksLikeCommand(const std::string& arg) {
+  if (arg.empty() || !(arg[0] >= 'a' && arg[0] <= 'z') || std::filesystem::exists(arg)) return false;
+  return std::all_of(arg.begin(), arg.end(), [](char c) { return (c >= 'a' && c <= 'z') || c == '-'; });
+}
+
+[[noreturn]] void unknownCommand(const std::string& word) {
+  const Subcommand* nearest = nullptr;
+  std::size_t best = 3;  // at most two edits away
+  for (const Subcommand& sub : kSubcommands)
+    if (const std::size_t d = editDistance(word, sub.name); d < best) {
+      best = d;
+      nearest = &sub;
+    }
+  if (nearest) throw UsageError("unknown command '" + word + "' (did you mean '" + nearest->name + "'?)");
+  throw UsageError("unknown command '" + word +
+                   "' (commands: render, bench, compare, view; or the path of a scene file, see rayview --help)");
 }
 
 // " [render]", " [render, bench]"; nothing for an option every mode takes.
@@ -78,6 +141,11 @@ std::vector<OptionSpec> makeOptionTable() {
        [](CommandLine& c, const std::string& v) { c.outputDirectory = v; }},
       {"--scale", "F", kBench, "render at F times the camera's resolution (0 < F <= 4; default 1)",
        [](CommandLine& c, const std::string& v) { c.resolutionScale = parsePositive("--scale", v, 4.0); }},
+      {"--diff", "OUT.png", kCompare, "write a false-colour map of the differences (see docs/viewer.md)",
+       [](CommandLine& c, const std::string& v) { c.diffPath = v; }},
+      {"--min-within1", "P", kCompare,
+       "exit 1 unless at least P% of the pixels are within 1 of the reference in every channel (default 100)",
+       [](CommandLine& c, const std::string& v) { c.minWithin1 = parsePercent("--min-within1", v); }},
   };
   table.insert(table.end(), rest.begin(), rest.end());
   return table;
@@ -99,25 +167,32 @@ RenderSettings renderSettingsOf(const CommandLine& command) {
 CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
   CommandLine command;
   std::size_t i = 0;
-  if (!arguments.empty() && arguments[0] == "render") {
-    command.kind = CommandKind::Render;
-    i = 1;
-  } else if (!arguments.empty() && arguments[0] == "view") {
-    i = 1;
-  } else if (!arguments.empty() && arguments[0] == "bench") {
-    command.kind = CommandKind::Bench;
-    if (arguments.size() < 2 || arguments[1] != "tradeoff")
-      throw UsageError("'rayview bench' expects a benchmark name: tradeoff");
-    command.benchName = arguments[1];
-    i = 2;
+  if (!arguments.empty()) {
+    for (const Subcommand& sub : kSubcommands)
+      if (arguments[0] == sub.name) {
+        command.kind = sub.kind;
+        i = 1;
+      }
+    if (i == 0 && looksLikeCommand(arguments[0])) unknownCommand(arguments[0]);
   }
-  const unsigned mode =
-      command.kind == CommandKind::Render ? kRender : (command.kind == CommandKind::Bench ? kBench : kView);
+  if (command.kind == CommandKind::Bench) {
+    const bool wantsHelp = arguments.size() >= 2 && (arguments[1] == "--help" || arguments[1] == "-h");
+    if (!wantsHelp && (arguments.size() < 2 || arguments[1] != "tradeoff"))
+      throw UsageError("'rayview bench' expects a benchmark name: tradeoff");
+    if (!wantsHelp) {
+      command.benchName = arguments[1];
+      i = 2;
+    }
+  }
+  unsigned mode = kView;
+  for (const Subcommand& sub : kSubcommands)
+    if (sub.kind == command.kind) mode = sub.mode;
   for (; i < arguments.size(); ++i) {
     const std::string& arg = arguments[i];
     if (arg == "--help" || arg == "-h" || arg == "--version") {
       CommandLine info;
       info.kind = arg == "--version" ? CommandKind::Version : CommandKind::Help;
+      info.helpFor = command.kind;
       return info;
     }
     if (!arg.empty() && arg[0] == '-' && arg != "-") {
@@ -131,7 +206,10 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       const OptionSpec* spec = nullptr;
       for (const OptionSpec& s : optionTable())
         if (name == s.name) spec = &s;
-      if (!spec) throw UsageError("unknown option '" + name + "' (see rayview --help)");
+      if (!spec) {
+        const std::string help = mode == kView ? "rayview --help" : "rayview " + arguments[0] + " --help";
+        throw UsageError("unknown option '" + name + "' (see " + help + ")");
+      }
       if (!(spec->applies & mode))
         throw UsageError("option '" + name + "' does not apply to " + modeName(mode));
       if (!spec->valueName.empty() && !hasInlineValue) {
@@ -143,8 +221,8 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       spec->apply(command, value);
       continue;
     }
-    if (command.kind == CommandKind::Bench) {
-      command.scenePaths.push_back(arg);
+    if (command.kind == CommandKind::Bench || command.kind == CommandKind::Compare) {
+      command.scenePaths.push_back(arg);  // compare: the image, then the reference
       continue;
     }
     if (!command.scenePath.empty()) throw UsageError("more than one scene given: '" + command.scenePath + "' and '" + arg + "'");
@@ -157,10 +235,65 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
     if (command.scenePaths.empty()) throw UsageError("'rayview bench tradeoff' needs at least one SCENE");
     if (command.outputDirectory.empty()) throw UsageError("'rayview bench tradeoff' needs --out DIR");
   }
+  if (command.kind == CommandKind::Compare && command.scenePaths.size() != 2)
+    throw UsageError("'rayview compare' needs two images: IMAGE REFERENCE (" +
+                     std::to_string(command.scenePaths.size()) + " given)");
   return command;
 }
 
-std::string helpText() {
+namespace {
+
+std::string optionLines(unsigned mode) {
+  std::string text;
+  for (const OptionSpec& s : optionTable()) {
+    if (mode != kView && !(s.applies & mode)) continue;
+    if (mode == kView && s.applies == kCompare) continue;  // the global help lists compare's in its own help
+    std::string left = "  " + s.name + (s.valueName.empty() ? "" : " " + s.valueName);
+    if (left.size() < 32) left.resize(32, ' ');
+    else left += "  ";
+    text += left + s.help + (mode == kView ? whereTag(s.applies) : std::string()) + "\n";
+  }
+  return text;
+}
+
+}  // namespace
+
+std::string counted(std::size_t count, const std::string& singular) {
+  return std::to_string(count) + " " + singular + (count == 1 ? "" : "s");
+}
+
+std::string helpText(CommandKind kind) {
+  switch (kind) {
+    case CommandKind::Render:
+      return "usage: rayview render [SCENE] -o OUT.png|OUT.ppm [options]\n"
+             "\n"
+             "Renders SCENE (the embedded default scene without it) headless and prints timings.\n"
+             "\n"
+             "options:\n" +
+             optionLines(kRender) +
+             "\nexit status: 0 success, 1 the output could not be written, 2 bad scene or bad arguments (nothing "
+             "written)\n";
+    case CommandKind::Bench:
+      return "usage: rayview bench tradeoff SCENE... --out DIR [options]\n"
+             "\n"
+             "Time and error of every knob setting: DIR/tradeoff.csv and DIR/<scene>_tradeoff.png (see "
+             "docs/tradeoff.md).\n"
+             "\n"
+             "options:\n" +
+             optionLines(kBench);
+    case CommandKind::Compare:
+      return "usage: rayview compare IMAGE REFERENCE [--diff OUT.png] [--min-within1 P]\n"
+             "\n"
+             "Compares two images of the same size (PNG or PPM) and prints\n"
+             "  exact=E% within1=W% maxdiff=M psnr=P\n"
+             "(% of pixels identical, % within 1 in every channel, the largest channel difference, PSNR in dB).\n"
+             "\n"
+             "options:\n" +
+             optionLines(kCompare) +
+             "\nexit status: 0 within the threshold, 1 not, 2 bad arguments, an unreadable image or different sizes\n";
+    default:
+      break;
+  }
   std::string text =
       "rayview: a Whitted ray tracer for the CSE 461 scene format\n"
       "\n"
@@ -170,15 +303,13 @@ std::string helpText() {
       "  rayview bench tradeoff SCENE... --out DIR [options]\n"
       "                                          time and error of every knob setting: DIR/tradeoff.csv and\n"
       "                                          DIR/<scene>_tradeoff.png (see docs/tradeoff.md)\n"
+      "  rayview compare IMAGE REFERENCE [--diff OUT.png] [--min-within1 P]\n"
+      "                                          how far IMAGE is from REFERENCE\n"
+      "  rayview COMMAND --help                  a command's own usage and options\n"
       "  rayview --help | --version\n"
       "\n"
       "options:\n";
-  for (const OptionSpec& s : optionTable()) {
-    std::string left = "  " + s.name + (s.valueName.empty() ? "" : " " + s.valueName);
-    if (left.size() < 32) left.resize(32, ' ');
-    else left += "  ";
-    text += left + s.help + whereTag(s.applies) + "\n";
-  }
+  text += optionLines(kView);
   text +=
       "\n"
       "exit status: 0 success, 1 the output could not be written, 2 bad scene or bad arguments (nothing written)\n";

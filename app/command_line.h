@@ -17,7 +17,7 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class CommandKind { Help, Version, Render, View, Bench };
+enum class CommandKind { Help, Version, Render, View, Bench, Compare };
 
 struct CommandLine {
   CommandKind kind = CommandKind::View;
@@ -34,6 +34,9 @@ struct CommandLine {
   std::vector<std::string> scenePaths;  // bench: every SCENE given
   std::string outputDirectory;          // bench: --out DIR
   double resolutionScale = 1.0;         // bench: --scale F
+  std::string diffPath;                 // compare: --diff OUT.png
+  double minWithin1 = 100.0;            // compare: --min-within1 P (% of pixels within 1 of the reference)
+  CommandKind helpFor = CommandKind::View;  // help: whose help (`rayview render --help`: render's own)
 };
 
 // The default settings with the knobs given on the command line.
@@ -42,7 +45,10 @@ RenderSettings renderSettingsOf(const CommandLine& command);
 // Throws UsageError with a one-line message for anything it cannot take.
 CommandLine parseCommandLine(const std::vector<std::string>& arguments);
 
-std::string helpText();
+// The global help (`kind` View), or a subcommand's own: its usage line and only the options it takes.
+std::string helpText(CommandKind kind = CommandKind::View);
+// "1 point light", "2 point lights".
+std::string counted(std::size_t count, const std::string& singular);
 std::string versionText();
 
 }  // namespace rayview

@@ -1,10 +1,11 @@
-// rayview: the viewer by default, `rayview render` headless.
+// rayview: the viewer by default, `rayview render` headless, `rayview bench`, `rayview compare`.
 #include <cstdio>
 #include <string>
 #include <vector>
 
 #include "bench_command.h"
 #include "command_line.h"
+#include "compare_command.h"
 #include "render_command.h"
 
 #ifdef RAYVIEW_HAVE_VIEWER
@@ -22,7 +23,7 @@ int main(int argc, char** argv) {
   }
   switch (command.kind) {
     case CommandKind::Help:
-      std::fputs(helpText().c_str(), stdout);
+      std::fputs(helpText(command.helpFor).c_str(), stdout);
       return kExitOk;
     case CommandKind::Version:
       std::fputs(versionText().c_str(), stdout);
@@ -31,6 +32,8 @@ int main(int argc, char** argv) {
       return runRenderCommand(command);
     case CommandKind::Bench:
       return runBenchCommand(command);
+    case CommandKind::Compare:
+      return runCompareCommand(command);
     case CommandKind::View:
 #ifdef RAYVIEW_HAVE_VIEWER
       return runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,

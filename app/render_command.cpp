@@ -98,12 +98,15 @@ int runRenderCommand(const CommandLine& command) {
 
   if (!command.quiet) {
     const RenderSettings& s = settings;
-    std::printf("scene      %s: %zu triangles, %zu point lights, %zu triangular lights, %dx%d\n",
-                command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(), view.triangles.size(),
-                view.pointLights.size(), view.triangularLights.size(), view.camera.width, view.camera.height);
-    std::printf("settings   depth %d, triangular lights %s (%d sample%s), accel %s, %d threads\n", tracer.maxDepth(),
-                std::string(toString(s.triangularLightModel)).c_str(), s.lightSamples, s.lightSamples == 1 ? "" : "s",
-                std::string(toString(geometry->accel->kind())).c_str(), pool.size());
+    std::printf("scene      %s: %s, %s, %s, %dx%d\n",
+                command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(),
+                counted(view.triangles.size(), "triangle").c_str(), counted(view.pointLights.size(), "point light").c_str(),
+                counted(view.triangularLights.size(), "triangular light").c_str(), view.camera.width,
+                view.camera.height);
+    std::printf("settings   depth %d, triangular lights %s (%s), accel %s, %s\n", tracer.maxDepth(),
+                std::string(toString(s.triangularLightModel)).c_str(), counted(static_cast<std::size_t>(s.lightSamples), "sample").c_str(),
+                std::string(toString(geometry->accel->kind())).c_str(),
+                counted(static_cast<std::size_t>(pool.size()), "thread").c_str());
     std::printf("time       load %.1f ms, BVH build %.1f ms, render %.1f ms\n", loadMs, geometry->buildMs, stats.renderMs);
     std::printf("rays       camera %llu, shadow %llu, reflection %llu, total %llu, %.2f Mrays/s\n",
                 static_cast<unsigned long long>(stats.rays.camera), static_cast<unsigned long long>(stats.rays.shadow),

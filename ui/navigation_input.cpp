@@ -44,7 +44,8 @@ void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWa
         if (!imguiWantsMouse && session && e.y != 0.0) session->navigate([&](OrbitCamera& o) { o.dolly(e.y); });
         break;
       case InputEvent::Kind::Key:
-        handleKey(e, imguiWantsKeyboard, shortcuts);
+        // Keys typed right after Ctrl+O go to the path field, which takes the focus a frame later.
+        handleKey(e, imguiWantsKeyboard || shortcuts.focusOpen, shortcuts);
         break;
     }
   }
@@ -59,6 +60,7 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
   else if (control && e.key == GLFW_KEY_O) shortcuts.focusOpen = true;
   else if (control && e.key == GLFW_KEY_Q) shortcuts.quit = true;
   else if (e.key == GLFW_KEY_F5) shortcuts.reload = true;
+  else if (e.key == GLFW_KEY_F9) shortcuts.togglePanels = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
 }

@@ -17,6 +17,7 @@ struct Shortcuts {
   bool saveScene = false;    // Ctrl+Shift+S
   bool focusOpen = false;    // Ctrl+O
   bool quit = false;         // Ctrl+Q
+  bool togglePanels = false; // F9
 };
 
 class NavigationInput {

@@ -12,6 +12,9 @@
 namespace rayview {
 namespace {
 
+// Above this, a directional triangular light saturates a white diffuse surface facing it.
+constexpr float kDirectionalIntensityLimit = 255.0f;
+
 struct StatLine {
   const char* name;
   std::string value;
@@ -30,17 +33,49 @@ std::string millisecondsOrPending(double ms) {
   return text;
 }
 
+// What the chosen triangular-light model does and the intensities it expects; a warning when the scene's
+// intensities are meant for the other model.
+void triangularLightHint(const SceneParameters& edits, const RenderSettings& settings) {
+  if (edits.triangularLights.empty()) return;
+  float brightest = 0.0f;
+  for (const TriangularLight& light : edits.triangularLights)
+    brightest = std::max({brightest, light.intensity.x, light.intensity.y, light.intensity.z});
+  if (settings.triangularLightModel == TriangularLightModel::Area) {
+    hintText("Area: each triangular light is N point lights spread over it (N = light samples; 1: its centroid), "
+             "each I/N times the cosine at the light over d^2. Intensities as for point lights (hundreds, "
+             "thousands).");
+    return;
+  }
+  hintText("Directional: light arrives along the triangle's normal with intensity I and no 1/d^2 fall-off, like "
+           "the sun. Expects I of about 0-255 per channel; light samples do not apply.");
+  if (brightest > kDirectionalIntensityLimit) {
+    char warning[256];
+    std::snprintf(warning, sizeof warning,
+                  "The triangular lights' intensities (up to %.0f) are meant for the area model: with no 1/d^2 "
+                  "fall-off they are far too bright and the image goes white. Lower them in Lights, or use area.",
+                  static_cast<double>(brightest));
+    problemText(warning);
+  }
+}
+
 }  // namespace
 
-void drawRenderSettingsPanel(SceneSession& session, bool& showStats) {
+void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   if (!ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) return;
-  ImGui::Checkbox("Stats over the image", &showStats);  // display only: never restarts the render
+  ImGui::Checkbox("Stats over the image", &display.showStats);  // display only: never restarts the render
+  ImGui::SameLine();
+  ImGui::Checkbox("On one line", &display.oneLineStats);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("The stats on one line. In a window smaller than 1280x800 they always are.");
   // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.
-  for (const Knob& knob : knobTable()) editKnob(knob, session.edits(), session.settings());
+  for (const Knob& knob : knobTable()) {
+    editKnob(knob, session.edits(), session.settings());
+    if (knob.name == "tri-light") triangularLightHint(session.edits(), session.settings());
+  }
   editRadiance("Background", session.edits().background);
 }
 
-void drawStatsOverlay(const ViewerStats& s, float right, float bottom) {
+void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneLine) {
   char level[48];
   if (s.stride <= 0) std::snprintf(level, sizeof level, "-");
   else if (s.stride == 1) std::snprintf(level, sizeof level, "full resolution%s", s.final ? " (final)" : "");
@@ -59,13 +94,27 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom) {
       {"Threads", std::to_string(s.threads)},
       {"Generation", std::to_string(s.generation)},
   };
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
+                                 ImGuiWindowFlags_NoInputs;
+  if (oneLine) {
+    const std::string text = std::string(level) + "  |  " + lines[1].value + "  |  " + lines[2].value +
+                             "  |  edit to final " + lines[4].value;
+    const ImVec2 textSize = ImGui::CalcTextSize(text.c_str());
+    ImGui::SetNextWindowPos(ImVec2(right, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+    ImGui::SetNextWindowSize(ImVec2(textSize.x + 2.0f * style.WindowPadding.x, textSize.y + 2.0f * style.WindowPadding.y));
+    ImGui::SetNextWindowBgAlpha(0.65f);
+    if (ImGui::Begin("##stats", nullptr, flags)) ImGui::TextUnformatted(text.c_str());
+    ImGui::End();
+    return;
+  }
   // Sized from this frame's text: auto-resizing would lag a frame, and an idle viewer draws few frames.
   float nameWidth = 0.0f, valueWidth = 0.0f;
   for (const StatLine& line : lines) {
     nameWidth = std::max(nameWidth, ImGui::CalcTextSize(line.name).x);
     valueWidth = std::max(valueWidth, ImGui::CalcTextSize(line.value.c_str()).x);
   }
-  const ImGuiStyle& style = ImGui::GetStyle();
   const float gap = 2.0f * style.ItemSpacing.x;
   const ImVec2 size(nameWidth + gap + valueWidth + 2.0f * style.WindowPadding.x,
                     std::size(lines) * ImGui::GetTextLineHeightWithSpacing() - style.ItemSpacing.y +
@@ -73,9 +122,6 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom) {
   ImGui::SetNextWindowPos(ImVec2(right, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
   ImGui::SetNextWindowSize(size);
   ImGui::SetNextWindowBgAlpha(0.65f);
-  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
-                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
-                                 ImGuiWindowFlags_NoInputs;
   if (ImGui::Begin("##stats", nullptr, flags)) {
     for (const StatLine& line : lines) {
       ImGui::TextUnformatted(line.name);

@@ -1,5 +1,7 @@
 // The "Scene" and "Save" panels: opening (path field, recent files, reload) and saving.
 #include <algorithm>
+#include <filesystem>
+#include <system_error>
 
 #include <imgui.h>
 #include <imgui_stdlib.h>
@@ -8,9 +10,30 @@
 #include "widgets.h"
 
 namespace rayview {
+namespace {
+
+constexpr int kFocusRetryFrames = 4;
+constexpr int kFocusGiveUpFrames = 30;
+
+}  // namespace
 
 void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const SceneInfo& info, const LoadProgress& progress,
                     PanelActions& actions) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (state.focusOpenPath) {
+    // Ctrl+O was pressed and the field is not active yet: ImGui would drop what is typed meanwhile (no field
+    // takes it), so hold it. The section opens even when the user had collapsed it.
+    for (const ImWchar c : io.InputQueueCharacters) state.typeAhead.push_back(c);
+    io.InputQueueCharacters.resize(0);
+    ImGui::SetNextItemOpen(true);
+  } else if (!state.typeAhead.empty()) {
+    // The field became active last frame (its text selected): what was typed before goes in first.
+    ImVector<ImWchar> arrived;
+    arrived.swap(io.InputQueueCharacters);
+    for (const unsigned int c : state.typeAhead) io.InputQueueCharacters.push_back(static_cast<ImWchar>(c));
+    for (const ImWchar c : arrived) io.InputQueueCharacters.push_back(c);
+    state.typeAhead.clear();
+  }
   if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::TextWrapped("%s", info.displayName.c_str());
   if (!info.warnings.empty()) {
@@ -24,23 +47,28 @@ void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const Scen
     ImGui::PopID();
   }
 
-  if (state.focusOpenPath) {
-    ImGui::SetKeyboardFocusHere();
-    state.focusOpenPath = false;
-  }
+  // ImGui activates a field the frame after the focus request; ask again now and then in case it was lost.
+  if (state.focusOpenPath && state.focusFrames++ % kFocusRetryFrames == 0) ImGui::SetKeyboardFocusHere();
   ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Open").x - ImGui::GetStyle().ItemSpacing.x -
                           ImGui::GetStyle().FramePadding.x * 2.0f);
   const bool entered = ImGui::InputTextWithHint("##open", "scene.xml path (Ctrl+O)", &state.openPath,
-                                                ImGuiInputTextFlags_EnterReturnsTrue);
+                                                ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  if (state.focusOpenPath && (ImGui::IsItemActive() || state.focusFrames > kFocusGiveUpFrames))
+    state.focusOpenPath = false;  // the held characters are replayed next frame
   ImGui::SameLine();
   if ((ImGui::Button("Open") || entered) && !state.openPath.empty()) actions.open = state.openPath;
 
   if (ImGui::BeginCombo("Recent", recent.paths().empty() ? "(none yet)" : "choose a scene...")) {
-    for (const std::string& path : recent.paths())
-      if (ImGui::Selectable(path.c_str())) {
+    for (const std::string& path : recent.paths()) {
+      // Looked up only while the list is open: a file deleted or moved since is shown greyed out.
+      std::error_code error;
+      if (!std::filesystem::exists(path, error)) {
+        ImGui::Selectable((path + "  (missing)").c_str(), false, ImGuiSelectableFlags_Disabled);
+      } else if (ImGui::Selectable(path.c_str())) {
         state.openPath = path;
         actions.open = path;
       }
+    }
     ImGui::EndCombo();
   }
   if (ImGui::Button("Reload (F5)")) actions.reload = true;
@@ -67,7 +95,11 @@ void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions)
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Save scene as") || entered) && !state.saveScenePath.empty()) actions.saveSceneAs = state.saveScenePath;
-  if (!state.lastSaved.empty()) {
+  if (state.lastSaveFailed) {
+    problemText(state.lastSaved);  // red, whole, wrapped
+  } else if (state.frameSavePending) {
+    hintText(state.lastSaved.c_str());
+  } else if (!state.lastSaved.empty()) {
     // Read-only text field: the path can be selected and copied.
     ImGui::SetNextItemWidth(-1.0f);
     ImGui::InputText("##saved", &state.lastSaved, ImGuiInputTextFlags_ReadOnly);

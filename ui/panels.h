@@ -24,6 +24,7 @@ struct PanelActions {
   std::optional<std::string> saveSceneAs;
   bool frameScene = false;
   bool resetCamera = false;
+  bool togglePanels = false;
   std::optional<double> measureTradeoff;  // at this resolution scale
   bool cancelTradeoff = false;
 };
@@ -33,13 +34,26 @@ struct FilePanelState {
   std::string openPath;
   std::string saveScenePath;
   std::string lastSaved;  // "saved /path/scene_001.png", shown under the buttons
+  bool lastSaveFailed = false;  // lastSaved is an error: shown in red, whole, wrapped
+  bool frameSavePending = false;  // Ctrl+S waits for the final pass
   bool reloadOnChange = true;
-  bool focusOpenPath = false;
+  // Ctrl+O: open the Scene section, focus the path field with its text selected. ImGui activates the field a
+  // frame or two after the request; characters typed meanwhile are held here and replayed into the field.
+  bool focusOpenPath = false;   // requested, the field is not active yet
+  int focusFrames = 0;          // frames since the request (the focus is requested again after a few)
+  std::vector<unsigned int> typeAhead;
 };
 
+// Display only: none of these restarts the render.
 struct DisplayOptions {
-  bool showStats = true;  // display only: never restarts the render
+  bool showStats = true;
+  bool oneLineStats = false;  // the stats on one line even in a large window (a small one always has them so)
+  bool hidePanels = false;    // F9: the image takes the whole window
 };
+
+// Below this window size (at content scale 1) the stats take one line, so they do not cover the image.
+inline constexpr float kCompactStatsWidth = 1280.0f;
+inline constexpr float kCompactStatsHeight = 800.0f;
 
 // The resolution scales the "Speed vs accuracy" panel offers (of the camera's image); the first is the default.
 inline constexpr double kTradeoffScales[] = {0.25, 0.5, 1.0};
@@ -93,13 +107,14 @@ void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions)
 void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::string& problem, PanelActions& actions);
 void drawLightsPanel(SceneParameters& edits, double sceneRadius);
 void drawMaterialsPanel(SceneParameters& edits, bool hasTexture);
-void drawRenderSettingsPanel(SceneSession& session, bool& showStats);
+void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display);
 // `canMeasure` is false (with `why`) while no scene can be measured.
 void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,
                        PanelActions& actions);
 
 // Over the image's bottom-right corner (`right`, `bottom`): preview level, pass time, Mrays/s, latencies, sizes.
-void drawStatsOverlay(const ViewerStats& stats, float right, float bottom);
+// `oneLine`: level, pass time, speed and the edit's latency on one line.
+void drawStatsOverlay(const ViewerStats& stats, float right, float bottom, bool oneLine);
 
 // Floating over the top of the image, one under the other: the located load error (with a dismiss button)
 // and the load progress. Each returns the y below itself (`y` when it is not shown).

@@ -41,7 +41,12 @@ void ScriptRunner::step(ScriptHost& host) {
     initialLoadSeen_ = true;
   }
   if (wait_ != Wait::None) {
-    if (!waitIsOver(host)) return;
+    try {
+      if (!waitIsOver(host)) return;
+    } catch (const std::exception& error) {
+      wait_ = Wait::None;
+      return fail(error.what());
+    }
     const Wait finished = std::exchange(wait_, Wait::None);
     // A failed open fails the script, unless the very next command is the expect-error that checks it.
     if (finished == Wait::Load && !host.loadError().empty() &&
@@ -62,12 +67,17 @@ bool ScriptRunner::waitIsOver(ScriptHost& host) {
   switch (wait_) {
     case Wait::None:
       return true;
+    case Wait::SaveFrame:
     case Wait::Final:
       if (const std::string problem = host.editProblem(); !problem.empty()) {
         fail("the edits cannot be rendered: " + problem);
         return false;
       }
-      if (host.finalFrameShown() && !host.loading()) return true;
+      if (host.finalFrameShown() && !host.loading()) {
+        // save-frame saves the final pass, as Ctrl+S does: the image `rayview render` writes.
+        if (wait_ == Wait::SaveFrame) host.saveFrame(current_->args.empty() ? std::string() : current_->args[0]);
+        return true;
+      }
       if (late) fail("no final pass within " + std::to_string(current_->numbers.empty() ? kDefaultWaitFinalSeconds
                                                                                           : current_->numbers[0]) +
                      " s");
@@ -128,7 +138,8 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
   } else if (name == "camera") {
     applyCamera(c, host);
   } else if (name == "save-frame") {
-    host.saveFrame(c.args.empty() ? std::string() : c.args[0]);
+    wait_ = Wait::SaveFrame;
+    deadline_ = Clock::now() + seconds(kDefaultWaitFinalSeconds);
   } else if (name == "save-scene") {
     host.saveScene(c.args.empty() ? std::string() : c.args[0]);
   } else if (name == "screenshot") {

@@ -62,7 +62,7 @@ class ScriptRunner {
 
  private:
   using Clock = std::chrono::steady_clock;
-  enum class Wait { None, Final, Load, Frames, Until, Tradeoff };
+  enum class Wait { None, Final, Load, Frames, Until, Tradeoff, SaveFrame };
 
   void start(const ScriptCommand& command, ScriptHost& host);
   bool waitIsOver(ScriptHost& host);

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "numbered_file.h"
+#include "widgets.h"
 #include "rayview/scene_writer.h"
 #include "viewer_app.h"
 
@@ -28,7 +29,9 @@ RenderSettings ViewerApp::initialSettings() const {
 
 void ViewerApp::open(const std::string& path) { requestLoad(path, path == scenePath_ && session_ != nullptr); }
 
-void ViewerApp::reload() { requestLoad(scenePath_, session_ != nullptr); }
+// The path the user asked for last, even when that load failed: after `rayview missing.xml`, creating the file
+// and pressing F5 loads it (not the embedded default scene).
+void ViewerApp::reload() { requestLoad(requestedPath_, requestedPath_ == scenePath_ && session_ != nullptr); }
 
 void ViewerApp::quit(int exitCode) {
   exitCode_ = exitCode;
@@ -39,6 +42,7 @@ void ViewerApp::requestLoad(const std::string& path, bool isReload) {
   stopTradeoff("cancelled: a scene is loading", true);
   LoadRequest request;
   request.path = path;
+  requestedPath_ = path;
   request.options = LoadOptions{options_.strict, true};
   request.accel = session_ ? session_->settings().accel : initialSettings().accel;
   loadError_.clear();  // the error panel shows the outcome of the newest attempt
@@ -74,8 +78,11 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
   RenderSettings settings = initialSettings();
   std::optional<Camera> keptCamera;
   if (session_) {
-    // Later scenes keep the user's render settings; the depth is each scene's own.
+    // Later scenes keep the user's render settings, except the light samples: another scene's lights need their
+    // own count (128 on a small scene can be minutes on a big one), so they go back to the command line's.
+    // The depth is each scene's own.
     settings = session_->settings();
+    if (!awaitedIsReload_) settings.lightSamples = initialSettings().lightSamples;
     // A reload keeps the user's view unless the file's own camera changed.
     if (awaitedIsReload_ && session_->loaded().camera == outcome.parts.scene->camera)
       keptCamera = session_->edits().camera;
@@ -86,6 +93,14 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
   if (!std::exchange(knobsApplied_, true)) knobs = options_.knobs;
   session_ = std::make_unique<SceneSession>(std::move(outcome.parts), settings, knobs);
   if (keptCamera) session_->edits().camera = *keptCamera;
+  if (outcome.request.path != scenePath_ || !awaitedIsReload_) {
+    // Another scene: the save messages were about the previous one, and a frame save still waiting for its
+    // final pass would save this scene's image under the old name.
+    if (filePanel_.frameSavePending) std::fprintf(stderr, "rayview: frame not saved: another scene was opened\n");
+    filePanel_.frameSavePending = false;
+    filePanel_.lastSaved.clear();
+    filePanel_.lastSaveFailed = false;
+  }
   scenePath_ = outcome.request.path;
   warnings_ = std::move(outcome.warnings);
   ++sceneSerial_;
@@ -107,8 +122,8 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
     filePanel_.saveScenePath = suggestedSaveAsPath(scenePath_);
   window_.setTitle("rayview - " + (scenePath_.empty() ? std::string("default scene") : scenePath_));
 
-  std::printf("loaded %s (%zu triangles, %zu warnings)\n", describe(scenePath_).c_str(), stats_.triangles,
-              warnings_.size());
+  std::printf("loaded %s (%s, %s)\n", describe(scenePath_).c_str(), counted(stats_.triangles, "triangle").c_str(),
+              counted(warnings_.size(), "warning").c_str());
   std::fflush(stdout);
   // A kept camera is committed before the first restart, so the file's view never flashes up.
   std::shared_ptr<const PixelSource> source = session_->commit(editProblem_);
@@ -128,6 +143,8 @@ std::filesystem::path ViewerApp::saveFrame(const std::string& path) {
   std::filesystem::path saved = path;
   if (path.empty()) saved = saveFrameNumbered(frame_.image, scenePath_);
   else writeImageFile(path, frame_.image);
+  filePanel_.frameSavePending = false;
+  filePanel_.lastSaveFailed = false;
   filePanel_.lastSaved = "saved " + saved.string();
   std::printf("saved %s\n", saved.string().c_str());
   std::fflush(stdout);
@@ -141,18 +158,37 @@ std::filesystem::path ViewerApp::saveScene(const std::string& path) {
   std::filesystem::path saved = path;
   if (path.empty()) saved = saveSceneNumbered(parameters, session_->loaded(), scenePath_);
   else writeSceneFile(path, parameters, session_->loaded());
+  filePanel_.lastSaveFailed = false;
   filePanel_.lastSaved = "saved scene " + saved.string();
   std::printf("saved scene %s\n", saved.string().c_str());
   std::fflush(stdout);
   return saved;
 }
 
+void ViewerApp::reportSaveFailure(const std::exception& error) {
+  filePanel_.frameSavePending = false;
+  filePanel_.lastSaveFailed = true;
+  filePanel_.lastSaved = std::string("not saved: ") + error.what();
+  std::fprintf(stderr, "rayview: %s\n", filePanel_.lastSaved.c_str());
+}
+
 void ViewerApp::saveFrameReporting() {
+  // Ctrl+S saves the final pass, never a coarse one: identical to `rayview render`. While refining, the render
+  // goes on and the save happens when the final pass is on screen (afterSwap).
+  if (!finalFrameShown()) {
+    if (!filePanel_.frameSavePending) {
+      filePanel_.frameSavePending = true;
+      filePanel_.lastSaveFailed = false;
+      filePanel_.lastSaved = "saving when the final pass is ready...";
+      std::printf("saving when the final pass is ready\n");
+      std::fflush(stdout);
+    }
+    return;
+  }
   try {
     saveFrame({});
   } catch (const std::exception& error) {
-    filePanel_.lastSaved = std::string("not saved: ") + error.what();
-    std::fprintf(stderr, "rayview: %s\n", filePanel_.lastSaved.c_str());
+    reportSaveFailure(error);
   }
 }
 
@@ -160,8 +196,7 @@ void ViewerApp::saveSceneReporting(const std::string& path) {
   try {
     saveScene(path);
   } catch (const std::exception& error) {
-    filePanel_.lastSaved = std::string("not saved: ") + error.what();
-    std::fprintf(stderr, "rayview: %s\n", filePanel_.lastSaved.c_str());
+    reportSaveFailure(error);
   }
 }
 
@@ -176,7 +211,9 @@ std::string ViewerApp::stateLine() const {
     const Camera& c = session_->edits().camera;
     line += " position=" + vector(c.position) + " gaze=" + vector(c.gaze) + " up=" + vector(c.up) +
             " resolution=" + std::to_string(c.width) + "x" + std::to_string(c.height) +
-            " depth=" + std::to_string(session_->edits().maxRayDepth);
+            " depth=" + std::to_string(session_->edits().maxRayDepth) +
+            " tri_light=" + std::string(toString(session_->settings().triangularLightModel)) +
+            " light_samples=" + std::to_string(session_->settings().lightSamples);
   }
   char timings[96];
   std::snprintf(timings, sizeof timings, " first_pass_ms=%.1f final_pass_ms=%.1f", stats_.editToFirstPassMs,

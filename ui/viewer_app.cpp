@@ -122,7 +122,7 @@ void ViewerApp::commitEdits() {
 ViewerApp::Layout ViewerApp::layout() const {
   const ImGuiIO& io = ImGui::GetIO();
   Layout l;
-  l.panelWidth = std::min(kPanelWidth * imgui_.layoutScale(), io.DisplaySize.x * kMaxPanelShare);
+  l.panelWidth = display_.hidePanels ? 0.0f : std::min(kPanelWidth * imgui_.layoutScale(), io.DisplaySize.x * kMaxPanelShare);
   l.viewX = l.panelWidth;
   l.viewWidth = std::max(io.DisplaySize.x - l.panelWidth, 1.0f);
   l.viewHeight = std::max(io.DisplaySize.y, 1.0f);
@@ -144,8 +144,15 @@ void ViewerApp::drawFrame() {
   const Layout l = layout();
 
   Shortcuts shortcuts;
-  navigation_.handle(window_.takeInput(), io.WantCaptureMouse, io.WantCaptureKeyboard, l.viewHeight,
-                     l.imageHeight > 0.0f ? l.imageHeight : l.viewHeight, session_.get(), shortcuts);
+  // While Ctrl+O's focus is on its way to the path field, typed keys belong to the field, not to shortcuts.
+  navigation_.handle(window_.takeInput(), io.WantCaptureMouse, io.WantCaptureKeyboard || filePanel_.focusOpenPath,
+                     l.viewHeight, l.imageHeight > 0.0f ? l.imageHeight : l.viewHeight, session_.get(), shortcuts);
+  if (shortcuts.focusOpen) {
+    // Before the panels are drawn, so the Scene panel already holds this frame's typed characters.
+    filePanel_.focusOpenPath = true;
+    filePanel_.focusFrames = 0;
+    filePanel_.typeAhead.clear();
+  }
   if (script_ && script_->running()) script_->step(*this);
 
   PanelActions actions;
@@ -181,6 +188,7 @@ void ViewerApp::drawFrame() {
       std::fflush(stdout);
     } catch (const ImageIoError& error) {
       filePanel_.lastSaved = std::string("screenshot failed: ") + error.what();
+      filePanel_.lastSaveFailed = true;
       std::fprintf(stderr, "rayview: %s\n", error.what());
     }
   }
@@ -198,6 +206,8 @@ void ViewerApp::afterSwap() {
     std::printf("final pass generation %llu\n", static_cast<unsigned long long>(frame_.generation));
     std::fflush(stdout);
   }
+  // Ctrl+S pressed while refining saves now that the final pass is on screen.
+  if (filePanel_.frameSavePending && finalFrameShown()) saveFrameReporting();
 }
 
 bool ViewerApp::finalFrameShown() const {
@@ -206,11 +216,21 @@ bool ViewerApp::finalFrameShown() const {
 }
 
 void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
-  ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
-  ImGui::SetNextWindowSize(ImVec2(l.panelWidth, l.viewHeight));
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse |
                                  ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoBringToFrontOnFocus;
-  if (ImGui::Begin("rayview", nullptr, flags)) {
+  if (display_.hidePanels) {
+    // The image has the whole window; one small button brings the column back.
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+    if (ImGui::Begin("##showpanels", nullptr, flags | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+      if (ImGui::Button("Show panels (F9)")) actions.togglePanels = true;
+    ImGui::End();
+  }
+  if (!display_.hidePanels) {
+    ImGui::SetNextWindowPos(ImVec2(0.0f, 0.0f));
+    ImGui::SetNextWindowSize(ImVec2(l.panelWidth, l.viewHeight));
+  }
+  if (!display_.hidePanels && ImGui::Begin("rayview", nullptr, flags)) {
+    if (ImGui::SmallButton("Hide panels (F9)")) actions.togglePanels = true;
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // room for the labels on the right
     const SceneInfo info{scenePath_.empty() ? (session_ ? "default scene (embedded)" : "no scene yet") : scenePath_,
                          warnings_};
@@ -218,7 +238,7 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
     drawSavePanel(filePanel_, haveFrame_, actions);
     if (session_) {
       drawCameraPanel(*session_, cameraPanel_, editProblem_, actions);
-      drawRenderSettingsPanel(*session_, display_.showStats);
+      drawRenderSettingsPanel(*session_, display_);
       drawLightsPanel(session_->edits(), session_->bounds().radius());
       drawMaterialsPanel(session_->edits(), session_->loaded().texture.has_value());
       const std::string why = whyNoTradeoff();
@@ -226,11 +246,16 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
     }
     ImGui::PopItemWidth();
   }
-  ImGui::End();
+  if (!display_.hidePanels) ImGui::End();
 
   const float margin = ImGui::GetStyle().WindowPadding.x;
+  // In a small window the stats take one line, so they do not cover the image.
+  const ImGuiIO& io = ImGui::GetIO();
+  const float scale = imgui_.layoutScale();
+  const bool smallWindow = io.DisplaySize.x < kCompactStatsWidth * scale || io.DisplaySize.y < kCompactStatsHeight * scale;
   if (display_.showStats && haveFrame_)
-    drawStatsOverlay(stats_, l.viewX + l.viewWidth - margin, l.viewY + l.viewHeight - margin);
+    drawStatsOverlay(stats_, l.viewX + l.viewWidth - margin, l.viewY + l.viewHeight - margin,
+                     display_.oneLineStats || smallWindow);
   const std::string stillShowing =
       session_ ? (scenePath_.empty() ? std::string("the default scene") : scenePath_) : std::string();
   const float belowError =
@@ -247,10 +272,14 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   if (actions.saveFrame || shortcuts.saveFrame) saveFrameReporting();
   if (actions.saveSceneNumbered || shortcuts.saveScene) saveSceneReporting({});
   if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
-  if (shortcuts.focusOpen) filePanel_.focusOpenPath = true;
   if (actions.cancelTradeoff) cancelTradeoff();
   if (actions.measureTradeoff) measureTradeoff(*actions.measureTradeoff);
   if (shortcuts.quit) quit(0);
+  if (actions.togglePanels || shortcuts.togglePanels) {
+    display_.hidePanels = !display_.hidePanels;
+    std::printf("panels %s\n", display_.hidePanels ? "hidden" : "shown");
+    std::fflush(stdout);
+  }
   if (session_ && (actions.frameScene || shortcuts.frameScene))
     session_->navigate([&](OrbitCamera& o) { o.frame(session_->bounds()); });
   if (session_ && (actions.resetCamera || shortcuts.resetCamera)) session_->navigate([](OrbitCamera& o) { o.reset(); });

@@ -4,6 +4,7 @@
 // waits for either: the ProgressiveRenderer and the SceneLoaderTask do that on their own threads.
 
 #include <chrono>
+#include <exception>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -116,6 +117,7 @@ class ViewerApp final : public ScriptHost {
   // Saving with a message for the user (panel and stdout) instead of an exception.
   void saveFrameReporting();
   void saveSceneReporting(const std::string& path);
+  void reportSaveFailure(const std::exception& error);
 
   ViewerOptions options_;
   bool knobsApplied_ = false;  // the command line's knobs went into the first scene loaded
@@ -134,6 +136,7 @@ class ViewerApp final : public ScriptHost {
   // The scene on screen.
   std::unique_ptr<SceneSession> session_;
   std::string scenePath_;
+  std::string requestedPath_;  // of the newest open or reload (what F5 loads), even if it failed
   std::vector<Diagnostic> warnings_;
   std::uint64_t sceneSerial_ = 0;
 

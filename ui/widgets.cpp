@@ -15,6 +15,14 @@ constexpr ImGuiSliderFlags kExact = ImGuiSliderFlags_NoRoundToFormat;
 // Drag speed proportional to the value's size, so tiny and huge scenes both drag comfortably.
 float radianceSpeed(const Color& c) { return std::max(0.5f, 0.004f * std::max({c.x, c.y, c.z})); }
 
+// The last item (a whole group, such as InputInt's field, buttons and label) is under the mouse. ImGui's
+// IsItemHovered() is false over a group's text field (the field, not the group, is the hovered item), so the
+// knobs' tooltips never showed over their fields.
+bool itemRectHovered() {
+  return ImGui::IsWindowHovered(ImGuiHoveredFlags_AllowWhenBlockedByActiveItem) &&
+         ImGui::IsMouseHoveringRect(ImGui::GetItemRectMin(), ImGui::GetItemRectMax());
+}
+
 }  // namespace
 
 bool editPoint(const char* label, glm::dvec3& value, double speed) {
@@ -42,6 +50,10 @@ void problemText(const std::string& problem) {
   ImGui::PopStyleColor();
 }
 
+std::string counted(std::size_t count, const char* singular) {
+  return std::to_string(count) + " " + singular + (count == 1 ? "" : "s");
+}
+
 void hintText(const char* text) {
   ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
   ImGui::TextWrapped("%s", text);
@@ -61,8 +73,11 @@ bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& set
   ImGui::BeginDisabled(!knob.matters(parameters, settings));
   int edited = value;
   bool changed = false;
+  bool hovered = false;
   if (knob.isChoice()) {
-    if (ImGui::BeginCombo(label.c_str(), std::string(knob.choices[value].label).c_str())) {
+    const bool open = ImGui::BeginCombo(label.c_str(), std::string(knob.choices[value].label).c_str());
+    hovered = itemRectHovered();
+    if (open) {
       for (int i = 0; i < static_cast<int>(knob.choices.size()); ++i) {
         const bool selected = i == value;
         if (ImGui::Selectable(std::string(knob.choices[i].label).c_str(), selected)) {
@@ -73,11 +88,14 @@ bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& set
       }
       ImGui::EndCombo();
     }
-  } else if (ImGui::InputInt(label.c_str(), &edited)) {
-    edited = std::clamp(edited, knob.min, knob.max);
-    changed = edited != value;
+  } else {
+    if (ImGui::InputInt(label.c_str(), &edited)) {
+      edited = std::clamp(edited, knob.min, knob.max);
+      changed = edited != value;
+    }
+    hovered = itemRectHovered();
   }
-  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+  if (hovered)
     ImGui::SetTooltip("%s (--%s, or `set %s` in scripts)", std::string(knob.help).c_str(), std::string(knob.name).c_str(),
                       std::string(knob.name).c_str());
   ImGui::EndDisabled();

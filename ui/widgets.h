@@ -1,6 +1,7 @@
 #pragma once
 // Small ImGui building blocks for the panels: vectors and colours of the scene format, in its units.
 
+#include <cstddef>
 #include <string>
 
 #include <glm/vec3.hpp>
@@ -23,6 +24,8 @@ bool editRadiance(const char* label, Color& value);
 bool editCoefficient(const char* label, Color& value);
 // The red text under a field that explains why an edit is not rendered.
 void problemText(const std::string& problem);
+// "1 point light", "2 point lights": every count the viewer shows or prints.
+std::string counted(std::size_t count, const char* singular);
 // A grey hint line.
 void hintText(const char* text);
 

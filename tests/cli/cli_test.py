@@ -91,6 +91,44 @@ def main():
           "without a scene, the embedded default renders")
     check_output_is_never_an_input(a)
     check_interrupted_render_leaves_output(a, scene)
+    default_png = os.path.join(a.scratch, "default.png")
+    r = run(["render", "-o", default_png], a.rayview)
+    check("1 point light," in r.stdout and "1 triangular light," in r.stdout and "(1 sample)" in r.stdout,
+          "the summary says '1 point light', not '1 point lights'")
+
+    # Each command's own help; a misspelt command is named as such.
+    r = run(["render", "--help"], a.rayview)
+    check(r.returncode == 0 and r.stdout.startswith("usage: rayview render") and "-o " in r.stdout
+          and "--script" not in r.stdout and "--out" not in r.stdout and "bench tradeoff" not in r.stdout,
+          "render --help prints render's usage and only its options")
+    r = run(["compare", "--help"], a.rayview)
+    check(r.returncode == 0 and r.stdout.startswith("usage: rayview compare") and "--min-within1" in r.stdout
+          and "--threads" not in r.stdout, "compare --help prints compare's usage and options")
+    r = run(["rendr", scene], a.rayview)
+    check(r.returncode == 2 and "unknown command 'rendr' (did you mean 'render'?)" in r.stderr,
+          "a misspelt command is an unknown command with a suggestion")
+
+    # compare: identical, different with and without a threshold, a difference map, bad inputs.
+    r = run(["compare", out_png, os.path.join(a.scratch, "one.png")], a.rayview)
+    check(r.returncode == 0 and r.stdout.strip() == "exact=100.000% within1=100.000% maxdiff=0 psnr=inf",
+          "compare of identical images: 100% exact, exit 0")
+    shallow = os.path.join(a.scratch, "shallow.png")
+    run(["render", "-o", shallow, "--depth", "0", "--quiet"], a.rayview)
+    diff = os.path.join(a.scratch, "diff.png")
+    r = run(["compare", shallow, default_png, "--diff", diff], a.rayview)
+    fields = dict(f.split("=") for f in r.stdout.split())
+    check(r.returncode == 1 and set(fields) == {"exact", "within1", "maxdiff", "psnr"} and int(fields["maxdiff"]) > 1
+          and float(fields["within1"].rstrip("%")) < 100.0, "compare of different images: the figures, exit 1")
+    with open(diff, "rb") as f:
+        check(f.read().startswith(b"\x89PNG"), "--diff writes a PNG")
+    r = run(["compare", shallow, default_png, "--min-within1", "1"], a.rayview)
+    check(r.returncode == 0, "compare within a lower --min-within1 exits 0")
+    r = run(["compare", out_png, default_png], a.rayview)
+    check(r.returncode == 2 and "different sizes" in r.stderr, "images of different sizes are an error (exit 2)")
+    r = run(["compare", out_png, os.path.join(a.scratch, "missing.png")], a.rayview)
+    check(r.returncode == 2 and "missing.png" in r.stderr, "an unreadable image exits 2 naming it")
+    r = run(["compare", out_png], a.rayview)
+    check(r.returncode == 2, "compare with one image is a usage error (exit 2)")
     print("cli: all checks passed")
 
 

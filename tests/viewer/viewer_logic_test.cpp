@@ -9,6 +9,8 @@
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <imgui.h>
+#include <imgui_internal.h>
 
 #include "automation_script.h"
 #include "file_watch.h"
@@ -20,6 +22,7 @@
 #include "script_runner.h"
 #include "support/image_compare.h"
 #include "tradeoff_task.h"
+#include "widgets.h"
 
 namespace rayview {
 namespace {
@@ -172,9 +175,13 @@ TEST(ScriptRunner, WaitsForTheFinalPassThenRunsOneCommandPerFrame) {
   EXPECT_EQ(session.edits().materials[static_cast<std::size_t>(findMaterial(session.edits(), "red"))].diffuse,
             Color(0, 1, 0));
   EXPECT_EQ(host.savedFrame, "-");
+  host.final = false;  // the edit restarted the render
   host.frame(runner);
+  host.frame(runner);
+  EXPECT_EQ(host.savedFrame, "-");  // save-frame saves the final pass, never a coarse one
+  host.final = true;
+  host.frame(runner);  // saved, and the next command runs
   EXPECT_EQ(host.savedFrame, "out.png");
-  host.frame(runner);
   EXPECT_EQ(host.exitCode, 4);
   EXPECT_FALSE(runner.running());
   EXPECT_FALSE(runner.failed());
@@ -542,6 +549,60 @@ TEST(RecentFiles, NewestFirstWithoutDuplicatesAndPersisted) {
   ASSERT_EQ(again.paths().size(), kMaxRecentFiles);
   EXPECT_EQ(again.paths()[0], "/s/5.xml");
   EXPECT_EQ(again.paths()[1], "/s/" + std::to_string(kMaxRecentFiles + 2) + ".xml");
+}
+
+// ImGui without a window: frames drawn into nothing, the mouse put where a test wants it.
+class HeadlessImGui {
+ public:
+  HeadlessImGui() {
+    ImGui::CreateContext();
+    ImGuiIO& io = ImGui::GetIO();
+    io.IniFilename = nullptr;
+    io.DisplaySize = ImVec2(800, 600);
+    io.DeltaTime = 1.0f / 60.0f;
+    unsigned char* pixels = nullptr;
+    int width = 0, height = 0;
+    io.Fonts->GetTexDataAsRGBA32(&pixels, &width, &height);
+  }
+  ~HeadlessImGui() { ImGui::DestroyContext(); }
+  template <typename Draw>
+  void frame(ImVec2 mouse, Draw&& draw) {
+    ImGui::GetIO().MousePos = mouse;
+    ImGui::NewFrame();
+    ImGui::SetNextWindowPos(ImVec2(0, 0));
+    ImGui::SetNextWindowSize(ImVec2(400, 400));
+    ImGui::Begin("panel");
+    draw();
+    ImGui::End();
+    ImGui::Render();
+  }
+  static bool tooltipShown() {
+    const ImGuiWindow* tooltip = ImGui::FindWindowByName("##Tooltip_00");
+    return tooltip && tooltip->Active;
+  }
+};
+
+// Issue 10: the light model and the samples showed no tooltip over their fields. Each knob's help is its tooltip.
+TEST(RenderPanel, KnobTooltipsShowOverTheirFields) {
+  // Light samples twice: enabled (area model), and greyed out (directional), where the tooltip says why.
+  for (const char* name : {"light-samples", "tri-light", "depth", "light-samples"}) {
+    static int round = 0;
+    HeadlessImGui imgui;
+    RenderSettings settings;
+    if (round++ == 3) settings.triangularLightModel = TriangularLightModel::Directional;
+    SceneSession session(loadParts(), settings);
+    const Knob& knob = *findKnob(name);
+    ImVec2 fieldMin;
+    const auto draw = [&] {
+      editKnob(knob, session.edits(), session.settings());
+      fieldMin = ImGui::GetItemRectMin();
+    };
+    imgui.frame(ImVec2(-100, -100), draw);
+    EXPECT_FALSE(HeadlessImGui::tooltipShown()) << name;
+    // Over the left end of the field (not the label): the text box, or the combo's preview.
+    for (int i = 0; i < 3; ++i) imgui.frame(ImVec2(fieldMin.x + 8, fieldMin.y + 6), draw);
+    EXPECT_TRUE(HeadlessImGui::tooltipShown()) << name << ": no tooltip over the field";
+  }
 }
 
 }  // namespace

@@ -14,6 +14,10 @@ Cases:
   hidpi        on a 192-dpi screen (content scale 2) the window, the text and the panels are twice as big
   idle-cpu     once the final pass is shown, the process uses (next to) no CPU
   no-display   without a display: exit code 1 and one line saying how to render headless
+  keys         F5 after a failed open loads the asked-for file; Ctrl+O into a collapsed Scene section replaces
+               the path with what is typed at once; Ctrl+S during a drag saves the final pass, not a coarse one;
+               F9 hides and shows the panels
+  small-window at 1000x640 the stats are one line
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -273,6 +277,7 @@ def case_interaction(args, work):
 
 def case_script(args, work):
     scene = copy_scene(work)
+    other = copy_scene(work, "other.xml")
     with open(SCENE) as f:
         text = f.read()
     broken = os.path.join(work, "broken.xml")
@@ -293,6 +298,10 @@ expect-error broken.xml:
 wait-final
 save-frame {work}/after_error.png
 print-state
+set light-samples 128
+set tri-light directional
+open {other}
+print-state
 quit
 """)
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
@@ -306,6 +315,9 @@ quit
     state = [line for line in viewer.stdout if line.startswith("state ")]
     if not state or "error=1" not in state[0] or not state[0].endswith("scene=" + scene):
         raise Failure("print-state should show the error and the first scene still open\n" + viewer.output())
+    # Another scene: the light samples go back to the command line's (here the default, 1); the model stays.
+    if len(state) != 2 or "light_samples=1 " not in state[1] or "tri_light=directional" not in state[1]:
+        raise Failure("after opening another scene the light samples should be 1 again\n" + viewer.output())
     if not any("broken.xml:" in line and "error" in line for line in viewer.stderr):
         raise Failure("the located load error should also be on stderr\n" + viewer.output())
     expect_same(f"{work}/before.png", render_headless(args.rayview, scene, f"{work}/before_reference.png"), 0)
@@ -368,6 +380,68 @@ def case_reload(args, work):
         viewer.kill()
 
 
+def case_keys(args, work):
+    """Issue 10: F5 after a failed open, Ctrl+O into a collapsed Scene section, Ctrl+S while refining, failed saves."""
+    scene = os.path.join(work, "missing.xml")
+    other = copy_scene(work, "other.xml")
+    viewer = Viewer(args.rayview, [scene, "--threads", "2"], work)
+    try:
+        deadline = time.monotonic() + 30
+        while not any("missing.xml" in line for line in viewer.stderr):
+            if time.monotonic() > deadline:
+                raise Failure("no load error for the missing file\n" + viewer.output())
+            time.sleep(0.05)
+        window = viewer_window(viewer)
+        # The file appears; F5 loads it (not the embedded default scene).
+        copy_scene(work, "missing.xml")
+        key(window, "F5")
+        viewer.wait_for("loaded ", accept=lambda line: line.startswith(f"loaded {scene} "))
+        generation = viewer.wait_final()
+
+        # Collapse the Scene section (its header is the panel's first line), then Ctrl+O and type at once: the
+        # section opens, the field's text is selected and replaced, and no typed character is lost.
+        xdotool("mousemove", "--window", window, 150, 17)
+        xdotool("click", 1)
+        time.sleep(0.3)
+        xdotool("mousemove", "--window", window, *IMAGE_CENTRE)
+        xdotool("key", "--clearmodifiers", "ctrl+o")
+        xdotool("type", "--delay", "5", other)
+        time.sleep(0.3)
+        xdotool("key", "Return")
+        viewer.wait_for("loaded ", accept=lambda line: line.startswith(f"loaded {other} "))
+        generation = viewer.wait_final(after_generation=generation)
+
+        # Ctrl+S while a drag holds the coarse preview: it waits for the final pass and saves that.
+        x, y = IMAGE_CENTRE
+        xdotool("mousedown", 1)
+        for step in range(1, 6):
+            time.sleep(0.05)
+            xdotool("mousemove", "--window", window, x + 20 * step, y)
+        time.sleep(0.2)
+        xdotool("key", "ctrl+s")
+        viewer.wait_for("saving when the final pass is ready")
+        time.sleep(0.3)
+        if any(line.startswith("saved ") for line in viewer.stdout):
+            raise Failure("Ctrl+S saved a coarse pass during the drag\n" + viewer.output())
+        xdotool("mouseup", 1)
+        saved = viewer.wait_for("saved ").split(" ", 1)[1]
+        key(window, "ctrl+shift+s")
+        saved_scene = viewer.wait_for("saved scene ").split(" ", 2)[2]
+        expect_same(saved, render_headless(args.rayview, saved_scene, os.path.join(work, "dragged_reference.png")), 0)
+
+        # F9 hides the panel column and shows it again.
+        key(window, "F9")
+        viewer.wait_for("panels hidden")
+        key(window, "F9")
+        viewer.wait_for("panels shown")
+
+        key(window, "ctrl+q")
+        if viewer.finish() != 0:
+            raise Failure("rayview did not exit cleanly\n" + viewer.output())
+    finally:
+        viewer.kill()
+
+
 def case_screenshot(args, work):
     shot = os.path.join(work, "viewer.png")
     script = os.path.join(work, "screenshot.rvs")
@@ -401,6 +475,35 @@ def case_screenshot(args, work):
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(shot, target)
         print(f"  copied to {os.path.normpath(target)}")
+
+
+def case_small_window(args, work):
+    """At 1000x640 the stats take one line at the image's bottom right, not a box covering it."""
+    shot = os.path.join(work, "small.png")
+    script = os.path.join(work, "small.rvs")
+    with open(script, "w") as f:
+        f.write(f"resize 1000 640\nwait-frames 3\nwait-final\nscreenshot {shot}\nquit\n")
+    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
+    try:
+        if viewer.finish(timeout=120) != 0:
+            raise Failure("the small-window script failed\n" + viewer.output())
+    finally:
+        viewer.kill()
+    width, height, pixels = read_png(shot)
+    if (width, height) != (1000, 640):
+        raise Failure(f"the screenshot is {width}x{height}, expected 1000x640")
+    # The stats box's dark translucent background and text; the full box is 12 lines (about 200 pixels) high.
+    # Rows above the bottom 40 pixels at the right edge must be the image's (same as a few pixels further left).
+    text_rows = set()
+    for y in range(height - 260, height):
+        row = {pixels[(y * width + x) * 3:(y * width + x) * 3 + 3] for x in range(width - 200, width - 10)}
+        if b"\xff\xff\xff" in row:
+            text_rows.add(y)
+    if not text_rows:
+        raise Failure("no stats text at the bottom right")
+    if min(text_rows) < height - 40:
+        raise Failure(f"the stats reach {height - min(text_rows)} pixels above the bottom: not one line")
+    print(f"  {shot}: the stats take the bottom {height - min(text_rows)} pixels")
 
 
 def case_tradeoff(args, work):
@@ -531,7 +634,7 @@ def case_no_display(args, work):
 
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
-         "no-display": case_no_display}
+         "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window}
 
 
 def main():

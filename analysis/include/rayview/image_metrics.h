@@ -13,6 +13,7 @@ struct ImageError {
   double rmse = 0.0;  // root mean square over every channel of every pixel, in 0..255 units
   double psnrDb = std::numeric_limits<double>::infinity();  // 20 log10(255 / rmse); +inf when identical
   double pctOffByMoreThan1 = 0.0;  // % of pixels with any channel differing by more than 1
+  double pctExact = 100.0;         // % of pixels identical in every channel
   int maxChannelDifference = 0;
 };
 
@@ -21,5 +22,10 @@ double psnrFromRmse(double rmse);
 
 // Throws std::invalid_argument when the sizes differ.
 ImageError compareToReference(const Image& image, const Image& reference);
+
+// A false-colour picture of where two images of the same size differ, by each pixel's largest channel
+// difference d: 0 the reference at a quarter of its brightness (so the scene stays recognisable), 1 blue,
+// 2..8 yellow, more than 8 red. Throws std::invalid_argument when the sizes differ.
+Image differenceImage(const Image& image, const Image& reference);
 
 }  // namespace rayview

@@ -1,0 +1,50 @@
+#include "compare_command.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include "rayview/image.h"
+#include "rayview/image_metrics.h"
+
+namespace rayview {
+
+int runCompareCommand(const CommandLine& command) {
+  Image image, reference;
+  try {
+    image = readImageFile(command.scenePaths[0]);
+    reference = readImageFile(command.scenePaths[1]);
+  } catch (const ImageIoError& error) {
+    std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitBadInput;
+  }
+  if (image.width != reference.width || image.height != reference.height) {
+    std::fprintf(stderr, "rayview: error: %s is %dx%d but %s is %dx%d: images of different sizes cannot be compared\n",
+                 command.scenePaths[0].c_str(), image.width, image.height, command.scenePaths[1].c_str(),
+                 reference.width, reference.height);
+    return kExitBadInput;
+  }
+  const ImageError error = compareToReference(image, reference);
+  const double within1 = 100.0 - error.pctOffByMoreThan1;
+  char psnr[32];
+  if (std::isinf(error.psnrDb)) std::snprintf(psnr, sizeof psnr, "inf");
+  else std::snprintf(psnr, sizeof psnr, "%.2f", error.psnrDb);
+  std::printf("exact=%.3f%% within1=%.3f%% maxdiff=%d psnr=%s\n", error.pctExact, within1, error.maxChannelDifference,
+              psnr);
+  if (!command.diffPath.empty()) {
+    try {
+      writeImageFile(command.diffPath, differenceImage(image, reference));
+    } catch (const ImageIoError& failure) {
+      std::fprintf(stderr, "rayview: error: %s\n", failure.what());
+      return kExitBadInput;
+    }
+  }
+  if (within1 < command.minWithin1) {
+    std::fprintf(stderr, "rayview: %.3f%% of the pixels are within 1 of the reference, %.3f%% required\n", within1,
+                 command.minWithin1);
+    return 1;
+  }
+  return kExitOk;
+}
+
+}  // namespace rayview
