@@ -37,16 +37,30 @@ std::optional<Texture> readTextureImage(const fs::path& path, std::string& reaso
     reason = "image too large (" + std::to_string(width) + " x " + std::to_string(height) + ")";
     return std::nullopt;
   }
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes, length, &width, &height, &channels, 3),
-                                                   &stbi_image_free);
-  if (!pixels) {
-    reason = std::string("cannot be decoded (") + stbi_failure_reason() + ")";
-    return std::nullopt;
-  }
+  const std::size_t values = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
   Texture texture;
+  if (stbi_is_16_bit_from_memory(bytes, length)) {
+    // 16-bit images (PNG, PGM/PPM) are read as 16 bits and narrowed here: stb_image's own narrowing
+    // overflows a signed int for some well-formed files (found by fuzzing, see tests/fuzz_regressions).
+    std::unique_ptr<stbi_us, void (*)(void*)> wide(stbi_load_16_from_memory(bytes, length, &width, &height, &channels, 3),
+                                                  &stbi_image_free);
+    if (!wide) {
+      reason = std::string("cannot be decoded (") + stbi_failure_reason() + ")";
+      return std::nullopt;
+    }
+    texture.rgb.resize(values);
+    for (std::size_t i = 0; i < values; ++i) texture.rgb[i] = static_cast<std::uint8_t>(wide.get()[i] >> 8);
+  } else {
+    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes, length, &width, &height, &channels, 3),
+                                                     &stbi_image_free);
+    if (!pixels) {
+      reason = std::string("cannot be decoded (") + stbi_failure_reason() + ")";
+      return std::nullopt;
+    }
+    texture.rgb.assign(pixels.get(), pixels.get() + values);
+  }
   texture.width = width;
   texture.height = height;
-  texture.rgb.assign(pixels.get(), pixels.get() + static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3);
   return texture;
 }
 
