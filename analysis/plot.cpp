@@ -27,6 +27,7 @@ constexpr SeriesStyle kSeries[] = {
     {TradeoffKnob::Depth, "max depth (d)", "d", {213, 94, 0}, MarkerShape::Square},
     {TradeoffKnob::LightSamples, "light samples (n)", "n=", {0, 158, 115}, MarkerShape::Triangle},
     {TradeoffKnob::Accel, "accelerator", "", {204, 121, 167}, MarkerShape::Diamond},
+    {TradeoffKnob::PixelSamples, "samples per pixel (s)", "s=", {230, 159, 0}, MarkerShape::Star},
 };
 
 constexpr double kTitleScale = 2.0, kAxisLabelScale = 1.6, kTickScale = 1.4, kPointLabelScale = 1.3;

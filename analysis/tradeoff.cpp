@@ -117,13 +117,14 @@ std::string csvField(const std::string& text) {
 
 std::string_view toString(TradeoffKnob knob) {
   static const std::string depthName = depthKnob().csvName(), samplesName = lightSamplesKnob().csvName(),
-                           accelName = accelKnob().csvName();
+                           accelName = accelKnob().csvName(), pixelSamplesName = pixelSamplesKnob().csvName();
   switch (knob) {
     case TradeoffKnob::Reference: return "reference";
     case TradeoffKnob::Preview: return "preview";
     case TradeoffKnob::Depth: return depthName;
     case TradeoffKnob::LightSamples: return samplesName;
     case TradeoffKnob::Accel: return accelName;
+    case TradeoffKnob::PixelSamples: return pixelSamplesName;
   }
   return "?";
 }
@@ -132,6 +133,7 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
   const int maxDepth = std::max(0, scene.maxRayDepth);
   RenderSettings baseline = options.baseline;
   baseline.lightSamples = 1;
+  baseline.pixelSamples = 1;
   baseline.accel = availableAccel(baseline.accel);
   const bool samplesMatter =
       !scene.triangularLights.empty() && baseline.triangularLightModel == TriangularLightModel::Area;
@@ -166,6 +168,14 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
     RenderSettings s = baseline;
     s.accel = kind;
     list.push_back({TradeoffKnob::Accel, std::string(toString(kind)), 1, maxDepth, s});
+  }
+
+  const int mostPixelSamples = std::clamp(options.maxPixelSamples, 1, kMaxPixelSamples);
+  for (int n = 1;; n = std::min(2 * n, mostPixelSamples)) {
+    RenderSettings s = baseline;
+    s.pixelSamples = n;
+    list.push_back({TradeoffKnob::PixelSamples, std::to_string(n), 1, maxDepth, s});
+    if (n == mostPixelSamples) break;
   }
   return list;
 }

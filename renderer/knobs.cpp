@@ -68,6 +68,17 @@ const Knob kKnobs[] = {
      .get = [](const SceneParameters&, const RenderSettings& s) { return static_cast<int>(s.secondaryRayStart); },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.secondaryRayStart = static_cast<SecondaryRayStart>(v); },
      .matters = always},
+    {.name = "samples",
+     .label = "Samples per pixel",
+     .help = "anti-aliasing: stratified camera rays per pixel, the same for any thread count (default: 1, "
+             "the pixel's centre, as the course's images)",
+     .home = KnobHome::Settings,
+     .min = 1,
+     .max = kMaxPixelSamples,
+     .measuredByTradeoff = true,
+     .get = [](const SceneParameters&, const RenderSettings& s) { return s.pixelSamples; },
+     .set = [](SceneParameters&, RenderSettings& s, int v) { s.pixelSamples = v; },
+     .matters = always},
 };
 
 }  // namespace
@@ -129,6 +140,7 @@ const Knob* findKnob(std::string_view name) {
 const Knob& depthKnob() { return *findKnob("depth"); }
 const Knob& lightSamplesKnob() { return *findKnob("light-samples"); }
 const Knob& accelKnob() { return *findKnob("accel"); }
+const Knob& pixelSamplesKnob() { return *findKnob("samples"); }
 
 void applyKnobs(std::span<const KnobAssignment> assignments, KnobTarget target) {
   for (const KnobAssignment& a : assignments) {

@@ -78,9 +78,22 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
 }
 
 Color Tracer::tracePixel(int i, int j, RayCounts& counts) const {
+  const std::uint32_t seed = hash32(static_cast<std::uint32_t>(j) * 0x9E3779B1U + static_cast<std::uint32_t>(i));
+  const int samples = std::clamp(settings_.pixelSamples, 1, kMaxPixelSamples);
+  if (samples == 1) return traceCameraRay(i, j, seed, counts);  // the pixel's centre, as the course's images
+  Color sum(0.0f);
+  for (int k = 0; k < samples; ++k) {
+    const glm::vec2 offset = pixelSampleOffset(k, samples, seed);
+    // pixelDirection aims at i + 0.5: shift by the offset from the centre. Light samples vary per camera ray.
+    sum += traceCameraRay(i + (offset.x - 0.5), j + (offset.y - 0.5), hash32(seed + static_cast<std::uint32_t>(k)),
+                          counts);
+  }
+  return sum / static_cast<float>(samples);
+}
+
+Color Tracer::traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const {
   const glm::dvec3 direction = glm::normalize(pixelDirection(parameters_.camera, basis_, i, j));
   const Ray ray{eyeRelative_, direction, 0.0, kInfinity};
-  const std::uint32_t seed = hash32(static_cast<std::uint32_t>(j) * 0x9E3779B1U + static_cast<std::uint32_t>(i));
   ++counts.camera;
   if (std::optional<Hit> hit = accel_.closestHit(ray)) return tracePath(ray, *hit, seed, counts);
   return parameters_.background;

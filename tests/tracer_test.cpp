@@ -273,3 +273,56 @@ TEST(Threads, AStopRaisedBeforeTheRenderCancelsIt) {
 
 }  // namespace
 }  // namespace rayview
+
+namespace rayview {
+namespace {
+
+// A quad covering the right half of an 8x8 view, ambient only: 100 where it is seen, background 0 elsewhere.
+Scene halfCoveredScene() {
+  Scene scene;
+  scene.camera = testing::frontCamera(8);
+  Material m = testing::plainMaterial();
+  m.ambient = Color(1.0f);
+  scene.ambientLight = Color(100.0f);
+  scene.materials.push_back(m);
+  // The near plane spans [-1, 1] at distance 1 in 8 columns of 0.25: column 5 is [0.25, 0.5], its centre
+  // 0.375. The quad's left edge, at 0.3125, covers the centre and 3/4 of the column.
+  testing::addQuadFacingZ(scene, 0.3125, -10, 10, 10, -1, 0);
+  return scene;
+}
+
+Image renderWith(const Scene& scene, const RenderSettings& settings, int threads, RayCounts* rays = nullptr) {
+  auto geometry = prepareGeometry(scene, settings.accel);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
+  ThreadPool pool(threads);
+  Image image;
+  FrameStats stats;
+  EXPECT_TRUE(renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats));
+  if (rays) *rays = stats.rays;
+  return image;
+}
+
+TEST(AntiAliasing, EdgePixelsBlendAndTheImageIsTheSameForAnyThreadCount) {
+  const Scene scene = halfCoveredScene();
+  RenderSettings one;
+  const Image centre = renderWith(scene, one, 1);
+  // One sample: the edge pixel's centre is on the quad, so it is all quad.
+  EXPECT_EQ(centre.rgb[(3 * 8 + 4) * 3], 0);
+  EXPECT_EQ(centre.rgb[(3 * 8 + 5) * 3], 100);
+
+  RenderSettings sixteen;
+  sixteen.pixelSamples = 16;
+  RayCounts rays;
+  const Image smooth = renderWith(scene, sixteen, 1, &rays);
+  EXPECT_EQ(rays.camera, 16u * 64u);
+  const int edge = smooth.rgb[(3 * 8 + 5) * 3];
+  EXPECT_GT(edge, 20) << "the edge pixel blends quad and background";
+  EXPECT_LT(edge, 95) << "the edge pixel blends quad and background";
+  EXPECT_EQ(smooth.rgb[(3 * 8 + 7) * 3], 100) << "a pixel inside the quad stays exact";
+  EXPECT_EQ(smooth.rgb[(3 * 8 + 1) * 3], 0) << "a background pixel stays exact";
+  EXPECT_EQ(renderWith(scene, sixteen, 2).rgb, smooth.rgb) << "bit-identical for any thread count";
+  EXPECT_EQ(renderWith(scene, sixteen, 3).rgb, smooth.rgb) << "bit-identical for any thread count";
+}
+
+}  // namespace
+}  // namespace rayview

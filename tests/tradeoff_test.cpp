@@ -340,3 +340,24 @@ TEST(TradeoffPlot, DrawsEverySeries) {
 
 }  // namespace
 }  // namespace rayview
+
+namespace rayview {
+namespace {
+
+TEST(KnobEnumeration, SamplesPerPixelGoInPowersOfTwoAgainstTheOneSampleReference) {
+  TradeoffOptions options;
+  options.maxPixelSamples = 12;
+  const std::vector<KnobSetting> all = enumerateKnobSettings(wallScene(false), options);
+  std::vector<std::string> labels;
+  for (const KnobSetting& k : all)
+    if (k.knob == TradeoffKnob::PixelSamples) {
+      labels.push_back(k.label);
+      EXPECT_EQ(k.settings.pixelSamples, std::stoi(k.label));
+    }
+  EXPECT_EQ(labels, (std::vector<std::string>{"1", "2", "4", "8", "12"}));
+  EXPECT_EQ(all.front().settings.pixelSamples, 1) << "the reference image is the course's one-sample image";
+  EXPECT_EQ(toString(TradeoffKnob::PixelSamples), "samples");
+}
+
+}  // namespace
+}  // namespace rayview

@@ -13,6 +13,8 @@
 //                 maximum). Without mirrors depth changes nothing: only 0 and the maximum are listed.
 //   light_samples 1, 2, 4 .. maxLightSamples, area model; only when the scene has triangular lights.
 //   accel         Embree and the reference BVH (only the reference when built without Embree).
+//   samples       anti-aliasing, 1, 2, 4 .. maxPixelSamples camera rays per pixel. The reference image keeps 1
+//                 (the course's convention): the error shown is how far anti-aliasing moves the image from it.
 // The highest-quality image ("reference" row): full resolution, the scene's maximum depth, referenceLightSamples
 // (when the scene has triangular lights), the reference BVH.
 //
@@ -39,7 +41,7 @@
 
 namespace rayview {
 
-enum class TradeoffKnob { Reference, Preview, Depth, LightSamples, Accel };
+enum class TradeoffKnob { Reference, Preview, Depth, LightSamples, Accel, PixelSamples };
 
 // "reference", "preview", and the knob table's CSV names ("depth", "light_samples", "accel"): the CSV's knob
 // column.
@@ -52,6 +54,7 @@ struct TradeoffOptions {
   double resolutionScale = 1.0;     // the camera resolution is multiplied by this (rounded, at least 1 pixel)
   int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
   int referenceLightSamples = 256;  // samples per triangular light in the highest-quality image
+  int maxPixelSamples = 16;         // the samples knob goes 1, 2, 4 .. this
   // What every setting starts from. Its accel is what the other knobs use (falls back to the reference BVH);
   // the knobs not measured here (the triangular-light model, the ray start) are kept for every setting, the
   // reference image included. Light samples are 1 except where the light_samples knob varies them.

@@ -68,6 +68,7 @@ const Knob* findKnob(std::string_view name);
 const Knob& depthKnob();
 const Knob& lightSamplesKnob();
 const Knob& accelKnob();
+const Knob& pixelSamplesKnob();
 
 // A value given for a knob (by an option or a script) before it is written into its home.
 struct KnobAssignment {

@@ -28,6 +28,16 @@ inline float radicalInverseBase2(std::uint32_t bits) {
   return static_cast<float>(bits) * 2.3283064365386963e-10f;
 }
 
+// Offset in [0, 1)^2 within a pixel of camera ray k of n (anti-aliasing): stratified in x, a radical inverse
+// in y, rotated per pixel by `pixelSeed` so neighbouring pixels do not share a pattern. Deterministic.
+inline glm::vec2 pixelSampleOffset(int k, int n, std::uint32_t pixelSeed) {
+  const float r1 = static_cast<float>(hash32(pixelSeed ^ 0x68bc21ebU) >> 8) * (1.0f / 16777216.0f);
+  const float r2 = static_cast<float>(hash32(pixelSeed ^ 0x02e5be93U) >> 8) * (1.0f / 16777216.0f);
+  float a = (static_cast<float>(k) + 0.5f) / static_cast<float>(n) + r1;
+  float b = radicalInverseBase2(static_cast<std::uint32_t>(k)) + r2;
+  return {a - std::floor(a), b - std::floor(b)};
+}
+
 // Barycentric weights (of vertex 2 and vertex 3) of sample k of n for the pixel with seed `pixelSeed`.
 inline glm::vec2 triangleSample(int k, int n, std::uint32_t pixelSeed) {
   if (n <= 1) return {1.0f / 3.0f, 1.0f / 3.0f};

@@ -15,11 +15,14 @@ enum class AccelKind { Embree, Reference };
 // triangle they leave, which is what the 2017-2019 CENG477 reference renderer did.
 enum class SecondaryRayStart { Offset, ExcludeHitTriangle };
 
+inline constexpr int kMaxPixelSamples = 256;
+
 struct RenderSettings {
   TriangularLightModel triangularLightModel = TriangularLightModel::Area;
   int lightSamples = 1;       // samples per triangular light (area model); 1 = the centroid
   AccelKind accel = AccelKind::Embree;  // falls back to Reference when built without Embree
   SecondaryRayStart secondaryRayStart = SecondaryRayStart::Offset;
+  int pixelSamples = 1;       // anti-aliasing: stratified camera rays per pixel; 1 = the pixel's centre
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -50,7 +50,8 @@ class Tracer {
   // Everything from `scene`, which must be the scene `accel` and `shading` were built from.
   Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& shading, const RenderSettings& settings);
 
-  // Radiance (0..255 units, unclamped) of pixel (column i, row j from the top).
+  // Radiance (0..255 units, unclamped) of pixel (column i, row j from the top): the mean of
+  // RenderSettings::pixelSamples stratified camera rays, or the centre's ray for 1.
   Color tracePixel(int i, int j, RayCounts& counts) const;
 
   int maxDepth() const { return parameters_.maxRayDepth; }
@@ -61,6 +62,7 @@ class Tracer {
 
   Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, const Accel& accel,
          const ShadingGeometry& shading, const RenderSettings& settings);
+  Color traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const;
   Color tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const;
   // The hit's own light (ambient, lights, shadows); sets `mirrorRay` and returns its weight when the path goes on.
   PathVertex shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
