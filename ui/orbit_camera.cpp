@@ -159,3 +159,14 @@ void OrbitCamera::frame(const Bounds& bounds) {
 }
 
 }  // namespace rayview
+
+namespace rayview {
+
+void OrbitCamera::setPivot(const glm::dvec3& point) {
+  const glm::dvec3 offset = point - camera_.position;
+  if (!isUsable(offset) || glm::length(offset) < minimumDistance()) return;
+  pivot_ = point;
+  lookAtPivot(camera_.position);
+}
+
+}  // namespace rayview
