@@ -1,5 +1,6 @@
-// The viewer's navigation math (ui/orbit_camera): orbit, pan, dolly, frame, reset.
+// The viewer's navigation math (ui/orbit_camera, ui/scene_framing): orbit, pan, dolly, frame, reset, what F frames.
 #include "orbit_camera.h"
+#include "scene_framing.h"
 
 #include <cmath>
 
@@ -211,6 +212,73 @@ TEST(SceneBounds, CoversTheVerticesTrianglesUse) {
   EXPECT_EQ(b.min, glm::dvec3(-1, 0, 0));
   EXPECT_EQ(b.max, glm::dvec3(1, 5, 3));
   EXPECT_TRUE(sceneBounds(Scene{}).empty);
+}
+
+
+// A mesh of two triangles spanning the box from `low` to `high` (its bounds are that box).
+void addMesh(SceneGeometry& g, const std::string& id, const glm::dvec3& low, const glm::dvec3& high) {
+  const auto first = static_cast<std::uint32_t>(g.vertices.size());
+  g.vertices.push_back(low);
+  g.vertices.push_back({high.x, low.y, low.z});
+  g.vertices.push_back(high);
+  g.vertices.push_back({low.x, high.y, high.z});
+  Mesh mesh;
+  mesh.id = id;
+  mesh.firstTriangle = static_cast<std::uint32_t>(g.triangles.size());
+  mesh.triangleCount = 2;
+  const auto index = static_cast<std::uint32_t>(g.meshes.size());
+  g.meshes.push_back(mesh);
+  Triangle a, b;
+  a.vertex[0] = first, a.vertex[1] = first + 1, a.vertex[2] = first + 2, a.mesh = index;
+  b.vertex[0] = first, b.vertex[1] = first + 2, b.vertex[2] = first + 3, b.mesh = index;
+  g.triangles.push_back(a);
+  g.triangles.push_back(b);
+}
+
+TEST(Framing, AHugeFlatFloorIsLeftOutAndTheRestIsFramed) {
+  SceneGeometry g;
+  addMesh(g, "floor", {-100, 0, -100}, {100, 0, 100});
+  addMesh(g, "car", {-2, 0, -1}, {2, 1.5, 1});
+  const Bounds b = framingBounds(g, std::nullopt);
+  EXPECT_EQ(b.min, glm::dvec3(-2, 0, -1));
+  EXPECT_EQ(b.max, glm::dvec3(2, 1.5, 1));
+  // Framed, the car fills the view instead of being a speck on the floor.
+  OrbitCamera orbit = homeCamera();
+  orbit.frame(b);
+  EXPECT_LT(orbit.distance(), 20.0);
+}
+
+TEST(Framing, GroundPlaneRule) {
+  Bounds floor;
+  floor.add({-10, 0, -10});
+  floor.add({10, 0.1, 10});  // 0.5 % as thick as it is wide: flat
+  Bounds small;
+  small.add({-1, 0, -1});
+  small.add({1, 2, 1});  // largest extent 2: the floor (20) is more than 4x that
+  EXPECT_TRUE(isGroundPlane(floor, small));
+  Bounds thick = floor;
+  thick.add({0, 0.3, 0});  // 1.5 %: a slab, not a plane
+  EXPECT_FALSE(isGroundPlane(thick, small));
+  Bounds big = small;
+  big.add({4, 4, 4});  // the rest spans 6: the floor is not 4x larger
+  EXPECT_FALSE(isGroundPlane(floor, big));
+  EXPECT_FALSE(isGroundPlane(floor, Bounds{}));  // a scene that is only a plane frames the plane
+}
+
+TEST(Framing, TheSelectionWinsAndAllPlanesFrameEverything) {
+  SceneGeometry g;
+  addMesh(g, "floor", {-100, 0, -100}, {100, 0, 100});
+  addMesh(g, "car", {-2, 0, -1}, {2, 1.5, 1});
+  addMesh(g, "wheel", {1, 0, 1}, {1.5, 0.5, 1.2});
+  Bounds wheel = framingBounds(g, std::size_t{2});
+  EXPECT_EQ(wheel.min, glm::dvec3(1, 0, 1));
+  EXPECT_EQ(wheel.max, glm::dvec3(1.5, 0.5, 1.2));
+  EXPECT_EQ(framingBounds(g, std::size_t{0}).max, glm::dvec3(100, 0, 100));  // a selected floor is framed
+  EXPECT_EQ(framingBounds(g, std::size_t{7}).max, glm::dvec3(2, 1.5, 1.2));  // no such mesh: as no selection
+  SceneGeometry planes;
+  addMesh(planes, "a", {-1, 0, -1}, {1, 0, 1});
+  addMesh(planes, "b", {-1, 5, -1}, {1, 5, 1});  // neither is 4x larger than the other
+  EXPECT_EQ(framingBounds(planes, std::nullopt).max, glm::dvec3(1, 5, 1));
 }
 
 }  // namespace

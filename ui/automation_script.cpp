@@ -192,7 +192,10 @@ Script parseScript(const std::string& text, const std::string& file) {
       else if (c.name == "quit") {
         if (tokens.size() > 1) p.fail("usage: quit [EXIT_CODE]");
         if (!tokens.empty()) p.integers(tokens, 0, 1, "quit [EXIT_CODE]", 0, 255);
-      } else if (c.name == "reload" || c.name == "print-state" || c.name == "expect-no-error") {
+      } else if (c.name == "pick") {
+        p.integers(tokens, 0, 2, "pick COLUMN ROW (a pixel of the image, from its top left)", 0, 16383);
+      } else if (c.name == "reload" || c.name == "print-state" || c.name == "expect-no-error" || c.name == "undo" ||
+                 c.name == "redo") {
         if (!tokens.empty()) p.fail("'" + c.name + "' takes no arguments");
       } else if (c.name == "set") parseSet(c, tokens, p);
       else if (c.name == "camera") parseCamera(c, tokens, p);

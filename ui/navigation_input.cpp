@@ -1,6 +1,8 @@
 #include "navigation_input.h"
 
 #include <algorithm>
+#include <cmath>
+#include <utility>
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -20,16 +22,30 @@ void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWa
           else if (e.button == GLFW_MOUSE_BUTTON_MIDDLE) drag_ = Drag::Pan;
           if (drag_ != Drag::None) {
             button_ = e.button;
-            lastX_ = e.x;
-            lastY_ = e.y;
+            lastX_ = pressX_ = e.x;
+            lastY_ = pressY_ = e.y;
+            maybeClick_ = e.button == GLFW_MOUSE_BUTTON_LEFT && !shift;
           }
         } else if (!e.pressed && e.button == button_) {
           drag_ = Drag::None;
           button_ = -1;
+          if (std::exchange(maybeClick_, false)) {
+            shortcuts.click = std::make_pair(e.x, e.y);
+            const auto now = std::chrono::steady_clock::now();
+            shortcuts.doubleClick = lastClickTime_ &&
+                                    std::chrono::duration<double>(now - *lastClickTime_).count() < kDoubleClickSeconds &&
+                                    std::abs(e.x - lastClickX_) <= kClickSlop && std::abs(e.y - lastClickY_) <= kClickSlop;
+            // A third click starts a new pair.
+            if (shortcuts.doubleClick) lastClickTime_.reset();
+            else lastClickTime_ = now;
+            lastClickX_ = e.x;
+            lastClickY_ = e.y;
+          }
         }
         break;
       case InputEvent::Kind::CursorMove: {
         if (drag_ == Drag::None || !session) break;
+        if (std::abs(e.x - pressX_) > kClickSlop || std::abs(e.y - pressY_) > kClickSlop) maybeClick_ = false;
         const double dx = e.x - lastX_, dy = e.y - lastY_;
         lastX_ = e.x;
         lastY_ = e.y;
@@ -59,6 +75,9 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
   if (control && e.key == GLFW_KEY_S) (shift ? shortcuts.saveScene : shortcuts.saveFrame) = true;
   else if (control && e.key == GLFW_KEY_O) shortcuts.focusOpen = true;
   else if (control && e.key == GLFW_KEY_Q) shortcuts.quit = true;
+  // A text field being typed in has its own undo.
+  else if (control && !imguiWantsKeyboard && e.key == GLFW_KEY_Z) (shift ? shortcuts.redo : shortcuts.undo) = true;
+  else if (control && !imguiWantsKeyboard && e.key == GLFW_KEY_Y) shortcuts.redo = true;
   else if (e.key == GLFW_KEY_F5) shortcuts.reload = true;
   else if (e.key == GLFW_KEY_F9) shortcuts.togglePanels = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;

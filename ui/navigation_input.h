@@ -2,6 +2,8 @@
 // Turns the window's mouse and keyboard events into camera navigation and shortcuts, after ImGui has
 // had the first say: a press that ImGui wants never starts a drag, a key typed into a field is no shortcut.
 
+#include <chrono>
+#include <optional>
 #include <vector>
 
 #include "scene_session.h"
@@ -18,7 +20,18 @@ struct Shortcuts {
   bool focusOpen = false;    // Ctrl+O
   bool quit = false;         // Ctrl+Q
   bool togglePanels = false; // F9
+  bool undo = false;         // Ctrl+Z
+  bool redo = false;         // Ctrl+Shift+Z, Ctrl+Y
+  // A left click on the image (pressed and released without moving more than kClickSlop pixels): where, in
+  // window coordinates, and whether it completed a double-click.
+  std::optional<std::pair<double, double>> click;
+  bool doubleClick = false;
 };
+
+// A press and release closer than this (window coordinates, per axis) is a click, not a drag.
+inline constexpr double kClickSlop = 3.0;
+// A second click this soon after the first, and as close, is a double-click.
+inline constexpr double kDoubleClickSeconds = 0.4;
 
 class NavigationInput {
  public:
@@ -29,7 +42,10 @@ class NavigationInput {
 
   // A navigation drag is in progress (the render holds its coarse level meanwhile).
   bool dragging() const { return drag_ != Drag::None; }
-  void cancel() { drag_ = Drag::None; }
+  void cancel() {
+    drag_ = Drag::None;
+    maybeClick_ = false;
+  }
 
  private:
   enum class Drag { None, Orbit, Pan };
@@ -38,6 +54,10 @@ class NavigationInput {
   Drag drag_ = Drag::None;
   int button_ = -1;
   double lastX_ = 0.0, lastY_ = 0.0;
+  double pressX_ = 0.0, pressY_ = 0.0;
+  bool maybeClick_ = false;  // the left button went down on the image and has not moved far
+  std::optional<std::chrono::steady_clock::time_point> lastClickTime_;
+  double lastClickX_ = 0.0, lastClickY_ = 0.0;
 };
 
 }  // namespace rayview

@@ -146,6 +146,13 @@ void OrbitCamera::dolly(double wheelSteps) {
   camera_.position = pivot_ - forward * wanted;
 }
 
+void OrbitCamera::setPivot(const glm::dvec3& point) {
+  const glm::dvec3 offset = point - camera_.position;
+  if (!isUsable(offset) || glm::length(offset) < minimumDistance()) return;
+  pivot_ = point;
+  lookAtPivot(camera_.position);
+}
+
 void OrbitCamera::frame(const Bounds& bounds) {
   if (bounds.empty) return;
   const double d = distance();

@@ -55,6 +55,8 @@ class OrbitCamera {
   void dolly(double wheelSteps);
   // Keeps the view direction, centres the pivot on `bounds` and backs off until its sphere fits the view.
   void frame(const Bounds& bounds);
+  // Puts the pivot on `point` and turns the camera, from where it is, to look at it.
+  void setPivot(const glm::dvec3& point);
   // Back to the file's camera and initial pivot.
   void reset();
 

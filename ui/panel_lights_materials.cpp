@@ -35,12 +35,19 @@ void drawLightsPanel(SceneParameters& edits, double sceneRadius) {
   if (edits.pointLights.empty() && edits.triangularLights.empty()) hintText("This scene has no point or triangular lights.");
 }
 
-void drawMaterialsPanel(SceneParameters& edits, bool hasTexture) {
+void drawMaterialsPanel(SceneParameters& edits, bool hasTexture, std::optional<std::size_t> picked, bool reveal) {
+  reveal = reveal && picked && *picked < edits.materials.size();
+  if (reveal) ImGui::SetNextItemOpen(true);
   if (!ImGui::CollapsingHeader("Materials")) return;
   for (std::size_t i = 0; i < edits.materials.size(); ++i) {
     Material& m = edits.materials[i];
     ImGui::PushID(static_cast<int>(i));
-    if (ImGui::TreeNode("material", "Material %s", m.id.c_str())) {
+    const bool isPicked = picked == i;
+    if (isPicked && reveal) {
+      ImGui::SetNextItemOpen(true);
+      ImGui::SetScrollHereY(0.2f);
+    }
+    if (ImGui::TreeNode("material", isPicked ? "Material %s (picked)" : "Material %s", m.id.c_str())) {
       editCoefficient("Ambient", m.ambient);
       editCoefficient("Diffuse", m.diffuse);
       editCoefficient("Specular", m.specular);

@@ -106,7 +106,8 @@ void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const Scen
 void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions);
 void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::string& problem, PanelActions& actions);
 void drawLightsPanel(SceneParameters& edits, double sceneRadius);
-void drawMaterialsPanel(SceneParameters& edits, bool hasTexture);
+// `picked`: the material of the picked mesh, marked; `reveal`: open it (and the section) and scroll to it, once.
+void drawMaterialsPanel(SceneParameters& edits, bool hasTexture, std::optional<std::size_t> picked, bool reveal);
 void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display);
 // `canMeasure` is false (with `why`) while no scene can be measured.
 void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,

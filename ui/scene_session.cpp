@@ -3,12 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene_framing.h"
+
 namespace rayview {
 
 SceneSession::SceneSession(LoadedSceneParts parts, RenderSettings settings, std::span<const KnobAssignment> knobs)
-    : parts_(std::move(parts)), edits_(parts_.scene->parameters()), settings_(settings) {
+    : parts_(std::move(parts)), edits_(parts_.scene->parameters()), settings_(settings), history_(EditState{}) {
   applyKnobs(knobs, {&edits_, &settings_});
   settings_.accel = parts_.accel;  // what this build could actually build
+  history_ = EditHistory(EditState{edits_, settings_});
+  savedEdits_ = edits_;
   orbit_.setHome(parts_.scene->camera, parts_.bounds);
   committedEdits_ = edits_;
   committedSettings_ = settings_;
@@ -46,6 +50,8 @@ std::shared_ptr<const PixelSource> SceneSession::commit(std::string& problem) {
 
   problem = editProblem(edits_, settings_);
   if (!problem.empty()) return nullptr;
+  // What the user asked for, the traversal included (rendered now, or once the geometry is rebuilt).
+  history_.record(EditState{edits_, settings_}, gesture_);
   RenderSettings renderSettings = settings_;
   renderSettings.accel = committedSettings_.accel;  // the back-end is changed by replaceGeometry()
   if (classifyEdit(committedEdits_, committedSettings_, edits_, renderSettings) != EditEffect::Restart) return nullptr;
@@ -64,6 +70,38 @@ void SceneSession::replaceGeometry(std::shared_ptr<const PreparedGeometry> geome
   parts_.geometry = std::move(geometry);
   parts_.accel = accel;
   committedSettings_.accel = accel;
+}
+
+void SceneSession::setGesture(bool inGesture) {
+  if (gesture_ && !inGesture) history_.endGesture();
+  gesture_ = inGesture;
+}
+
+bool SceneSession::undo() {
+  std::optional<EditState> state = history_.undo();
+  if (!state) return false;
+  edits_ = std::move(state->parameters);
+  settings_ = std::move(state->settings);
+  return true;
+}
+
+bool SceneSession::redo() {
+  std::optional<EditState> state = history_.redo();
+  if (!state) return false;
+  edits_ = std::move(state->parameters);
+  settings_ = std::move(state->settings);
+  return true;
+}
+
+std::optional<PickResult> SceneSession::pick(int i, int j) {
+  selection_ = pickPixel(committedEdits_.camera, *parts_.geometry, i, j);
+  revealMaterial_ = selection_.has_value();
+  return selection_;
+}
+
+Bounds SceneSession::framingBounds() const {
+  return rayview::framingBounds(*parts_.scene,
+                                selection_ ? std::optional<std::size_t>(selection_->mesh) : std::nullopt);
 }
 
 bool SceneSession::hasPendingEdits() const {

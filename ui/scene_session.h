@@ -6,14 +6,18 @@
 
 #include <memory>
 #include <span>
+#include <optional>
 #include <string>
+#include <utility>
 
+#include "edit_history.h"
 #include "orbit_camera.h"
 #include "rayview/pixel_source.h"
 #include "rayview/knobs.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/render_settings.h"
 #include "scene_edits.h"
+#include "scene_pick.h"
 
 namespace rayview {
 
@@ -71,6 +75,26 @@ class SceneSession {
   // Counts edits that restarted the render (for stats and tests).
   std::uint64_t commitCount() const { return commits_; }
 
+  // Undo and redo (edit_history.h). commit() records each committed state; while `setGesture(true)` (a drag of
+  // the view or of a panel value is held) the states it commits are one step. undo() and redo() put the edits
+  // and settings back; the next commit() renders them (or asks for the traversal they name: needsRebuild()).
+  void setGesture(bool inGesture);
+  bool undo();
+  bool redo();
+  const EditHistory& history() const { return history_; }
+
+  // Picking on the image on screen (the committed camera): selects the mesh under pixel (i, j), or nothing.
+  std::optional<PickResult> pick(int i, int j);
+  const std::optional<PickResult>& selection() const { return selection_; }
+  // True once after a pick selected something: the Materials panel opens the picked material and scrolls to it.
+  bool takeMaterialReveal() { return std::exchange(revealMaterial_, false); }
+  // What F frames (scene_framing.h): the selected mesh, or the meshes that are not ground planes.
+  Bounds framingBounds() const;
+
+  // The edits differ from the file as loaded (with the command line's options) or as last saved.
+  bool unsaved() const { return edits_ != savedEdits_; }
+  void markSaved(const SceneParameters& saved) { savedEdits_ = saved; }
+
  private:
   LoadedSceneParts parts_;
   SceneParameters edits_;
@@ -80,6 +104,11 @@ class SceneSession {
   RenderSettings committedSettings_;
   std::shared_ptr<const SceneParameters> committed_;  // snapshot of committedEdits_ the render reads
   std::uint64_t commits_ = 0;
+  EditHistory history_;
+  bool gesture_ = false;
+  SceneParameters savedEdits_;
+  std::optional<PickResult> selection_;
+  bool revealMaterial_ = false;
 };
 
 }  // namespace rayview

@@ -148,6 +148,18 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     host.measureTradeoff(c.numbers[0]);
     wait_ = Wait::Tradeoff;
     deadline_ = Clock::now() + seconds(c.numbers[1]);
+  } else if (name == "undo" || name == "redo") {
+    SceneSession* session = host.session();
+    if (!session) return fail("no scene is loaded");
+    // Nothing to undo (or redo) is not an error: print-state shows how many steps there are.
+    if (name == "undo") session->undo();
+    else session->redo();
+  } else if (name == "pick") {
+    SceneSession* session = host.session();
+    if (!session) return fail("no scene is loaded");
+    const std::optional<PickResult> pick = session->pick(static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1]));
+    std::printf("%s\n", pick ? describePick(*pick, session->loaded(), session->edits()).c_str() : "picked nothing");
+    std::fflush(stdout);
   } else if (name == "print-state") {
     std::printf("%s\n", host.stateLine().c_str());
     std::fflush(stdout);
@@ -229,7 +241,7 @@ void ScriptRunner::applyCamera(const ScriptCommand& c, ScriptHost& host) {
   } else if (what == "dolly") {
     session->navigate([&](OrbitCamera& o) { o.dolly(n[0]); });
   } else if (what == "frame") {
-    session->navigate([&](OrbitCamera& o) { o.frame(session->bounds()); });
+    session->navigate([&](OrbitCamera& o) { o.frame(session->framingBounds()); });
   } else if (what == "reset") {
     session->navigate([](OrbitCamera& o) { o.reset(); });
   } else if (what == "position") {

@@ -120,7 +120,6 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
   filePanel_.openPath = scenePath_;
   if (filePanel_.saveScenePath.empty() || !awaitedIsReload_)
     filePanel_.saveScenePath = suggestedSaveAsPath(scenePath_);
-  window_.setTitle("rayview - " + (scenePath_.empty() ? std::string("default scene") : scenePath_));
 
   std::printf("loaded %s (%s, %s)\n", describe(scenePath_).c_str(), counted(stats_.triangles, "triangle").c_str(),
               counted(warnings_.size(), "warning").c_str());
@@ -158,6 +157,7 @@ std::filesystem::path ViewerApp::saveScene(const std::string& path) {
   std::filesystem::path saved = path;
   if (path.empty()) saved = saveSceneNumbered(parameters, session_->loaded(), scenePath_);
   else writeSceneFile(path, parameters, session_->loaded());
+  session_->markSaved(parameters);
   filePanel_.lastSaveFailed = false;
   filePanel_.lastSaved = "saved scene " + saved.string();
   std::printf("saved scene %s\n", saved.string().c_str());
@@ -213,7 +213,13 @@ std::string ViewerApp::stateLine() const {
             " resolution=" + std::to_string(c.width) + "x" + std::to_string(c.height) +
             " depth=" + std::to_string(session_->edits().maxRayDepth) +
             " tri_light=" + std::string(toString(session_->settings().triangularLightModel)) +
-            " light_samples=" + std::to_string(session_->settings().lightSamples);
+            " light_samples=" + std::to_string(session_->settings().lightSamples) +
+            " unsaved=" + (session_->unsaved() ? "1" : "0") +
+            " undo=" + std::to_string(session_->history().undoSteps()) +
+            " redo=" + std::to_string(session_->history().redoSteps()) + " picked=" +
+            (session_->selection() && session_->selection()->mesh < session_->loaded().meshes.size()
+                 ? session_->loaded().meshes[session_->selection()->mesh].id
+                 : std::string("none"));
   }
   char timings[96];
   std::snprintf(timings, sizeof timings, " first_pass_ms=%.1f final_pass_ms=%.1f", stats_.editToFirstPassMs,

@@ -37,12 +37,16 @@ int ViewerApp::run() {
   double waitSeconds = 0.0;
   while (!quit_) {
     window_.waitEvents(waitSeconds);
-    if (window_.shouldClose()) break;
+    if (window_.shouldClose()) {
+      if (!session_ || !session_->unsaved()) break;
+      window_.cancelClose();
+      askBefore(Confirm::Quit, {});
+    }
     const Clock::time_point now = Clock::now();
 
     bool changed = window_.takeActivity();
     if (window_.takeContentScaleChange()) imgui_.setScale(window_.contentScale(), window_.framebufferScale());
-    if (const std::vector<std::string> dropped = window_.takeDroppedPaths(); !dropped.empty()) open(dropped.front());
+    if (const std::vector<std::string> dropped = window_.takeDroppedPaths(); !dropped.empty()) openFromUser(dropped.front());
     changed |= pollLoader();
     changed |= pollFileWatch(now);
     changed |= pollTradeoff();
@@ -144,8 +148,20 @@ void ViewerApp::drawFrame() {
   const Layout l = layout();
 
   Shortcuts shortcuts;
+  std::vector<InputEvent> input = window_.takeInput();
+  // While the unsaved-edits question is up, keys answer it and nothing reaches the view.
+  std::optional<Answer> keyAnswer;
+  if (confirm_ != Confirm::None) {
+    for (const InputEvent& e : input) {
+      if (e.kind != InputEvent::Kind::Key || !e.pressed || e.repeat || keyAnswer) continue;
+      if (e.key == GLFW_KEY_S || e.key == GLFW_KEY_ENTER) keyAnswer = Answer::Save;
+      else if (e.key == GLFW_KEY_D) keyAnswer = Answer::Discard;
+      else if (e.key == GLFW_KEY_ESCAPE || e.key == GLFW_KEY_C) keyAnswer = Answer::Cancel;
+    }
+    input.clear();
+  }
   // While Ctrl+O's focus is on its way to the path field, typed keys belong to the field, not to shortcuts.
-  navigation_.handle(window_.takeInput(), io.WantCaptureMouse, io.WantCaptureKeyboard || filePanel_.focusOpenPath,
+  navigation_.handle(input, io.WantCaptureMouse, io.WantCaptureKeyboard || filePanel_.focusOpenPath,
                      l.viewHeight, l.imageHeight > 0.0f ? l.imageHeight : l.viewHeight, session_.get(), shortcuts);
   if (shortcuts.focusOpen) {
     // Before the panels are drawn, so the Scene panel already holds this frame's typed characters.
@@ -157,7 +173,9 @@ void ViewerApp::drawFrame() {
 
   PanelActions actions;
   drawPanels(l, actions);
+  drawUnsavedModal(keyAnswer);
   apply(actions, shortcuts);
+  if (shortcuts.click) pickAt(shortcuts.click->first, shortcuts.click->second, shortcuts.doubleClick, l);
 
   // Hold the coarse level while the user drags the view or a value.
   const bool dragging = navigation_.dragging() || (ImGui::IsAnyItemActive() && io.MouseDown[0]);
@@ -165,7 +183,10 @@ void ViewerApp::drawFrame() {
     interactive_ = dragging;
     renderer_.setInteractive(dragging);
   }
+  // One drag, or one value held or typed in a panel, is one undo step.
+  if (session_) session_->setGesture(navigation_.dragging() || ImGui::IsAnyItemActive());
   commitEdits();
+  updateTitle();
   startRequestedTradeoff(l);
 
   if (!texture_.empty()) {
@@ -240,7 +261,10 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       drawCameraPanel(*session_, cameraPanel_, editProblem_, actions);
       drawRenderSettingsPanel(*session_, display_);
       drawLightsPanel(session_->edits(), session_->bounds().radius());
-      drawMaterialsPanel(session_->edits(), session_->loaded().texture.has_value());
+      const std::optional<std::size_t> picked =
+          session_->selection() ? std::optional<std::size_t>(session_->selection()->material) : std::nullopt;
+      drawMaterialsPanel(session_->edits(), session_->loaded().texture.has_value(), picked,
+                         session_->takeMaterialReveal());
       const std::string why = whyNoTradeoff();
       drawTradeoffPanel(tradeoffPanel_, session_->edits().camera, why.empty(), why, actions);
     }
@@ -267,22 +291,101 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
 }
 
 void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
-  if (actions.open) open(*actions.open);
+  if (actions.open) openFromUser(*actions.open);
   if (actions.reload || shortcuts.reload) reload();
   if (actions.saveFrame || shortcuts.saveFrame) saveFrameReporting();
   if (actions.saveSceneNumbered || shortcuts.saveScene) saveSceneReporting({});
   if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
   if (actions.cancelTradeoff) cancelTradeoff();
   if (actions.measureTradeoff) measureTradeoff(*actions.measureTradeoff);
-  if (shortcuts.quit) quit(0);
+  if (shortcuts.quit) quitFromUser();
+  if (session_ && shortcuts.undo) session_->undo();
+  if (session_ && shortcuts.redo) session_->redo();
   if (actions.togglePanels || shortcuts.togglePanels) {
     display_.hidePanels = !display_.hidePanels;
     std::printf("panels %s\n", display_.hidePanels ? "hidden" : "shown");
     std::fflush(stdout);
   }
   if (session_ && (actions.frameScene || shortcuts.frameScene))
-    session_->navigate([&](OrbitCamera& o) { o.frame(session_->bounds()); });
+    session_->navigate([&](OrbitCamera& o) { o.frame(session_->framingBounds()); });
   if (session_ && (actions.resetCamera || shortcuts.resetCamera)) session_->navigate([](OrbitCamera& o) { o.reset(); });
+}
+
+void ViewerApp::pickAt(double x, double y, bool doubleClick, const Layout& l) {
+  if (!session_ || !(l.imageWidth > 0.0f) || !(l.imageHeight > 0.0f)) return;
+  // The image is drawn stretched over the image area: the fraction across it is the fraction across the image.
+  const double u = (x - l.imageX) / l.imageWidth, v = (y - l.imageY) / l.imageHeight;
+  if (!(u >= 0.0 && u < 1.0 && v >= 0.0 && v < 1.0)) return;
+  const Camera& camera = session_->committedEdits().camera;
+  const int i = std::min(static_cast<int>(u * camera.width), camera.width - 1);
+  const int j = std::min(static_cast<int>(v * camera.height), camera.height - 1);
+  const std::optional<PickResult> pick = session_->pick(i, j);
+  std::printf("%s\n", pick ? describePick(*pick, session_->loaded(), session_->edits()).c_str() : "picked nothing");
+  std::fflush(stdout);
+  if (pick && doubleClick) session_->navigate([&](OrbitCamera& o) { o.setPivot(pick->point); });
+}
+
+void ViewerApp::updateTitle() {
+  std::string title = "rayview - " + (scenePath_.empty() ? std::string("default scene") : scenePath_);
+  if (session_ && session_->unsaved()) title += " *";
+  if (title != shownTitle_) window_.setTitle(shownTitle_ = title);
+}
+
+void ViewerApp::openFromUser(const std::string& path) {
+  if (session_ && session_->unsaved()) return askBefore(Confirm::Open, path);
+  open(path);
+}
+
+void ViewerApp::quitFromUser() {
+  if (session_ && session_->unsaved()) return askBefore(Confirm::Quit, {});
+  quit(0);
+}
+
+void ViewerApp::askBefore(Confirm what, const std::string& path) {
+  if (confirm_ == Confirm::None) {
+    std::printf("unsaved edits: save, discard or cancel?\n");
+    std::fflush(stdout);
+  }
+  confirm_ = what;
+  confirmOpenPath_ = path;
+  framesToDraw_ = kSettleFrames;
+}
+
+void ViewerApp::drawUnsavedModal(std::optional<Answer> keyAnswer) {
+  if (confirm_ == Confirm::None) return;
+  constexpr const char* kTitle = "Unsaved edits";
+  if (!ImGui::IsPopupOpen(kTitle)) ImGui::OpenPopup(kTitle);
+  const ImGuiIO& io = ImGui::GetIO();
+  ImGui::SetNextWindowPos(ImVec2(io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f), ImGuiCond_Always, ImVec2(0.5f, 0.5f));
+  std::optional<Answer> answer = keyAnswer;
+  if (ImGui::BeginPopupModal(kTitle, nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoMove)) {
+    ImGui::TextUnformatted("The scene has edits that are not saved.");
+    if (confirm_ == Confirm::Quit) ImGui::TextUnformatted("Save them (as a new numbered file) before quitting?");
+    else ImGui::Text("Save them (as a new numbered file) before opening %s?", confirmOpenPath_.c_str());
+    if (ImGui::Button("Save (S)")) answer = Answer::Save;
+    ImGui::SameLine();
+    if (ImGui::Button("Discard (D)")) answer = Answer::Discard;
+    ImGui::SameLine();
+    if (ImGui::Button("Cancel (Esc)")) answer = Answer::Cancel;
+    if (answer) ImGui::CloseCurrentPopup();
+    ImGui::EndPopup();
+  }
+  if (answer) answerUnsaved(*answer);
+}
+
+void ViewerApp::answerUnsaved(Answer answer) {
+  const Confirm what = std::exchange(confirm_, Confirm::None);
+  const char* names[] = {"save", "discard", "cancel"};
+  std::printf("answered %s\n", names[static_cast<int>(answer)]);
+  std::fflush(stdout);
+  framesToDraw_ = kSettleFrames;
+  if (answer == Answer::Cancel) return;
+  if (answer == Answer::Save) {
+    saveSceneReporting({});
+    if (filePanel_.lastSaveFailed) return;  // the edits are still unsaved: stay
+  }
+  if (what == Confirm::Quit) quit(0);
+  else open(confirmOpenPath_);
 }
 
 }  // namespace rayview

@@ -114,6 +114,19 @@ class ViewerApp final : public ScriptHost {
   void afterSwap();
   double nextWaitSeconds(Clock::time_point now, bool rendererIdle) const;
 
+  // Unsaved edits: opening another scene or quitting from the window asks first (a modal: Save, Discard,
+  // Cancel). Scripts' open and quit do not ask: they discard.
+  enum class Confirm { None, Quit, Open };
+  enum class Answer { Save, Discard, Cancel };
+  void openFromUser(const std::string& path);
+  void quitFromUser();
+  void askBefore(Confirm what, const std::string& path);
+  void drawUnsavedModal(std::optional<Answer> keyAnswer);
+  void answerUnsaved(Answer answer);
+  void updateTitle();
+  // A click on the image: pick what it shows; a double-click also puts the orbit pivot there.
+  void pickAt(double x, double y, bool doubleClick, const Layout& layout);
+
   // Saving with a message for the user (panel and stdout) instead of an exception.
   void saveFrameReporting();
   void saveSceneReporting(const std::string& path);
@@ -169,6 +182,10 @@ class ViewerApp final : public ScriptHost {
   std::uint64_t measuredSerial_ = 0, measuredCommit_ = 0;  // what the last measurement saw
   std::string tradeoffError_;                // why the newest measurement has no report
   int revealFrames_ = 0;                     // frames until a new result is on screen
+
+  Confirm confirm_ = Confirm::None;
+  std::string confirmOpenPath_;
+  std::string shownTitle_;
 
   std::string pendingScreenshot_;
   int framesToDraw_ = kSettleFrames;

@@ -130,6 +130,7 @@ void Window::onContentScale(GLFWwindow* window, float, float) {
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
 void Window::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
+void Window::cancelClose() { glfwSetWindowShouldClose(window_, GLFW_FALSE); }
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 void Window::setSize(int width, int height) { glfwSetWindowSize(window_, width, height); }
 

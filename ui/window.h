@@ -44,6 +44,7 @@ class Window {
 
   bool shouldClose() const;
   void requestClose();
+  void cancelClose();  // the close button was pressed, but the application asks first
   void setTitle(const std::string& title);
   void setSize(int width, int height);
 

@@ -18,6 +18,10 @@ Cases:
                the path with what is typed at once; Ctrl+S during a drag saves the final pass, not a coarse one;
                F9 hides and shows the panels
   small-window at 1000x640 the stats are one line
+  undo         Ctrl+Z and Ctrl+Shift+Z undo and redo a script's material edit (images and title), a drag is one
+               step, and Ctrl+Q with unsaved edits asks: Escape cancels, D discards and quits
+  pick         `pick I J` names the mesh a pixel shows; a real click on the image picks, a double-click moves the
+               pivot (the view turns), F then frames the picked mesh
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -454,6 +458,122 @@ def case_keys(args, work):
         viewer.kill()
 
 
+def last_generation(viewer):
+    finals = [int(line.split()[-1]) for line in viewer.stdout if line.startswith("final pass generation")]
+    return finals[-1] if finals else 0
+
+
+def title_of(window):
+    return xdotool("getwindowname", window)
+
+
+def save_now(viewer, window):
+    key(window, "ctrl+s")
+    return viewer.wait_for("saved ").split(" ", 1)[1]
+
+
+def case_undo(args, work):
+    scene = copy_scene(work)
+    script = os.path.join(work, "edit.rvs")
+    with open(script, "w") as f:
+        f.write(f"wait-final\nsave-frame {work}/original.png\nset material red diffuse 0.1 0.8 0.9\nwait-final\n"
+                f"save-frame {work}/edited.png\nprint-state\n")
+    viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
+    try:
+        state = viewer.wait_for("state ")
+        if " unsaved=1 undo=1 redo=0 " not in state:
+            raise Failure("after one edit print-state should say unsaved=1 undo=1 redo=0: " + state)
+        generation = last_generation(viewer)
+        window = viewer_window(viewer)
+        if not title_of(window).endswith(" *"):
+            raise Failure(f"the title should end with '*' while edits are unsaved: {title_of(window)!r}")
+
+        key(window, "ctrl+z")
+        generation = viewer.wait_final(after_generation=generation)
+        expect_same(save_now(viewer, window), f"{work}/original.png", 0)
+        if title_of(window).endswith("*"):
+            raise Failure(f"undone back to the file, the title should lose its '*': {title_of(window)!r}")
+        key(window, "ctrl+shift+z")
+        generation = viewer.wait_final(after_generation=generation)
+        expect_same(save_now(viewer, window), f"{work}/edited.png", 0)
+
+        # A drag of many moves is one step: one Ctrl+Z goes back to before it.
+        x, y = IMAGE_CENTRE
+        xdotool("mousedown", 1)
+        for step in range(1, 8):
+            time.sleep(0.05)
+            xdotool("mousemove", "--window", window, x + 15 * step, y + 3 * step)
+        time.sleep(0.2)
+        xdotool("mouseup", 1)
+        generation = viewer.wait_final(after_generation=generation)
+        key(window, "ctrl+z")
+        generation = viewer.wait_final(after_generation=generation)
+        expect_same(save_now(viewer, window), f"{work}/edited.png", 0)
+
+        # Quitting with unsaved edits asks; Escape cancels, D discards and quits.
+        key(window, "ctrl+q")
+        viewer.wait_for("unsaved edits: save, discard or cancel?")
+        key(window, "Escape")
+        viewer.wait_for("answered cancel")
+        time.sleep(0.3)
+        if viewer.process.poll() is not None:
+            raise Failure("Cancel should keep the viewer open\n" + viewer.output())
+        key(window, "ctrl+q")
+        viewer.wait_for("unsaved edits: save, discard or cancel?")
+        key(window, "d")
+        viewer.wait_for("answered discard")
+        if viewer.finish() != 0:
+            raise Failure("rayview did not exit cleanly after Discard\n" + viewer.output())
+    finally:
+        viewer.kill()
+
+
+def image_point(column, row):
+    """Window coordinates of the centre of image pixel (column, row) of the 480x300 test scene in the initial
+    1280x800 window: the image fills the 880x800 area right of the 400-pixel panels, scaled by 880/480."""
+    scale = 880 / 480
+    return round(400 + (column + 0.5) * scale), round((800 - 300 * scale) / 2 + (row + 0.5) * scale)
+
+
+def case_pick(args, work):
+    scene = copy_scene(work)
+    script = os.path.join(work, "pick.rvs")
+    with open(script, "w") as f:
+        f.write("wait-final\npick 160 130\npick 5 5\npick 160 130\nprint-state\n")
+    viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
+    try:
+        line = viewer.wait_for("picked ")
+        if not line.startswith("picked mesh=box material=red triangle="):
+            raise Failure("pixel (160, 130) shows the red box: " + line)
+        viewer.wait_for("picked nothing")
+        if " picked=box " not in viewer.wait_for("state "):
+            raise Failure("print-state should name the picked mesh\n" + viewer.output())
+        generation = last_generation(viewer)
+        window = viewer_window(viewer)
+        # A real click on the green wedge.
+        xdotool("mousemove", "--window", window, *image_point(300, 150))
+        time.sleep(0.2)
+        xdotool("click", 1)
+        line = viewer.wait_for("picked ")
+        if not line.startswith("picked mesh=wedge material=green triangle="):
+            raise Failure("a click on the wedge should pick it: " + line)
+        # A double-click on the box puts the pivot there: the view turns to it.
+        xdotool("mousemove", "--window", window, *image_point(130, 110))
+        time.sleep(0.2)
+        xdotool("click", "--repeat", "2", "--delay", "80", 1)
+        generation = viewer.wait_final(after_generation=generation)
+        # F frames the picked box (not the whole scene): the view changes again.
+        key(window, "f")
+        viewer.wait_final(after_generation=generation)
+        key(window, "ctrl+q")
+        viewer.wait_for("unsaved edits: save, discard or cancel?")
+        key(window, "d")
+        if viewer.finish() != 0:
+            raise Failure("rayview did not exit cleanly\n" + viewer.output())
+    finally:
+        viewer.kill()
+
+
 def case_screenshot(args, work):
     shot = os.path.join(work, "viewer.png")
     script = os.path.join(work, "screenshot.rvs")
@@ -646,7 +766,8 @@ def case_no_display(args, work):
 
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
-         "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window}
+         "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
+         "undo": case_undo, "pick": case_pick}
 
 
 def main():
