@@ -93,8 +93,9 @@ def soak_script(count, seed, scene, broken, work):
         (6, lambda: [f"camera resolution {rng.randint(16, 700)} {rng.randint(16, 700)}"]),
         (3, lambda: [f"wait-frames {rng.randint(1, 4)}"]),
         (0.4, lambda: ["wait-final 300"]),
-        # A failed load keeps the scene on screen; a reload brings the file back, edits dropped.
-        (1, lambda: [f"open {broken}", "expect-error broken.xml:"]),
+        # A failed load keeps the scene on screen; the scene is then opened again by name, since a reload
+        # reloads the path asked for last (the broken one); a reload brings the file back, edits dropped.
+        (1, lambda: [f"open {broken}", "expect-error broken.xml:", f"open {scene}"]),
         (1, lambda: ["reload", "expect-no-error"]),
     ]
     weights = [w for w, _ in makers]
