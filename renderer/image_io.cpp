@@ -14,7 +14,7 @@
 
 #include <zlib.h>
 
-#include <stb_image.h>
+#include "texture_image.h"
 
 namespace rayview::png_detail {
 unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, int quality);
@@ -201,12 +201,12 @@ void writeImageFile(const std::filesystem::path& path, const Image& image) {
 }
 
 Image readImageFile(const std::filesystem::path& path) {
-  int width = 0, height = 0, channels = 0;
-  stbi_uc* pixels = stbi_load(path.c_str(), &width, &height, &channels, 3);
-  if (!pixels) throw ImageIoError("cannot read " + path.string() + ": " + stbi_failure_reason());
-  Image image(width, height);
-  std::memcpy(image.rgb.data(), pixels, image.rgb.size());
-  stbi_image_free(pixels);
+  // As textures are read: never blocking on a FIFO, sizes checked first, the same decoders.
+  std::string reason;
+  std::optional<Texture> texture = detail::readTextureImage(path, reason);
+  if (!texture) throw ImageIoError("cannot read " + path.string() + ": " + reason);
+  Image image(texture->width, texture->height);
+  image.rgb = std::move(texture->rgb);
   return image;
 }
 

@@ -1,10 +1,12 @@
 #pragma once
-// Reading a <textureimage> from disk with stb_image (PNG, JPEG, binary PPM/PGM, BMP, TGA).
+// Reading images a user names (a <textureimage>, a reference image to compare with): PNG, JPEG, binary
+// PPM/PGM, BMP, TGA.
 
 #include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rayview/scene.h"
@@ -17,8 +19,11 @@ inline constexpr long long kMaxTexturePixels = 1LL << 28;
 // accepted image even uncompressed (2^28 pixels x 3 bytes), and stb_image takes an int length.
 inline constexpr std::uintmax_t kMaxTextureFileBytes = 1ULL << 30;
 
-// Decodes an image file to 8-bit RGB. On failure returns nullopt and sets `reason` (never throws).
+// Reads (as every user file: file_read.h) and decodes an image file to 8-bit RGB. On failure returns nullopt
+// and sets `reason` (never throws).
 std::optional<Texture> readTextureImage(const std::filesystem::path& path, std::string& reason);
+// Decodes an image file's bytes: PNG, binary PNM, BMP and TGA with stb_image, JPEG with libjpeg-turbo.
+std::optional<Texture> decodeImage(std::string_view bytes, std::string& reason);
 
 // Where `written` (the <textureimage> text) may be, in the order tried: next to the scene
 // (sceneDirectory/written), the scene directory's ancestors up to 3 levels (for paths relative to a
