@@ -58,16 +58,22 @@ std::optional<Texture> decodeImage(std::string_view data, std::string& reason) {
   const std::size_t values = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
   Texture texture;
   if (stbi_is_16_bit_from_memory(bytes, length)) {
-    // 16-bit images (PNG, PGM/PPM) are read as 16 bits and narrowed here: stb_image's own narrowing
-    // overflows a signed int for some well-formed files (found by fuzzing, see tests/fuzz_regressions).
-    std::unique_ptr<stbi_us, void (*)(void*)> wide(stbi_load_16_from_memory(bytes, length, &width, &height, &channels, 3),
+    // 16-bit images (PNG, PGM/PPM) are read as 16 bits with their own channel count and widened to RGB and
+    // narrowed here: stb_image's own widening of 16-bit grey treats the samples as bytes and its narrowing
+    // then reads past the buffer (found by fuzzing; tests/fuzz_regressions/texture/).
+    int own = 0;
+    std::unique_ptr<stbi_us, void (*)(void*)> wide(stbi_load_16_from_memory(bytes, length, &width, &height, &own, 0),
                                                   &stbi_image_free);
-    if (!wide) {
-      reason = std::string("cannot be decoded (") + stbi_failure_reason() + ")";
+    if (!wide || own < 1 || own > 4) {
+      reason = std::string("cannot be decoded (") + (wide ? "unexpected channel count" : stbi_failure_reason()) + ")";
       return std::nullopt;
     }
     texture.rgb.resize(values);
-    for (std::size_t i = 0; i < values; ++i) texture.rgb[i] = static_cast<std::uint8_t>(wide.get()[i] >> 8);
+    const std::size_t pixelCount = values / 3;
+    for (std::size_t p = 0; p < pixelCount; ++p) {
+      const stbi_us* in = wide.get() + p * static_cast<std::size_t>(own);
+      for (int c = 0; c < 3; ++c) texture.rgb[p * 3 + c] = static_cast<std::uint8_t>((own >= 3 ? in[c] : in[0]) >> 8);
+    }
   } else {
     std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes, length, &width, &height, &channels, 3),
                                                      &stbi_image_free);
