@@ -28,7 +28,7 @@ import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from viewer_test import (SCREEN, SKIP, Failure, Viewer, copy_scene, fresh_directory,  # noqa: E402
+from viewer_harness import (SCREEN, SKIP, Failure, Viewer, copy_scene, fresh_directory,  # noqa: E402
                          viewer_window, xdotool)
 
 # Resident memory may grow this much between the end of the warm-up and the end of the soak. Under ASan the

@@ -22,33 +22,13 @@
 #include "script_runner.h"
 #include "support/image_compare.h"
 #include "tradeoff_task.h"
+#include "viewer_fixtures.h"
 #include "widgets.h"
 
 namespace rayview {
 namespace {
 
-namespace fs = std::filesystem;
-
-fs::path freshDirectory(const std::string& name) {
-  const fs::path directory = testing::testOutputDirectory() / "viewer_logic" / name;
-  fs::remove_all(directory);
-  fs::create_directories(directory);
-  return directory;
-}
-
-void writeText(const fs::path& path, const std::string& text) { std::ofstream(path) << text; }
-
-const fs::path kViewerScene = testing::sourceDirectory() / "tests/viewer/viewer_scene.xml";
-
-LoadedSceneParts loadParts() {
-  LoadedScene loaded = loadSceneFile(kViewerScene);
-  LoadedSceneParts parts;
-  parts.scene = std::make_shared<const Scene>(std::move(loaded.scene));
-  parts.geometry = prepareGeometry(parts.scene, AccelKind::Reference);
-  parts.bounds = sceneBounds(*parts.scene);
-  parts.accel = AccelKind::Reference;
-  return parts;
-}
+using namespace viewer_testing;
 
 // ---------------------------------------------------------------------------------------------- scripts
 
@@ -358,134 +338,6 @@ TEST(SceneSession, ResolutionEditsKeepTheNearPlanesAspect) {
 }
 
 // ------------------------------------------------------------------------------------------ saving
-
-// ------------------------------------------------------------------------------------- speed vs accuracy
-
-TEST(Tradeoff, TheMeasuredSceneHasTheMeshesAndTheCommittedEdits) {
-  SceneSession session(loadParts(), RenderSettings{});
-  session.edits().maxRayDepth = 5;
-  session.edits().camera.position = glm::dvec3(1.0, 2.0, 3.0);
-  session.edits().pointLights[0].intensity = Color(1.0f, 2.0f, 3.0f);
-  const int red = findMaterial(session.edits(), "red");
-  session.edits().materials[static_cast<std::size_t>(red)].diffuse = Color(0.0f, 1.0f, 0.0f);
-  std::string problem;
-  ASSERT_NE(session.commit(problem), nullptr);
-  session.edits().maxRayDepth = 7;  // not committed yet: not measured
-
-  const TradeoffRequest request = tradeoffRequestFor(session, 0.25);
-  EXPECT_EQ(request.geometry->triangles.size(), session.loaded().triangles.size());
-  EXPECT_EQ(request.geometry.get(), session.geometry().source.get());  // shared, never copied
-  EXPECT_FALSE(request.geometry->triangles.empty());
-  const SceneParameters* scene = &request.parameters;
-  EXPECT_EQ(scene->maxRayDepth, 5);
-  EXPECT_EQ(scene->camera.position, glm::dvec3(1.0, 2.0, 3.0));
-  EXPECT_EQ(scene->pointLights[0].intensity, Color(1.0f, 2.0f, 3.0f));
-  EXPECT_EQ(scene->materials[static_cast<std::size_t>(red)].diffuse, Color(0.0f, 1.0f, 0.0f));
-  EXPECT_EQ(session.loaded().maxRayDepth, 2);  // the loaded scene is untouched
-  EXPECT_NE(session.loaded().camera.position, glm::dvec3(1.0, 2.0, 3.0));
-}
-
-TEST(Tradeoff, ScaledSideRoundsAsTheMeasurementDoes) {
-  EXPECT_EQ(scaledSide(480, 0.25), 120);
-  EXPECT_EQ(scaledSide(300, 0.25), 75);
-  EXPECT_EQ(scaledSide(3, 0.25), 1);
-  EXPECT_EQ(scaledSide(301, 0.5), 151);
-}
-
-TradeoffPoint point(TradeoffKnob knob, const std::string& label, double ms, double pctOff, int stride = 1) {
-  TradeoffPoint p;
-  p.setting.knob = knob;
-  p.setting.label = label;
-  p.setting.stride = stride;
-  p.timeMs = ms;
-  p.error.pctOffByMoreThan1 = pctOff;
-  return p;
-}
-
-TEST(Tradeoff, AdviceNamesTheFastestSettingCloseToTheBestImage) {
-  TradeoffReport r;
-  EXPECT_EQ(tradeoffAdvice(r), "");
-  r.points = {point(TradeoffKnob::Reference, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1/2", 1.0, 30.0, 2),
-              point(TradeoffKnob::Preview, "1", 2.0, 12.0), point(TradeoffKnob::LightSamples, "32", 40.0, 0.3),
-              point(TradeoffKnob::LightSamples, "64", 80.0, 0.0)};
-  std::string advice = tradeoffAdvice(r);
-  EXPECT_NE(advice.find("light_samples 32, 40.0 ms"), std::string::npos) << advice;
-  EXPECT_NE(advice.find("the best image: 300.0 ms"), std::string::npos) << advice;
-  r.points[2].error.pctOffByMoreThan1 = 0.5;  // the defaults are close enough
-  advice = tradeoffAdvice(r);
-  EXPECT_EQ(advice.rfind("The defaults are enough: 2.0 ms", 0), 0u) << advice;
-  r.points = {point(TradeoffKnob::Reference, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1", 2.0, 12.0)};
-  EXPECT_EQ(tradeoffAdvice(r).rfind("No setting but the best image", 0), 0u) << tradeoffAdvice(r);
-}
-
-TradeoffRequest smallRequest(SceneSession& session) {
-  TradeoffRequest request = tradeoffRequestFor(session, 0.1);
-  request.options.maxLightSamples = 4;
-  request.options.referenceLightSamples = 4;
-  request.options.timedRuns = 1;
-  request.options.fastTimedRuns = 1;
-  request.options.slowedRetries = 0;
-  request.plotWidth = 480;
-  request.plotHeight = 300;
-  return request;
-}
-
-template <typename Done>
-bool waitUntil(Done done, std::chrono::seconds limit = std::chrono::seconds(60)) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (!done()) {
-    if (std::chrono::steady_clock::now() > deadline) return false;
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
-  return true;
-}
-
-TEST(Tradeoff, TheTaskMeasuresOnItsOwnThreadAndPlots) {
-  SceneSession session(loadParts(), RenderSettings{});
-  TradeoffTask task(2);
-  std::atomic<int> finished{0};
-  task.setFinishedListener([&] { ++finished; });
-  const std::uint64_t id = task.start(smallRequest(session));
-  std::optional<TradeoffResult> result;
-  ASSERT_TRUE(waitUntil([&] { return (result = task.takeResult()).has_value(); }));
-  EXPECT_EQ(result->id, id);
-  ASSERT_TRUE(result->ok()) << result->error;
-  EXPECT_GE(result->report.points.size(), 5u);
-  EXPECT_EQ(result->report.width, 48);  // 480 x 300 at 0.1
-  EXPECT_EQ(result->report.height, 30);
-  EXPECT_EQ(result->plot.width, 480);
-  EXPECT_EQ(result->plot.height, 300);
-  EXPECT_TRUE(waitUntil([&] { return finished.load() == 1; }));  // called just after the result is ready
-  EXPECT_FALSE(task.status().busy);
-  EXPECT_FALSE(task.takeResult().has_value());  // once
-}
-
-TEST(Tradeoff, CancelStopsTheMeasurementAndANewerRequestWins) {
-  SceneSession session(loadParts(), RenderSettings{});
-  TradeoffTask task(2);
-  TradeoffRequest slow = smallRequest(session);
-  slow.options.resolutionScale = 1.0;
-  slow.options.maxLightSamples = 256;
-  slow.options.referenceLightSamples = 256;
-  slow.options.timedRuns = 3;
-  task.start(slow);
-  ASSERT_TRUE(waitUntil([&] { return task.status().progress.rendersPlanned > 0; }));  // measuring
-  const auto cancelled = std::chrono::steady_clock::now();
-  task.cancel();
-  ASSERT_TRUE(waitUntil([&] { return !task.status().busy; }, std::chrono::seconds(10)));
-  EXPECT_LT(std::chrono::steady_clock::now() - cancelled, std::chrono::seconds(5));
-  if (std::optional<TradeoffResult> result = task.takeResult()) {
-    EXPECT_TRUE(result->cancelled);
-  }
-
-  // A request superseded by a newer one never reports; the newer one does.
-  task.start(slow);
-  const std::uint64_t newer = task.start(smallRequest(session));
-  std::optional<TradeoffResult> result;
-  ASSERT_TRUE(waitUntil([&] { return (result = task.takeResult()).has_value(); }));
-  EXPECT_EQ(result->id, newer);
-  EXPECT_TRUE(result->ok()) << result->error;
-}
 
 TEST(NumberedFile, NeverOverwritesAndLeavesNoTemporary) {
   const fs::path directory = freshDirectory("numbered");
