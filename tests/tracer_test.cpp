@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <thread>
 
 #include <glm/geometric.hpp>
 
@@ -187,6 +188,17 @@ TEST(Mirror, RecursionStopsAtMaxDepth) {
     // Each bounce adds ambient 10 scaled by 0.5^k: 10 (1 + 0.5 + ... + 0.5^depth).
     EXPECT_NEAR(c.x, 10.0 * (2.0 - std::pow(0.5, depth)), 1e-3) << "depth " << depth;
   }
+}
+
+TEST(Mirror, TheDeepestAcceptedDepthCannotExhaustTheStack) {
+  // Depth 20 000 between facing mirrors once overflowed the stack (SIGSEGV): paths are now followed in a loop.
+  // The largest depth any scene, option or script may ask for, on a worker thread with a small stack.
+  RayCounts counts;
+  Color c;
+  std::thread worker([&] { c = centrePixel(facingMirrors(kMaxRayDepth), {}, &counts); });
+  worker.join();
+  EXPECT_EQ(counts.reflection, static_cast<std::uint64_t>(kMaxRayDepth));
+  EXPECT_NEAR(c.x, 20.0, 1e-3);  // 10 (1 + 0.5 + 0.25 + ...)
 }
 
 TEST(Mirror, DepthOverrideWins) {
