@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include <stb_image.h>
+#include "texture_image.h"
 
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
@@ -61,13 +61,9 @@ Timed timeIt(int repeat, const std::function<std::size_t()>& encode) {
 }
 
 bool decodesTo(const std::string& png, const Image& image) {
-  int w = 0, h = 0, channels = 0;
-  stbi_uc* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(png.data()), static_cast<int>(png.size()),
-                                          &w, &h, &channels, 3);
-  const bool same = pixels && w == image.width && h == image.height &&
-                    std::equal(image.rgb.begin(), image.rgb.end(), pixels);
-  stbi_image_free(pixels);
-  return same;
+  std::string reason;
+  const std::optional<Texture> decoded = detail::decodeImage(png, reason);
+  return decoded && decoded->width == image.width && decoded->height == image.height && decoded->rgb == image.rgb;
 }
 
 }  // namespace

@@ -7,18 +7,8 @@
 #include "rayview/file_read.h"
 
 #include "jpeg_decode.h"
-
-// The one translation unit of the project that compiles stb_image: PNG, binary PNM, BMP and TGA. JPEG goes to
-// libjpeg-turbo (jpeg_decode.cpp). GIF, PSD, HDR and PIC are left out: no scene uses them, and fuzzing found
-// a 391-byte GIF that made stb_image allocate over 2 GiB.
-#define STB_IMAGE_IMPLEMENTATION
-#define STBI_NO_STDIO_DEPRECATION
-#define STBI_NO_JPEG
-#define STBI_NO_GIF
-#define STBI_NO_PSD
-#define STBI_NO_HDR
-#define STBI_NO_PIC
-#include <stb_image.h>
+#include "png_decode.h"
+#include "pnm_decode.h"
 
 namespace rayview::detail {
 
@@ -38,54 +28,20 @@ std::optional<Texture> readTextureImage(const fs::path& path, std::string& reaso
   return decodeImage(file.bytes, reason);
 }
 
+// Images are decoded by libpng, libjpeg-turbo and rayview's own PNM reader, not stb_image: fuzzing found
+// Debian 12's stb_image writing out of bounds (JPEG Huffman tables, 16-bit PGM), overflowing (PNM headers),
+// passing null pointers to memcpy (PNG) and allocating over 2 GiB for a 391-byte GIF. The reproducers are
+// replayed by ctest (tests/fuzz_regressions/texture/).
 std::optional<Texture> decodeImage(std::string_view data, std::string& reason) {
   if (data.size() > kMaxTextureFileBytes) {
     reason = "image file too large";
     return std::nullopt;
   }
+  if (looksLikePng(data)) return decodePng(data, kMaxTexturePixels, reason);
   if (looksLikeJpeg(data)) return decodeJpeg(data, kMaxTexturePixels, reason);
-  const auto* bytes = reinterpret_cast<const stbi_uc*>(data.data());
-  const int length = static_cast<int>(data.size());  // kMaxTextureFileBytes fits an int
-  int width = 0, height = 0, channels = 0;
-  if (!stbi_info_from_memory(bytes, length, &width, &height, &channels)) {
-    reason = std::string("not a readable image (") + stbi_failure_reason() + ")";
-    return std::nullopt;
-  }
-  if (width <= 0 || height <= 0 || static_cast<long long>(width) * height > kMaxTexturePixels) {
-    reason = "image too large (" + std::to_string(width) + " x " + std::to_string(height) + ")";
-    return std::nullopt;
-  }
-  const std::size_t values = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * 3;
-  Texture texture;
-  if (stbi_is_16_bit_from_memory(bytes, length)) {
-    // 16-bit images (PNG, PGM/PPM) are read as 16 bits with their own channel count and widened to RGB and
-    // narrowed here: stb_image's own widening of 16-bit grey treats the samples as bytes and its narrowing
-    // then reads past the buffer (found by fuzzing; tests/fuzz_regressions/texture/).
-    int own = 0;
-    std::unique_ptr<stbi_us, void (*)(void*)> wide(stbi_load_16_from_memory(bytes, length, &width, &height, &own, 0),
-                                                  &stbi_image_free);
-    if (!wide || own < 1 || own > 4) {
-      reason = std::string("cannot be decoded (") + (wide ? "unexpected channel count" : stbi_failure_reason()) + ")";
-      return std::nullopt;
-    }
-    texture.rgb.resize(values);
-    const std::size_t pixelCount = values / 3;
-    for (std::size_t p = 0; p < pixelCount; ++p) {
-      const stbi_us* in = wide.get() + p * static_cast<std::size_t>(own);
-      for (int c = 0; c < 3; ++c) texture.rgb[p * 3 + c] = static_cast<std::uint8_t>((own >= 3 ? in[c] : in[0]) >> 8);
-    }
-  } else {
-    std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes, length, &width, &height, &channels, 3),
-                                                     &stbi_image_free);
-    if (!pixels) {
-      reason = std::string("cannot be decoded (") + stbi_failure_reason() + ")";
-      return std::nullopt;
-    }
-    texture.rgb.assign(pixels.get(), pixels.get() + values);
-  }
-  texture.width = width;
-  texture.height = height;
-  return texture;
+  if (looksLikePnm(data)) return decodePnm(data, kMaxTexturePixels, reason);
+  reason = "not a readable image (rayview reads PNG, JPEG and binary PPM/PGM)";
+  return std::nullopt;
 }
 
 std::vector<fs::path> textureCandidates(const fs::path& sceneDirectory, const std::string& written) {

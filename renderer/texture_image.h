@@ -1,6 +1,6 @@
 #pragma once
 // Reading images a user names (a <textureimage>, a reference image to compare with): PNG, JPEG, binary
-// PPM/PGM, BMP, TGA.
+// PPM/PGM.
 
 #include <cstdint>
 #include <filesystem>
@@ -16,13 +16,14 @@ namespace rayview::detail {
 // Largest texture accepted, in pixels (refused before decoding, from the header alone).
 inline constexpr long long kMaxTexturePixels = 1LL << 28;
 // Largest texture file read, in bytes (refused from its size, before reading): 1 GiB holds the largest
-// accepted image even uncompressed (2^28 pixels x 3 bytes), and stb_image takes an int length.
+// accepted image even uncompressed (2^28 pixels x 3 bytes).
 inline constexpr std::uintmax_t kMaxTextureFileBytes = 1ULL << 30;
 
 // Reads (as every user file: file_read.h) and decodes an image file to 8-bit RGB. On failure returns nullopt
 // and sets `reason` (never throws).
 std::optional<Texture> readTextureImage(const std::filesystem::path& path, std::string& reason);
-// Decodes an image file's bytes: PNG, binary PNM, BMP and TGA with stb_image, JPEG with libjpeg-turbo.
+// Decodes an image file's bytes: PNG with libpng, JPEG with libjpeg-turbo, binary PPM/PGM (P6, P5) with
+// rayview's own reader. Other formats are refused.
 std::optional<Texture> decodeImage(std::string_view bytes, std::string& reason);
 
 // Where `written` (the <textureimage> text) may be, in the order tried: next to the scene

@@ -8,7 +8,7 @@
 #include <random>
 #include <string>
 
-#include <stb_image.h>
+#include "texture_image.h"
 
 #include "rayview/image.h"
 
@@ -34,18 +34,16 @@ Image testImage(int width, int height, std::uint32_t seed) {
   return image;
 }
 
+// Decoded by libpng (rayview's image reader): another implementation than the writer's.
 void expectDecodesTo(const std::string& png, const Image& image) {
-  int w = 0, h = 0, channels = 0;
-  stbi_uc* pixels = stbi_load_from_memory(reinterpret_cast<const stbi_uc*>(png.data()), static_cast<int>(png.size()),
-                                          &w, &h, &channels, 3);
-  ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
-  EXPECT_EQ(w, image.width);
-  EXPECT_EQ(h, image.height);
-  EXPECT_EQ(channels, 3);
-  if (w == image.width && h == image.height) {
-    EXPECT_TRUE(std::equal(image.rgb.begin(), image.rgb.end(), pixels)) << "pixels differ";
+  std::string reason;
+  const std::optional<Texture> decoded = detail::decodeImage(png, reason);
+  ASSERT_TRUE(decoded.has_value()) << reason;
+  EXPECT_EQ(decoded->width, image.width);
+  EXPECT_EQ(decoded->height, image.height);
+  if (decoded->width == image.width && decoded->height == image.height) {
+    EXPECT_TRUE(decoded->rgb == image.rgb) << "pixels differ";
   }
-  stbi_image_free(pixels);
 }
 
 TEST(PngWriter, RoundTripsAtEveryLevelAndPartCount) {
