@@ -111,12 +111,15 @@ TEST(ProgressiveRenderer, CancelMidPassNeverPublishesTheStaleGeneration) {
   std::thread watcher([&] {
     ProgressiveFrame frame;
     std::uint64_t version = 0;
-    while (watching.load()) {
+    // One look after the flag drops too: on a loaded machine this thread may not run at all
+    // before the render ends, and the final frame must still be seen.
+    for (bool more = true; more;) {
+      more = watching.load();
       if (renderer.takeFrameIfNewer(version, frame)) {
         version = frame.version;
         seenGenerations.push_back(frame.generation);
       }
-      std::this_thread::sleep_for(100us);
+      if (more) std::this_thread::sleep_for(100us);
     }
   });
   auto first = std::make_shared<CountingSource>(64, 64, 0.0f, /*blockFirstPixel=*/true);
