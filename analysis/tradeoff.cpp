@@ -135,8 +135,7 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
   baseline.lightSamples = 1;
   baseline.pixelSamples = 1;
   baseline.accel = availableAccel(baseline.accel);
-  const bool samplesMatter =
-      !scene.triangularLights.empty() && baseline.triangularLightModel == TriangularLightModel::Area;
+  const bool samplesMatter = lightSamplesKnob().matters(scene, baseline);
 
   std::vector<KnobSetting> list;
   RenderSettings best = baseline;
@@ -200,8 +199,8 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
   view.camera.height = report.height = scaled(scene->camera.height);
 
   if (!scene->hasMirrors()) report.notes.push_back("no mirrors (or depth 0): depth changes nothing");
-  if (scene->triangularLights.empty())
-    report.notes.push_back("no triangular lights: light samples change nothing (not measured)");
+  if (!lightSamplesKnob().matters(*scene, options.baseline))
+    report.notes.push_back("light samples change nothing here (no triangular lights, or the directional model): not measured");
   if (availableAccel(AccelKind::Embree) != AccelKind::Embree)
     report.notes.push_back("built without Embree: only the reference BVH is measured");
 

@@ -98,10 +98,12 @@ int runRenderCommand(const CommandLine& command) {
 
   if (!command.quiet) {
     const RenderSettings& s = settings;
-    std::printf("scene      %s: %s, %s, %s, %dx%d\n",
-                command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(),
-                counted(view.triangles.size(), "triangle").c_str(), counted(view.pointLights.size(), "point light").c_str(),
-                counted(view.triangularLights.size(), "triangular light").c_str(), view.camera.width,
+    std::string lights;
+    view.lights.forEachType([&](const auto& list) {
+      lights += ", " + counted(list.size(), std::string(LightOf<decltype(list)>::kType.noun));
+    });
+    std::printf("scene      %s: %s%s, %dx%d\n", command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(),
+                counted(view.triangles.size(), "triangle").c_str(), lights.c_str(), view.camera.width,
                 view.camera.height);
     std::printf("settings   depth %d, triangular lights %s (%s), accel %s, %s\n", tracer.maxDepth(),
                 std::string(toString(s.triangularLightModel)).c_str(), counted(static_cast<std::size_t>(s.lightSamples), "sample").c_str(),

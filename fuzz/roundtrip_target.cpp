@@ -37,19 +37,18 @@ void compare(const rayview::Scene& a, const rayview::Scene& b) {
   EXPECT_SAME(ca.nearDistance == cb.nearDistance);
   EXPECT_SAME(ca.width == cb.width && ca.height == cb.height);
 
-  EXPECT_SAME(a.pointLights.size() == b.pointLights.size());
-  for (std::size_t i = 0; i < a.pointLights.size(); ++i) {
-    EXPECT_SAME(a.pointLights[i].id == b.pointLights[i].id);
-    EXPECT_SAME(same(a.pointLights[i].position, b.pointLights[i].position));
-    EXPECT_SAME(same(a.pointLights[i].intensity, b.pointLights[i].intensity));
-  }
-  EXPECT_SAME(a.triangularLights.size() == b.triangularLights.size());
-  for (std::size_t i = 0; i < a.triangularLights.size(); ++i) {
-    const rayview::TriangularLight &la = a.triangularLights[i], &lb = b.triangularLights[i];
-    EXPECT_SAME(la.id == lb.id);
-    EXPECT_SAME(same(la.vertex1, lb.vertex1) && same(la.vertex2, lb.vertex2) && same(la.vertex3, lb.vertex3));
-    EXPECT_SAME(same(la.intensity, lb.intensity));
-  }
+  // Every light type, value by value through its field table (light_type.h).
+  a.lights.forEachType([&](const auto& listA) {
+    using Light = rayview::LightOf<decltype(listA)>;
+    const auto& listB = b.lights.of<Light>();
+    EXPECT_SAME(listA.size() == listB.size());
+    for (std::size_t i = 0; i < listA.size(); ++i) {
+      EXPECT_SAME(listA[i].id == listB[i].id);
+      for (const auto& field : Light::fields())
+        EXPECT_SAME(field.point ? same(listA[i].*field.point, listB[i].*field.point)
+                                : same(listA[i].*field.intensity, listB[i].*field.intensity));
+    }
+  });
   EXPECT_SAME(a.materials.size() == b.materials.size());
   for (std::size_t i = 0; i < a.materials.size(); ++i) {
     const rayview::Material &ma = a.materials[i], &mb = b.materials[i];

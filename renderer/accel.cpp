@@ -21,8 +21,8 @@ double largestComponent(const glm::dvec3& v) { return std::max({std::fabs(v.x), 
 // The farthest point, relative to `origin`, that rays start at or reach, and what it is.
 struct Reach {
   double distance = 0.0;
-  const char* what = "the camera";
-  void consider(const glm::dvec3& p, const glm::dvec3& origin, const char* name) {
+  std::string what = "the camera";
+  void consider(const glm::dvec3& p, const glm::dvec3& origin, std::string_view name) {
     const double r = largestComponent(p - origin);
     if (std::isfinite(r) && r > distance) distance = r, what = name;
   }
@@ -40,7 +40,7 @@ Reach geometryReach(const SceneGeometry& geometry, const glm::dvec3& origin) {
 std::string beyond(const Reach& reach, double epsilon) {
   const double limit = kEmbreeCoordinateLimit;
   if (reach.distance * (1.0 + 0x1p-10) + epsilon <= limit) return {};
-  return reach.what + std::string(" is ") + scientific(reach.distance) + " from the camera" +
+  return reach.what + " is " + scientific(reach.distance) + " from the camera" +
          (epsilon > 0.0 ? " (with <shadowrayepsilon> " + scientific(epsilon) + ")" : std::string()) +
          ", beyond the " + scientific(limit) + " Embree can represent";
 }
@@ -53,10 +53,13 @@ std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeo
   // below 1 %); their directions are unit vectors except camera rays, which go through the near plane.
   Reach reach = geometryReach(geometry, origin);
   reach.consider(parameters.camera.position, origin, "the camera");
-  for (const PointLight& light : parameters.pointLights) reach.consider(light.position, origin, "a point light");
-  for (const TriangularLight& light : parameters.triangularLights)
-    for (const glm::dvec3* p : {&light.vertex1, &light.vertex2, &light.vertex3})
-      reach.consider(*p, origin, "a triangular light");
+  parameters.lights.forEachType([&](const auto& list) {
+    using Light = LightOf<decltype(list)>;
+    const std::string what = "a " + std::string(Light::kType.noun);
+    for (const Light& light : list)
+      for (const auto& field : Light::fields())
+        if (field.point) reach.consider(light.*field.point, origin, what);
+  });
   const double epsilon = parameters.shadowRayEpsilon.value_or(0.0);
   const Camera& c = parameters.camera;
   const double nearPlane = c.nearDistance + std::max({std::fabs(c.left), std::fabs(c.right), std::fabs(c.bottom),

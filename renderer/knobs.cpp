@@ -36,7 +36,7 @@ const Knob kKnobs[] = {
      .choices = kTriangularLightModels,
      .get = [](const SceneParameters&, const RenderSettings& s) { return static_cast<int>(s.triangularLightModel); },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.triangularLightModel = static_cast<TriangularLightModel>(v); },
-     .matters = [](const SceneParameters& p, const RenderSettings&) { return !p.triangularLights.empty(); }},
+     .matters = [](const SceneParameters& p, const RenderSettings&) { return !p.lights.of<TriangularLight>().empty(); }},
     {.name = "light-samples",
      .label = "Light samples",
      .help = "samples per triangular light, area model (default: 1 = the centroid)",
@@ -47,7 +47,7 @@ const Knob kKnobs[] = {
      .get = [](const SceneParameters&, const RenderSettings& s) { return s.lightSamples; },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.lightSamples = v; },
      .matters = [](const SceneParameters& p, const RenderSettings& s) {
-       return !p.triangularLights.empty() && s.triangularLightModel == TriangularLightModel::Area;
+       return !p.lights.of<TriangularLight>().empty() && s.triangularLightModel == TriangularLightModel::Area;
      }},
     {.name = "accel",
      .label = "Traversal",

@@ -80,29 +80,59 @@ bool Loader::isName(const XMLElement* e, std::string_view lowercase) {
   return detail::equalsIgnoreCase(e->Name(), lowercase);
 }
 
+std::string Loader::canonicalName(const XMLElement* e) {
+  std::string name = toLower(e->Name());
+  const std::string_view alias = detail::canonicalAlias(name);
+  return alias.empty() ? name : std::string(alias);
+}
+
+std::string Loader::readName(const XMLElement* e) {
+  const std::string name = toLower(e->Name());
+  const std::string_view alias = detail::canonicalAlias(name);
+  if (alias.empty()) return name;
+  const std::string written = elementName(e);
+  if (name == "backgroundcolor")
+    nonconforming(e->GetLineNum(), written + " read as <background> (the handout example's spelling; the format's name is <background>)");
+  else
+    nonconforming(e->GetLineNum(), written + " read as <" + std::string(alias) + "> (misspelled element name)");
+  return std::string(alias);
+}
+
+namespace {
+
+bool isLightElement(std::string_view canonical) {
+  bool found = false;
+  SceneLights().forEachType([&](const auto& list) { found = found || LightOf<decltype(list)>::kType.element == canonical; });
+  return found;
+}
+
+bool isLightField(std::string_view canonical) {
+  bool found = false;
+  SceneLights().forEachType([&](const auto& list) {
+    for (const auto& field : LightOf<decltype(list)>::fields()) found = found || field.element == canonical;
+  });
+  return found;
+}
+
+}  // namespace
+
+bool Loader::isKnownName(std::string_view canonical) {
+  for (const TagName& t : kTagNames)
+    if (t.name == canonical) return true;
+  return isLightElement(canonical) || isLightField(canonical);
+}
+
 // The element's tag, after case folding and aliases (an alias is reported once per spelling).
 Tag Loader::identify(const XMLElement* e) {
-  const std::string name = toLower(e->Name());
-  std::string_view canonical = name;
-  std::string_view alias = detail::canonicalAlias(name);
-  if (!alias.empty()) {
-    canonical = alias;
-    const std::string written = elementName(e);
-    if (name == "backgroundcolor")
-      nonconforming(e->GetLineNum(), written + " read as <background> (the handout example's spelling; the format's name is <background>)");
-    else
-      nonconforming(e->GetLineNum(), written + " read as <" + std::string(alias) + "> (misspelled element name)");
-  }
+  const std::string canonical = readName(e);
   for (const TagName& t : kTagNames)
     if (t.name == canonical) return t.tag;
-  return Tag::Unknown;
+  return isLightElement(canonical) ? Tag::Light : Tag::Unknown;
 }
 
 void Loader::unknownElement(const XMLElement* e, const std::string& where) {
-  const std::string name = toLower(e->Name());
+  const bool known = isKnownName(canonicalName(e));
   std::string message;
-  bool known = false;
-  for (const TagName& t : kTagNames) known = known || t.name == name || t.name == detail::canonicalAlias(name);
   if (known)
     message = "element " + elementName(e) + " is not expected " + where + "; ignored";
   else

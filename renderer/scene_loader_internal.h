@@ -43,8 +43,9 @@ constexpr std::uintmax_t kMaxFileBytes = (1ULL << 31) - 1;  // tinyxml2 and line
 // --- element names ---
 enum class Tag {
   Unknown, Scene, MaxRayTraceDepth, Background, ShadowRayEpsilon, Camera, Position, Gaze, Up, NearPlane,
-  NearDistance, ImageResolution, Lights, AmbientLight, PointLight, Intensity, TriangularLight, Vertex1,
-  Vertex2, Vertex3, Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
+  NearDistance, ImageResolution, Lights, AmbientLight,
+  Light,  // the element of a light type (light_types.h); its own fields are read from the type's table
+  Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
   TextureFactor, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
   Count
 };
@@ -59,8 +60,6 @@ inline constexpr TagName kTagNames[] = {
     {"shadowrayepsilon", Tag::ShadowRayEpsilon}, {"camera", Tag::Camera}, {"position", Tag::Position},
     {"gaze", Tag::Gaze}, {"up", Tag::Up}, {"nearplane", Tag::NearPlane}, {"neardistance", Tag::NearDistance},
     {"imageresolution", Tag::ImageResolution}, {"lights", Tag::Lights}, {"ambientlight", Tag::AmbientLight},
-    {"pointlight", Tag::PointLight}, {"intensity", Tag::Intensity}, {"triangularlight", Tag::TriangularLight},
-    {"vertex1", Tag::Vertex1}, {"vertex2", Tag::Vertex2}, {"vertex3", Tag::Vertex3},
     {"materials", Tag::Materials}, {"material", Tag::Material}, {"ambient", Tag::Ambient},
     {"diffuse", Tag::Diffuse}, {"specular", Tag::Specular}, {"phongexponent", Tag::PhongExponent},
     {"mirrorreflectance", Tag::MirrorReflectance}, {"texturefactor", Tag::TextureFactor},
@@ -174,8 +173,17 @@ class Loader {
   // ---------------------------------------------------------------- names
   static bool isName(const XMLElement* e, std::string_view lowercase);
 
+  // The element's name in lower case, with a misspelling read as the name it stands for (xml_repair.h).
+  static std::string canonicalName(const XMLElement* e);
+
+  // canonicalName, reporting the misspelling when there is one.
+  std::string readName(const XMLElement* e);
+
   // The element's tag, after case folding and aliases (an alias is reported once per spelling).
   Tag identify(const XMLElement* e);
+
+  // A name the format knows anywhere: a tag, a light type's element or one of its fields.
+  static bool isKnownName(std::string_view canonical);
 
   void unknownElement(const XMLElement* e, const std::string& where);
 
@@ -198,7 +206,7 @@ class Loader {
         unknownElement(child, where);
         continue;
       }
-      const bool repeatable = tag == Tag::PointLight || tag == Tag::TriangularLight || tag == Tag::Material ||
+      const bool repeatable = tag == Tag::Light || tag == Tag::Material ||
                               tag == Tag::Mesh || tag == Tag::Lights || tag == Tag::Materials || tag == Tag::Objects;
       int& first = seen[static_cast<int>(tag)];
       if (first != 0 && !repeatable)
@@ -244,6 +252,10 @@ class Loader {
   static std::string trimmedNumber(double v);
 
   void readLights(const XMLElement* lights);
+
+  // One light of type Light, its values read by the type's field table (light_type.h).
+  template <class Light>
+  void readLight(const XMLElement* e, std::vector<Light>& into);
 
   // <pointlight id="1"> as written, for messages.
   std::string describe(const XMLElement* e);

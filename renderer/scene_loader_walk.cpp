@@ -121,42 +121,49 @@ void Loader::readLights(const XMLElement* lights) {
         scene.ambientLight = readColor(e);
         haveAmbient_ = true;
         return true;
-      case Tag::PointLight: {
-        PointLight light;
-        light.id = attribute(e, "id");
-        bool position = false, intensity = false;
-        forEachChild(e, "inside " + elementName(e), [&](const XMLElement* c, Tag t) {
-          if (t == Tag::Position) light.position = readPoint(c), position = true;
-          else if (t == Tag::Intensity) light.intensity = readColor(c), intensity = true;
-          else return false;
-          return true;
+      case Tag::Light: {
+        const std::string name = canonicalName(e);
+        scene.lights.forEachType([&](auto& list) {
+          if (LightOf<decltype(list)>::kType.element == name) readLight(e, list);
         });
-        if (!position) fail(e->GetLineNum(), describe(e) + " has no <position>");
-        if (!intensity) fail(e->GetLineNum(), describe(e) + " has no <intensity>");
-        scene.pointLights.push_back(std::move(light));
-        return true;
-      }
-      case Tag::TriangularLight: {
-        TriangularLight light;
-        light.id = attribute(e, "id");
-        unsigned have = 0;
-        forEachChild(e, "inside " + elementName(e), [&](const XMLElement* c, Tag t) {
-          if (t == Tag::Vertex1) light.vertex1 = readPoint(c), have |= 1;
-          else if (t == Tag::Vertex2) light.vertex2 = readPoint(c), have |= 2;
-          else if (t == Tag::Vertex3) light.vertex3 = readPoint(c), have |= 4;
-          else if (t == Tag::Intensity) light.intensity = readColor(c), have |= 8;
-          else return false;
-          return true;
-        });
-        const char* names[] = {"<vertex1>", "<vertex2>", "<vertex3>", "<intensity>"};
-        for (int i = 0; i < 4; ++i)
-          if (!(have & (1u << i))) fail(e->GetLineNum(), describe(e) + " has no " + names[i]);
-        scene.triangularLights.push_back(std::move(light));
         return true;
       }
       default: return false;
     }
   });
+}
+
+template <class Light>
+void Loader::readLight(const XMLElement* e, std::vector<Light>& into) {
+  Light light;
+  light.id = attribute(e, "id");
+  constexpr auto fields = Light::fields();
+  int firstLine[fields.size()] = {};  // of each field's element, 0 until met
+  const std::string where = "inside " + elementName(e);
+  for (const XMLNode* node = e->FirstChild(); node; node = node->NextSibling()) {
+    if (const tinyxml2::XMLText* text = node->ToText()) {
+      strayText(text);
+      continue;
+    }
+    const XMLElement* child = node->ToElement();
+    if (!child) continue;  // comments
+    const std::string name = readName(child);
+    std::size_t i = 0;
+    while (i < fields.size() && fields[i].element != name) ++i;
+    if (i == fields.size()) {
+      unknownElement(child, where);
+      continue;
+    }
+    if (firstLine[i] != 0)
+      fail(child->GetLineNum(), "duplicate " + elementName(child) + " " + where + " (the first is at line " +
+                                    std::to_string(firstLine[i]) + ")");
+    firstLine[i] = child->GetLineNum();
+    if (fields[i].point) light.*fields[i].point = readPoint(child);
+    else light.*fields[i].intensity = readColor(child);
+  }
+  for (std::size_t i = 0; i < fields.size(); ++i)
+    if (firstLine[i] == 0) fail(e->GetLineNum(), describe(e) + " has no <" + std::string(fields[i].element) + ">");
+  into.push_back(std::move(light));
 }
 
 void Loader::readMaterials(const XMLElement* materials) {

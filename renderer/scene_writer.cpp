@@ -65,7 +65,7 @@ class XmlWriter {
   explicit XmlWriter(std::string& out) : out_(out) {}
 
   template <typename... Values>
-  void element(int depth, const char* name, const Values&... values) {
+  void element(int depth, std::string_view name, const Values&... values) {
     indent(depth);
     out_ += '<';
     out_ += name;
@@ -76,19 +76,19 @@ class XmlWriter {
     out_ += name;
     out_ += ">\n";
   }
-  void text(int depth, const char* name, const std::string& value) {
+  void text(int depth, std::string_view name, const std::string& value) {
     indent(depth);
-    out_ += std::string("<") + name + ">" + escapeXml(value) + "</" + name + ">\n";
+    out_.append("<").append(name).append(">").append(escapeXml(value)).append("</").append(name).append(">\n");
   }
-  void open(int depth, const char* name, const std::string& id = {}, bool hasId = false) {
+  void open(int depth, std::string_view name, const std::string& id = {}, bool hasId = false) {
     indent(depth);
-    out_ += std::string("<") + name;
+    out_.append("<").append(name);
     if (hasId) out_ += " id=\"" + escapeXml(id) + "\"";
     out_ += ">\n";
   }
-  void close(int depth, const char* name) {
+  void close(int depth, std::string_view name) {
     indent(depth);
-    out_ += std::string("</") + name + ">\n";
+    out_.append("</").append(name).append(">\n");
   }
   void indent(int depth) { out_.append(static_cast<std::size_t>(depth) * 4, ' '); }
   std::string& raw() { return out_; }
@@ -166,20 +166,17 @@ std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& g
 
   xml.open(1, "lights");
   xml.element(2, "ambientlight", parameters.ambientLight);
-  for (const PointLight& light : parameters.pointLights) {
-    xml.open(2, "pointlight", light.id, true);
-    xml.element(3, "position", light.position);
-    xml.element(3, "intensity", light.intensity);
-    xml.close(2, "pointlight");
-  }
-  for (const TriangularLight& light : parameters.triangularLights) {
-    xml.open(2, "triangularlight", light.id, true);
-    xml.element(3, "vertex1", light.vertex1);
-    xml.element(3, "vertex2", light.vertex2);
-    xml.element(3, "vertex3", light.vertex3);
-    xml.element(3, "intensity", light.intensity);
-    xml.close(2, "triangularlight");
-  }
+  parameters.lights.forEachType([&](const auto& list) {
+    using Light = LightOf<decltype(list)>;
+    for (const Light& light : list) {
+      xml.open(2, Light::kType.element, light.id, true);
+      for (const auto& field : Light::fields()) {
+        if (field.point) xml.element(3, field.element, light.*field.point);
+        else xml.element(3, field.element, light.*field.intensity);
+      }
+      xml.close(2, Light::kType.element);
+    }
+  });
   xml.close(1, "lights");
 
   xml.open(1, "materials");

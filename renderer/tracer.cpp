@@ -3,12 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 
 #include "rayview/light_samples.h"
-#include "rayview/point_light.h"
-#include "rayview/triangular_light.h"
+#include "rayview/light_types.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/ray_offset.h"
 
@@ -21,6 +21,12 @@ glm::vec3 toFloat(const glm::dvec3& v) { return glm::vec3(v); }
 
 // Shadow rays stop just short of the light: "up to (but not including) it".
 double justBefore(double distance) { return distance * (1.0 - 1e-6); }
+
+// Every light of one type, each asked for its light directions at `p` (see light_type.h).
+template <class Shadings, class Visit>
+void illuminateAll(const Shadings& lights, const glm::dvec3& p, std::uint32_t pixelSeed, Visit& visit) {
+  for (const auto& light : lights) light.illuminate(p, pixelSeed, visit);
+}
 
 }  // namespace
 
@@ -69,11 +75,7 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
     : parameters_(parameters), meshes_(meshes), accel_(accel), shading_(shading), settings_(settings) {
   basis_ = cameraBasis(parameters.camera);
   eyeRelative_ = parameters.camera.position - accel.origin();
-  for (const PointLight& light : parameters.pointLights) pointLights_.emplace_back(light, accel.origin());
-  for (const TriangularLight& light : parameters.triangularLights)
-    if (auto prepared = TriangularLightShading::prepare(light, accel.origin(), settings.triangularLightModel,
-                                                        settings.lightSamples))
-      triangularLights_.push_back(*prepared);
+  lights_ = parameters.lights.prepare(accel.origin(), settings);
   useTexture_ = meshes.texture.has_value() && !meshes.texture->rgb.empty();
 }
 
@@ -196,8 +198,7 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     color += contribution;
   };
 
-  for (const PointLightShading& light : pointLights_) light.illuminate(pExact, addLight);
-  for (const TriangularLightShading& light : triangularLights_) light.illuminate(pExact, pixelSeed, addLight);
+  std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);
 
   if (material.isMirror() && depth < parameters_.maxRayDepth) {
     const glm::dvec3 nExact(n);

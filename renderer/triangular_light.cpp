@@ -1,6 +1,27 @@
 #include "rayview/triangular_light.h"
 
+#include "rayview/render_settings.h"
+
 namespace rayview {
+
+std::optional<TriangularLightShading> TriangularLightShading::prepare(const TriangularLight& light,
+                                                                      const glm::dvec3& origin,
+                                                                      const RenderSettings& settings) {
+  const glm::dvec3 n = glm::cross(light.vertex1 - light.vertex2, light.vertex1 - light.vertex3);
+  const double length = glm::length(n);
+  if (!(length > 0.0)) return std::nullopt;
+  TriangularLightShading f;
+  f.v1 = light.vertex1 - origin;
+  f.v2 = light.vertex2 - origin;
+  f.v3 = light.vertex3 - origin;
+  f.centroid = (light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - origin;
+  f.normal = n / length;
+  f.intensity = light.intensity;
+  f.model = settings.triangularLightModel;
+  const int samples = settings.lightSamples;
+  f.samples = samples < 1 ? 1 : (samples > kMaxLightSamples ? kMaxLightSamples : samples);
+  return f;
+}
 
 std::string_view toString(TriangularLightModel model) {
   return model == TriangularLightModel::Area ? "area" : "directional";

@@ -82,7 +82,7 @@ TEST(EmbreeRange, ShadowRayEpsilonBeyondTheLimitIsRefusedWhereItIsWritten) {
 TEST(EmbreeRange, LargeShadowRayEpsilonWithinTheLimitFallsBack) {
   Scene scene = quadAt(1, -2);
   scene.shadowRayEpsilon = 9.9e17;
-  scene.pointLights.push_back(PointLight{"1", {0, 0, 1e17}, Color(1, 1, 1)});
+  scene.lights.of<PointLight>().push_back(PointLight{"1", {0, 0, 1e17}, Color(1, 1, 1)});
   EXPECT_NE(embreeRangeProblem(scene, scene, scene.camera.position).find("<shadowrayepsilon>"), std::string::npos);
   // The parameters (the epsilon) decide it: preparing the scene for Embree builds the reference BVH.
   EXPECT_EQ(prepareGeometry(scene, availableAccel(AccelKind::Embree))->accel->kind(), AccelKind::Reference);

@@ -28,9 +28,9 @@ TEST(Loader, BaseSceneLoadsWithoutWarnings) {
   EXPECT_EQ(s.camera.left, -1.0);
   EXPECT_EQ(s.camera.top, 1.0);
   EXPECT_EQ(s.ambientLight, Color(5, 5, 5));
-  ASSERT_EQ(s.pointLights.size(), 1u);
-  EXPECT_EQ(s.pointLights[0].id, "1");
-  EXPECT_EQ(s.pointLights[0].intensity, Color(100, 100, 100));
+  ASSERT_EQ(s.lights.of<PointLight>().size(), 1u);
+  EXPECT_EQ(s.lights.of<PointLight>()[0].id, "1");
+  EXPECT_EQ(s.lights.of<PointLight>()[0].intensity, Color(100, 100, 100));
   ASSERT_EQ(s.materials.size(), 1u);
   EXPECT_EQ(s.materials[0].id, "red");
   EXPECT_EQ(s.materials[0].textureFactor, 0.0f);
@@ -69,7 +69,7 @@ TEST(Loader, AliasesLoadWithAWarningEach) {
   EXPECT_TRUE(hasWarning(loaded, 25, "<mirrorreflactance> read as <mirrorreflectance>"));
   EXPECT_EQ(loaded.warnings.size(), 3u);
   EXPECT_EQ(loaded.scene.background, Color(1, 2, 3));
-  EXPECT_EQ(loaded.scene.pointLights.at(0).intensity, Color(100, 100, 100));
+  EXPECT_EQ(loaded.scene.lights.of<PointLight>().at(0).intensity, Color(100, 100, 100));
   EXPECT_EQ(loaded.scene.materials.at(0).mirror, Color(0.5f, 0, 0));
 
   expectError(xml, 3, "<backgroundColor> read as <background>", strictOptions());
@@ -82,10 +82,10 @@ TEST(Loader, TriangularLightAndItsMisspelling) {
   const std::string xml = with("</lights>", light + "</lights>");
   const LoadedScene loaded = load(xml);
   EXPECT_TRUE(hasWarning(loaded, 18, "<traingularlight> read as <triangularlight> (misspelled element name)"));
-  ASSERT_EQ(loaded.scene.triangularLights.size(), 1u);
-  EXPECT_EQ(loaded.scene.triangularLights[0].id, "t");
-  EXPECT_EQ(loaded.scene.triangularLights[0].vertex2, glm::dvec3(1, 0, 0));
-  EXPECT_EQ(loaded.scene.triangularLights[0].intensity, Color(9, 9, 9));
+  ASSERT_EQ(loaded.scene.lights.of<TriangularLight>().size(), 1u);
+  EXPECT_EQ(loaded.scene.lights.of<TriangularLight>()[0].id, "t");
+  EXPECT_EQ(loaded.scene.lights.of<TriangularLight>()[0].vertex2, glm::dvec3(1, 0, 0));
+  EXPECT_EQ(loaded.scene.lights.of<TriangularLight>()[0].intensity, Color(9, 9, 9));
   expectError(xml, 18, "<traingularlight> read as <triangularlight>", strictOptions());
 }
 
@@ -157,7 +157,7 @@ TEST(Loader, MisspelledTriangularLightClosingTagIsRepaired) {
   const LoadedScene loaded = load(xml);
   EXPECT_TRUE(hasWarning(loaded, 23, "closing tag </traingularlight> read as </triangularlight> (it closes "
                                      "<triangularlight> opened at line 18)"));
-  EXPECT_EQ(loaded.scene.triangularLights.size(), 1u);
+  EXPECT_EQ(loaded.scene.lights.of<TriangularLight>().size(), 1u);
   expectError(xml, 23, "</traingularlight>", strictOptions());
 }
 
@@ -165,7 +165,7 @@ TEST(Loader, StrayClosingTagIsDropped) {
   const std::string xml = with("</lights>\n", "</lights>\n</pointlight>");  // line 19 now starts with it
   const LoadedScene loaded = load(xml);
   EXPECT_TRUE(hasWarning(loaded, 19, "stray closing tag </pointlight> dropped"));
-  EXPECT_EQ(loaded.scene.pointLights.size(), 1u);
+  EXPECT_EQ(loaded.scene.lights.of<PointLight>().size(), 1u);
   expectError(xml, 19, "stray closing tag </pointlight> dropped", strictOptions());
 
   const LoadedScene after = load(kBase + "</scene>\n");

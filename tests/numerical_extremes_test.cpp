@@ -173,7 +173,7 @@ class DegenerateInput : public EveryBackEnd {
     light.id = "1";
     light.position = {0.5, 0.7, 0.0};
     light.intensity = Color(200.0f);
-    scene.pointLights.push_back(light);
+    scene.lights.of<PointLight>().push_back(light);
     return scene;
   }
   // Renders, prints and checks: every unclamped pixel finite, and the product's renderFrame completes an
@@ -223,10 +223,10 @@ TEST_P(DegenerateInput, PhongExponentsAndIntensities) {
     for (float intensity : {0.0f, 1e30f}) {
       Scene scene = litQuad();
       scene.materials[0].phongExponent = exponent;
-      scene.pointLights[0].intensity = Color(intensity);
-      PointLight grazing = scene.pointLights[0];
+      scene.lights.of<PointLight>()[0].intensity = Color(intensity);
+      PointLight grazing = scene.lights.of<PointLight>()[0];
       grazing.position = {0.0, 0.0, -1.999};  // almost on the quad: 1e30 / d^2 stays finite in float
-      scene.pointLights.push_back(grazing);
+      scene.lights.of<PointLight>().push_back(grazing);
       char what[64];
       std::snprintf(what, sizeof what, "phong exponent %g, intensity %g", exponent, intensity);
       check(scene, what);

@@ -58,8 +58,8 @@ Scene roundedToFloat(Scene scene) {
   auto round = [](glm::dvec3& v) { v = glm::dvec3(glm::vec3(v)); };
   for (glm::dvec3& v : scene.vertices) round(v);
   round(scene.camera.position);
-  for (PointLight& light : scene.pointLights) round(light.position);
-  for (TriangularLight& light : scene.triangularLights) {
+  for (PointLight& light : scene.lights.of<PointLight>()) round(light.position);
+  for (TriangularLight& light : scene.lights.of<TriangularLight>()) {
     round(light.vertex1);
     round(light.vertex2);
     round(light.vertex3);
@@ -116,7 +116,7 @@ Scene contactShadowScene(double scale) {
   const glm::dvec3 along = tilt * glm::dvec3(1, 0.3, 0) / std::sqrt(1.09);
   light.position = centre + 10.0 * scale * (std::cos(e) * along + std::sin(e) * up);
   light.intensity = Color(static_cast<float>(3.0e4 * scale * scale));
-  scene.pointLights.push_back(light);
+  scene.lights.of<PointLight>().push_back(light);
   Camera& c = scene.camera;
   const glm::dvec3 from = glm::normalize(up * 1.0 - along * 0.8 + tilt * glm::dvec3(0, 0.5, 0));
   c.position = centre + 3.0 * scale * from;

@@ -69,15 +69,15 @@ void expectSameScene(const Scene& a, const Scene& b) {
   EXPECT_EQ(ca.height, cb.height);
 
   expectVecEq(a.ambientLight, b.ambientLight, "ambient light");
-  ASSERT_EQ(a.pointLights.size(), b.pointLights.size());
-  for (std::size_t i = 0; i < a.pointLights.size(); ++i) {
-    EXPECT_EQ(a.pointLights[i].id, b.pointLights[i].id);
-    expectVecEq(a.pointLights[i].position, b.pointLights[i].position, "point light position");
-    expectVecEq(a.pointLights[i].intensity, b.pointLights[i].intensity, "point light intensity");
+  ASSERT_EQ(a.lights.of<PointLight>().size(), b.lights.of<PointLight>().size());
+  for (std::size_t i = 0; i < a.lights.of<PointLight>().size(); ++i) {
+    EXPECT_EQ(a.lights.of<PointLight>()[i].id, b.lights.of<PointLight>()[i].id);
+    expectVecEq(a.lights.of<PointLight>()[i].position, b.lights.of<PointLight>()[i].position, "point light position");
+    expectVecEq(a.lights.of<PointLight>()[i].intensity, b.lights.of<PointLight>()[i].intensity, "point light intensity");
   }
-  ASSERT_EQ(a.triangularLights.size(), b.triangularLights.size());
-  for (std::size_t i = 0; i < a.triangularLights.size(); ++i) {
-    const TriangularLight &la = a.triangularLights[i], &lb = b.triangularLights[i];
+  ASSERT_EQ(a.lights.of<TriangularLight>().size(), b.lights.of<TriangularLight>().size());
+  for (std::size_t i = 0; i < a.lights.of<TriangularLight>().size(); ++i) {
+    const TriangularLight &la = a.lights.of<TriangularLight>()[i], &lb = b.lights.of<TriangularLight>()[i];
     EXPECT_EQ(la.id, lb.id);
     expectVecEq(la.vertex1, lb.vertex1, "triangular light vertex1");
     expectVecEq(la.vertex2, lb.vertex2, "triangular light vertex2");
@@ -209,7 +209,7 @@ TEST(SceneWriter, UsesTheHandoutsSpellingsAndOneBasedFaces) {
   }
   full.texCoord[2] = kNoIndex;  // a normal without texture coordinates: v//n
   scene.triangles = {plain, full};
-  scene.triangularLights.push_back(TriangularLight{"t", {0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1.0f, 2.0f, 3.0f}});
+  scene.lights.of<TriangularLight>().push_back(TriangularLight{"t", {0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1.0f, 2.0f, 3.0f}});
   const std::string xml = sceneToXml(scene, "tex.png");
   for (const char* expected : {"<background>", "<nearplane>", "<triangularlight id=\"t\">", "<intensity>",
                                "<mirrorreflectance>0.1 0.2 0.3</mirrorreflectance>", "id=\"a&amp;b\"",

@@ -85,7 +85,7 @@ TEST(Shading, AmbientDiffuseSpecularFromAPointLight) {
   m.phongExponent = 1.0f;
   Scene scene = quadScene(m);
   scene.ambientLight = Color(20.0f);
-  scene.pointLights.push_back({"1", {0, 0, 0}, Color(1000.0f)});
+  scene.lights.of<PointLight>().push_back({"1", {0, 0, 0}, Color(1000.0f)});
   // E = 1000 / 2^2 = 250; n.l = 1; h = n: 0.1*20 + 0.5*250 + 0.25*250.
   EXPECT_NEAR(centrePixel(scene).x, 2.0f + 125.0f + 62.5f, 1e-3f);
 }
@@ -96,7 +96,7 @@ TEST(Shading, PhongExponentSharpensTheHighlight) {
   m.specular = Color(1.0f);
   m.phongExponent = 50.0f;
   Scene scene = quadScene(m);
-  scene.pointLights.push_back({"1", {2, 0, 0}, Color(1000.0f)});
+  scene.lights.of<PointLight>().push_back({"1", {2, 0, 0}, Color(1000.0f)});
   // l = normalize(2,0,2), v = (0,0,1): h = normalize(l + v); E = 1000 / 8.
   const glm::dvec3 l = glm::normalize(glm::dvec3(2, 0, 2));
   const glm::dvec3 h = glm::normalize(l + glm::dvec3(0, 0, 1));
@@ -106,7 +106,7 @@ TEST(Shading, PhongExponentSharpensTheHighlight) {
 TEST(Shading, HardShadowBehindAnOccluder) {
   Scene scene = quadScene(plainMaterial());
   scene.ambientLight = Color(7.0f);
-  scene.pointLights.push_back({"1", {0, 5, -2.5}, Color(1000.0f)});
+  scene.lights.of<PointLight>().push_back({"1", {0, 5, -2.5}, Color(1000.0f)});
   // A blocker between the light and the centre of the quad, out of the camera's way.
   addTriangle(scene, {-1, 2, -3}, {1, 2, -3}, {0, 2, -1}, 0);
   EXPECT_NEAR(centrePixel(scene).x, 7.0f, 1e-4f);
@@ -120,7 +120,7 @@ TriangularLight lightAboveCentre(float intensity) {
 TEST(TriangularLight, AreaModelWithOneSampleIsTheCentroid) {
   Scene scene = quadScene(plainMaterial());
   scene.materials[0].ambient = Color(0.0f);
-  scene.triangularLights.push_back(lightAboveCentre(900.0f));
+  scene.lights.of<TriangularLight>().push_back(lightAboveCentre(900.0f));
   // y = (0,-1/3,0), p = (0,0,-2): d^2 = 37/9, n_L.omega = n.l = 6/sqrt(37): E = 900 (6/sqrt37) / (37/9).
   const double expected = 900.0 * (36.0 / 37.0) * (9.0 / 37.0);
   EXPECT_NEAR(centrePixel(scene).x, expected, 1e-3);
@@ -131,14 +131,14 @@ TEST(TriangularLight, AreaModelIsOneSided) {
   scene.materials[0].ambient = Color(0.0f);
   TriangularLight light = lightAboveCentre(900.0f);
   std::swap(light.vertex2, light.vertex3);  // now it shines toward +z, away from the quad
-  scene.triangularLights.push_back(light);
+  scene.lights.of<TriangularLight>().push_back(light);
   EXPECT_EQ(centrePixel(scene).x, 0.0f);
 }
 
 TEST(TriangularLight, AreaModelSamplesConvergeToTheIntegral) {
   Scene scene = quadScene(plainMaterial());
   scene.materials[0].ambient = Color(0.0f);
-  scene.triangularLights.push_back(lightAboveCentre(900.0f));
+  scene.lights.of<TriangularLight>().push_back(lightAboveCentre(900.0f));
   RenderSettings settings;
   settings.lightSamples = 256;
   const float many = centrePixel(scene, settings).x;
@@ -152,7 +152,7 @@ TEST(TriangularLight, AreaModelSamplesConvergeToTheIntegral) {
 TEST(TriangularLight, DirectionalModelHasNoFallOff) {
   Scene scene = quadScene(plainMaterial());
   scene.materials[0].ambient = Color(0.0f);
-  scene.triangularLights.push_back(lightAboveCentre(100.0f));
+  scene.lights.of<TriangularLight>().push_back(lightAboveCentre(100.0f));
   RenderSettings settings;
   settings.triangularLightModel = TriangularLightModel::Directional;
   EXPECT_NEAR(centrePixel(scene, settings).x, 100.0f, 1e-4f);  // E = I, l = -n_L = n
@@ -161,7 +161,7 @@ TEST(TriangularLight, DirectionalModelHasNoFallOff) {
 TEST(TriangularLight, DirectionalShadowRayIsUnbounded) {
   Scene scene = quadScene(plainMaterial());
   scene.materials[0].ambient = Color(0.0f);
-  scene.triangularLights.push_back(lightAboveCentre(100.0f));
+  scene.lights.of<TriangularLight>().push_back(lightAboveCentre(100.0f));
   addTriangle(scene, {-1, -1, 50}, {1, -1, 50}, {0, 1, 50}, 0);  // far behind the light, on the way
   RenderSettings settings;
   settings.triangularLightModel = TriangularLightModel::Directional;
@@ -246,8 +246,8 @@ Scene busyScene() {
   addQuadFacingZ(scene, -3, -3, 3, 3, -4, 1);
   addTriangle(scene, {-1, -1, -2}, {1, -1, -2.5}, {0, 1, -3}, 0);
   addTriangle(scene, {0.2, -0.8, -1.5}, {0.9, -0.6, -1.6}, {0.5, 0.3, -1.8}, 0);
-  scene.pointLights.push_back({"p", {1, 2, 0}, Color(300.0f, 200.0f, 100.0f)});
-  scene.triangularLights.push_back(lightAboveCentre(200.0f));
+  scene.lights.of<PointLight>().push_back({"p", {1, 2, 0}, Color(300.0f, 200.0f, 100.0f)});
+  scene.lights.of<TriangularLight>().push_back(lightAboveCentre(200.0f));
   return scene;
 }
 

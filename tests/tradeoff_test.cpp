@@ -86,9 +86,9 @@ Scene wallScene(bool triangularLight, int size = 40) {
   addTriangle(scene, {-20, -20, 2}, {-20, 20, 2}, {20, 20, 2}, 0);
   if (triangularLight) {
     // (v1 - v2) x (v1 - v3) points down -z, at the wall.
-    scene.triangularLights.push_back({"tri", {0, 0.6, -1}, {0.6, -0.6, -1}, {-0.6, -0.6, -1}, Color(3000.0f)});
+    scene.lights.of<TriangularLight>().push_back({"tri", {0, 0.6, -1}, {0.6, -0.6, -1}, {-0.6, -0.6, -1}, Color(3000.0f)});
   } else {
-    scene.pointLights.push_back({"point", {0.2, 0.3, -1}, Color(3000.0f)});
+    scene.lights.of<PointLight>().push_back({"point", {0.2, 0.3, -1}, Color(3000.0f)});
   }
   return scene;
 }

@@ -7,6 +7,7 @@
 
 #include "rayview/file_read.h"
 #include "rayview/knobs.h"
+#include "rayview/light_types.h"
 
 namespace rayview {
 namespace {
@@ -116,13 +117,12 @@ void parseSet(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p
     p.fail("unknown material property '" + property + "' (" + usage + ")");
   }
   if (what == "light") {
-    const std::string usage = "set light ID position|intensity|vertex1|vertex2|vertex3 X Y Z";
+    const std::string properties = lightPropertyNames();
+    const std::string usage = "set light ID " + properties + " X Y Z";
     if (t.size() < 3) p.fail("usage: " + usage);
     c.args = {what, t[1], t[2]};
     const std::string& property = t[2];
-    if (property == "position" || property == "intensity" || property == "vertex1" || property == "vertex2" ||
-        property == "vertex3")
-      return p.numbers(t, 3, 3, usage);
+    if (isLightProperty(property)) return p.numbers(t, 3, 3, usage);
     p.fail("unknown light property '" + property + "' (" + usage + ")");
   }
   p.fail("cannot set '" + what + "'");

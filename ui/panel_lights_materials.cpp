@@ -10,29 +10,27 @@ void drawLightsPanel(SceneParameters& edits, double sceneRadius) {
   if (!ImGui::CollapsingHeader("Lights")) return;
   const double speed = (sceneRadius > 0.0 ? sceneRadius : 1.0) * 0.005;
   editRadiance("Ambient", edits.ambientLight);
-  for (std::size_t i = 0; i < edits.pointLights.size(); ++i) {
-    PointLight& light = edits.pointLights[i];
-    ImGui::PushID(static_cast<int>(i));
-    if (ImGui::TreeNode("point", "Point light %s", light.id.c_str())) {
-      editPoint("Position", light.position, speed);
-      editRadiance("Intensity", light.intensity);
-      ImGui::TreePop();
+  // Every light type (light_types.h), each value by its field table (light_type.h).
+  int type = 0;
+  edits.lights.forEachType([&](auto& list) {
+    using Light = LightOf<decltype(list)>;
+    ImGui::PushID(type++);
+    for (std::size_t i = 0; i < list.size(); ++i) {
+      Light& light = list[i];
+      ImGui::PushID(static_cast<int>(i));
+      if (ImGui::TreeNode(Light::kType.element.data(), "%s %s", Light::kType.title.data(), light.id.c_str())) {
+        for (const auto& field : Light::fields()) {
+          const std::string label(field.label);
+          if (field.point) editPoint(label.c_str(), light.*field.point, speed);
+          else editRadiance(label.c_str(), light.*field.intensity);
+        }
+        ImGui::TreePop();
+      }
+      ImGui::PopID();
     }
     ImGui::PopID();
-  }
-  for (std::size_t i = 0; i < edits.triangularLights.size(); ++i) {
-    TriangularLight& light = edits.triangularLights[i];
-    ImGui::PushID(static_cast<int>(1000000 + i));
-    if (ImGui::TreeNode("triangle", "Triangular light %s", light.id.c_str())) {
-      editPoint("Vertex 1", light.vertex1, speed);
-      editPoint("Vertex 2", light.vertex2, speed);
-      editPoint("Vertex 3", light.vertex3, speed);
-      editRadiance("Intensity", light.intensity);
-      ImGui::TreePop();
-    }
-    ImGui::PopID();
-  }
-  if (edits.pointLights.empty() && edits.triangularLights.empty()) hintText("This scene has no point or triangular lights.");
+  });
+  if (edits.lights.empty()) hintText("This scene has no lights but the ambient light.");
 }
 
 void drawMaterialsPanel(SceneParameters& edits, bool hasTexture, std::optional<std::size_t> picked, bool reveal) {

@@ -36,9 +36,9 @@ std::string millisecondsOrPending(double ms) {
 // What the chosen triangular-light model does and the intensities it expects; a warning when the scene's
 // intensities are meant for the other model.
 void triangularLightHint(const SceneParameters& edits, const RenderSettings& settings) {
-  if (edits.triangularLights.empty()) return;
+  if (edits.lights.of<TriangularLight>().empty()) return;
   float brightest = 0.0f;
-  for (const TriangularLight& light : edits.triangularLights)
+  for (const TriangularLight& light : edits.lights.of<TriangularLight>())
     brightest = std::max({brightest, light.intensity.x, light.intensity.y, light.intensity.z});
   if (settings.triangularLightModel == TriangularLightModel::Area) {
     hintText("Area: each triangular light is N point lights spread over it (N = light samples; 1: its centroid), "

@@ -41,11 +41,15 @@ std::string editProblem(const SceneParameters& edits, const RenderSettings& sett
     if (!knob.isChoice() && (value < knob.min || value > knob.max))
       return std::string(knob.label) + " must be from " + std::to_string(knob.min) + " to " + std::to_string(knob.max);
   }
-  for (const PointLight& light : edits.pointLights)
-    if (!finite(light.position) || !finite(light.intensity)) return "point light " + light.id + ": numbers must be finite";
-  for (const TriangularLight& light : edits.triangularLights)
-    if (!finite(light.vertex1) || !finite(light.vertex2) || !finite(light.vertex3) || !finite(light.intensity))
-      return "triangular light " + light.id + ": numbers must be finite";
+  std::string lightProblem;
+  edits.lights.forEachType([&](const auto& list) {
+    using Light = LightOf<decltype(list)>;
+    for (const Light& light : list)
+      for (const auto& field : Light::fields())
+        if (lightProblem.empty() && !(field.point ? finite(light.*field.point) : finite(light.*field.intensity)))
+          lightProblem = std::string(Light::kType.noun) + " " + light.id + ": numbers must be finite";
+  });
+  if (!lightProblem.empty()) return lightProblem;
   for (const Material& m : edits.materials)
     if (!finite(m.ambient) || !finite(m.diffuse) || !finite(m.specular) || !finite(m.mirror) ||
         !std::isfinite(m.phongExponent) || !std::isfinite(m.textureFactor))
@@ -54,7 +58,4 @@ std::string editProblem(const SceneParameters& edits, const RenderSettings& sett
 }
 
 int findMaterial(const SceneParameters& edits, const std::string& id) { return findById(edits.materials, id); }
-int findPointLight(const SceneParameters& edits, const std::string& id) { return findById(edits.pointLights, id); }
-int findTriangularLight(const SceneParameters& edits, const std::string& id) { return findById(edits.triangularLights, id); }
-
 }  // namespace rayview

@@ -4,6 +4,7 @@
 // needs a new BVH; it only needs a new parameter snapshot and a render restart.
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rayview/render_settings.h"
@@ -27,9 +28,7 @@ EditEffect classifyEdit(const SceneParameters& before, const RenderSettings& bef
 // Empty when the parameters describe a scene that can be rendered; otherwise what is wrong, for the user.
 std::string editProblem(const SceneParameters& edits, const RenderSettings& settings);
 
-// Index of the material / point light / triangular light with `id`, or -1.
+// Index of the material with `id`, or -1.
 int findMaterial(const SceneParameters& edits, const std::string& id);
-int findPointLight(const SceneParameters& edits, const std::string& id);
-int findTriangularLight(const SceneParameters& edits, const std::string& id);
 
 }  // namespace rayview

@@ -209,22 +209,8 @@ void ScriptRunner::applySet(const ScriptCommand& c, ScriptHost& host) {
   } else if (what == "light") {
     const std::string& id = c.args[1];
     const std::string& property = c.args[2];
-    const int point = findPointLight(edits, id);
-    const int triangular = findTriangularLight(edits, id);
-    if (point >= 0 && (property == "position" || property == "intensity")) {
-      PointLight& light = edits.pointLights[static_cast<std::size_t>(point)];
-      if (property == "position") light.position = vec3(n);
-      else light.intensity = color(n);
-    } else if (triangular >= 0 && property != "position") {
-      TriangularLight& light = edits.triangularLights[static_cast<std::size_t>(triangular)];
-      if (property == "vertex1") light.vertex1 = vec3(n);
-      else if (property == "vertex2") light.vertex2 = vec3(n);
-      else if (property == "vertex3") light.vertex3 = vec3(n);
-      else light.intensity = color(n);
-    } else {
-      return fail("no light '" + id + "' with a " + property + " (point lights: " + idList(edits.pointLights) +
-                  "; triangular lights: " + idList(edits.triangularLights) + ")");
-    }
+    if (!setLightValue(edits.lights, id, property, vec3(n)))
+      return fail("no light '" + id + "' with a " + property + " (" + lightIds(edits.lights) + ")");
   }
 }
 

@@ -93,7 +93,7 @@ GrazingLightScene grazingLightScene(double scale, double elevationDegrees, int p
   light.id = "grazing";
   light.position = s.planeCentre + distance * (std::cos(e) * along + std::sin(e) * s.planeNormal);
   light.intensity = Color(static_cast<float>(150.0 * distance * distance / std::sin(e)));
-  scene.pointLights.push_back(light);
+  scene.lights.of<PointLight>().push_back(light);
   return s;
 }
 
@@ -103,10 +103,10 @@ double expectedGrazingRadiance(const GrazingLightScene& s, int i, int j) {
   const double t = glm::dot(s.planeCentre - c.position, s.planeNormal) / glm::dot(d, s.planeNormal);
   if (!(t > 0.0)) return -1.0;
   const glm::dvec3 x = c.position + t * d;
-  const glm::dvec3 toLight = s.scene.pointLights[0].position - x;
+  const glm::dvec3 toLight = s.scene.lights.of<PointLight>()[0].position - x;
   const double d2 = glm::dot(toLight, toLight);
   const double cosine = std::max(0.0, glm::dot(s.planeNormal, toLight / std::sqrt(d2)));
-  return static_cast<double>(s.scene.pointLights[0].intensity.x) * cosine / d2;
+  return static_cast<double>(s.scene.lights.of<PointLight>()[0].intensity.x) * cosine / d2;
 }
 
 Scene facingMirrorsScene(int maxDepth, int pixels) {
@@ -136,7 +136,7 @@ Scene facingMirrorsScene(int maxDepth, int pixels) {
   light.id = "between";
   light.position = {0.3, 0.2, 0.0};
   light.intensity = Color(100.0f);
-  scene.pointLights.push_back(light);
+  scene.lights.of<PointLight>().push_back(light);
   Camera& c = scene.camera;
   c.position = {0, 0, 0};
   c.gaze = {0, 0, -1};

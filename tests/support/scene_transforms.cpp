@@ -14,11 +14,11 @@ void scaleScene(Scene& scene, double factor) {
   c.top *= factor;
   c.nearDistance *= factor;
   const float intensityFactor = static_cast<float>(factor * factor);
-  for (PointLight& light : scene.pointLights) {
+  for (PointLight& light : scene.lights.of<PointLight>()) {
     light.position *= factor;
     light.intensity *= intensityFactor;
   }
-  for (TriangularLight& light : scene.triangularLights) {
+  for (TriangularLight& light : scene.lights.of<TriangularLight>()) {
     light.vertex1 *= factor;
     light.vertex2 *= factor;
     light.vertex3 *= factor;
@@ -30,8 +30,8 @@ void scaleScene(Scene& scene, double factor) {
 void translateScene(Scene& scene, const glm::dvec3& offset) {
   for (glm::dvec3& v : scene.vertices) v += offset;
   scene.camera.position += offset;
-  for (PointLight& light : scene.pointLights) light.position += offset;
-  for (TriangularLight& light : scene.triangularLights) {
+  for (PointLight& light : scene.lights.of<PointLight>()) light.position += offset;
+  for (TriangularLight& light : scene.lights.of<TriangularLight>()) {
     light.vertex1 += offset;
     light.vertex2 += offset;
     light.vertex3 += offset;

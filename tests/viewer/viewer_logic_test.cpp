@@ -268,7 +268,7 @@ TEST(SceneEdits, ClassifiesWhatAChangeCosts) {
   material.materials[1].phongExponent += 1.0f;
   EXPECT_EQ(classifyEdit(before, settings, material, settings), EditEffect::Restart);
   SceneParameters light = before;
-  light.triangularLights[0].vertex2.z = 0.5;
+  light.lights.of<TriangularLight>()[0].vertex2.z = 0.5;
   EXPECT_EQ(classifyEdit(before, settings, light, settings), EditEffect::Restart);
   RenderSettings samples = settings;
   samples.lightSamples = 16;

@@ -35,7 +35,7 @@ TEST(Tradeoff, TheMeasuredSceneHasTheMeshesAndTheCommittedEdits) {
   SceneSession session(loadParts(), RenderSettings{});
   session.edits().maxRayDepth = 5;
   session.edits().camera.position = glm::dvec3(1.0, 2.0, 3.0);
-  session.edits().pointLights[0].intensity = Color(1.0f, 2.0f, 3.0f);
+  session.edits().lights.of<PointLight>()[0].intensity = Color(1.0f, 2.0f, 3.0f);
   const int red = findMaterial(session.edits(), "red");
   session.edits().materials[static_cast<std::size_t>(red)].diffuse = Color(0.0f, 1.0f, 0.0f);
   std::string problem;
@@ -49,7 +49,7 @@ TEST(Tradeoff, TheMeasuredSceneHasTheMeshesAndTheCommittedEdits) {
   const SceneParameters* scene = &request.parameters;
   EXPECT_EQ(scene->maxRayDepth, 5);
   EXPECT_EQ(scene->camera.position, glm::dvec3(1.0, 2.0, 3.0));
-  EXPECT_EQ(scene->pointLights[0].intensity, Color(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(scene->lights.of<PointLight>()[0].intensity, Color(1.0f, 2.0f, 3.0f));
   EXPECT_EQ(scene->materials[static_cast<std::size_t>(red)].diffuse, Color(0.0f, 1.0f, 0.0f));
   EXPECT_EQ(session.loaded().maxRayDepth, 2);  // the loaded scene is untouched
   EXPECT_NE(session.loaded().camera.position, glm::dvec3(1.0, 2.0, 3.0));

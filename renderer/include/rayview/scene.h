@@ -16,8 +16,7 @@
 #include <glm/vec3.hpp>
 
 #include "rayview/color.h"
-#include "rayview/point_light.h"
-#include "rayview/triangular_light.h"
+#include "rayview/light_types.h"
 
 namespace rayview {
 
@@ -56,8 +55,7 @@ struct SceneParameters {
 
   Camera camera;
   Color ambientLight{0.0f};
-  std::vector<PointLight> pointLights;
-  std::vector<TriangularLight> triangularLights;
+  SceneLights lights;  // every light, by type (light_types.h): lights.of<PointLight>()
   std::vector<Material> materials;  // ids and order as loaded: triangles refer to them by index
 
   // Mirror reflections can happen: a mirror material and a depth above 0.

@@ -76,8 +76,7 @@ class Tracer {
   RenderSettings settings_;
   CameraBasis basis_;
   glm::dvec3 eyeRelative_{0.0};
-  std::vector<PointLightShading> pointLights_;
-  std::vector<TriangularLightShading> triangularLights_;
+  SceneLights::Prepared lights_;  // by type, in the order of light_types.h
   bool useTexture_ = false;
 };
 

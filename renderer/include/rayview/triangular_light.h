@@ -3,6 +3,9 @@
 // settings, and how it lights a surface point. Everything a triangular light is lives here; the tracer only
 // asks it for light directions (see Tracer::shadeHit), the knob table (knobs.cpp) lists its settings.
 
+#include <array>
+#include <cmath>
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -11,9 +14,13 @@
 #include <glm/vec3.hpp>
 
 #include "rayview/color.h"
+#include "rayview/light_type.h"
 #include "rayview/light_samples.h"
 
 namespace rayview {
+
+struct RenderSettings;
+struct TriangularLightShading;
 
 struct TriangularLight {
   std::string id;
@@ -21,6 +28,17 @@ struct TriangularLight {
   Color intensity{0.0f};
 
   bool operator==(const TriangularLight&) const = default;
+
+  static constexpr LightTypeName kType{"triangularlight", "triangular light", "triangular lights",
+                                       "Triangular light"};
+  static constexpr auto fields() {
+    using F = LightField<TriangularLight>;
+    return std::array{F::at("vertex1", "Vertex 1", &TriangularLight::vertex1),
+                      F::at("vertex2", "Vertex 2", &TriangularLight::vertex2),
+                      F::at("vertex3", "Vertex 3", &TriangularLight::vertex3),
+                      F::radiance("intensity", "Intensity", &TriangularLight::intensity)};
+  }
+  using Shading = TriangularLightShading;
 };
 
 // Area: the light is N point lights spread over the triangle (N = 1: its centroid), each I/N scaled by the
@@ -40,23 +58,10 @@ struct TriangularLightShading {
   TriangularLightModel model = TriangularLightModel::Area;
   int samples = 1;
 
-  // Nothing for a degenerate (zero-area) light: it emits nothing.
+  // Nothing for a degenerate (zero-area) light: it emits nothing. The model and the samples come from the
+  // render settings (their knob rows are in knobs.cpp).
   static std::optional<TriangularLightShading> prepare(const TriangularLight& light, const glm::dvec3& origin,
-                                                       TriangularLightModel model, int samples) {
-    const glm::dvec3 n = glm::cross(light.vertex1 - light.vertex2, light.vertex1 - light.vertex3);
-    const double length = glm::length(n);
-    if (!(length > 0.0)) return std::nullopt;
-    TriangularLightShading f;
-    f.v1 = light.vertex1 - origin;
-    f.v2 = light.vertex2 - origin;
-    f.v3 = light.vertex3 - origin;
-    f.centroid = (light.vertex1 + light.vertex2 + light.vertex3) / 3.0 - origin;
-    f.normal = n / length;
-    f.intensity = light.intensity;
-    f.model = model;
-    f.samples = samples < 1 ? 1 : (samples > kMaxLightSamples ? kMaxLightSamples : samples);
-    return f;
-  }
+                                                       const RenderSettings& settings);
 
   // Calls visit(l, irradiance, target) for each light direction at `p`: l the unit direction toward the
   // light, target the sample point a shadow ray must reach, or nullptr for a ray without end (directional).
