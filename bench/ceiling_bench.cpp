@@ -146,9 +146,9 @@ class WhittedGenerator {
   WhittedGenerator(const Scene& scene, RTCScene embree) : scene_(scene), embree_(embree) {
     basis_ = cameraBasis(scene.camera);
     origin_ = scene.camera.position;
-    for (const PointLight& light : scene.pointLights)
+    for (const PointLight& light : scene.lights.of<PointLight>())
       if (light.intensity != Color(0.0f)) lights_.push_back({light.position - origin_, {0, 0, 0}, false, light.intensity});
-    for (const TriangularLight& light : scene.triangularLights) {
+    for (const TriangularLight& light : scene.lights.of<TriangularLight>()) {
       const glm::dvec3 n = glm::cross(light.vertex1 - light.vertex2, light.vertex1 - light.vertex3);
       if (!(glm::length(n) > 0.0) || light.intensity == Color(0.0f)) continue;
       lights_.push_back(

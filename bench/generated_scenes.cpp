@@ -22,8 +22,8 @@ Scene baseScene(int width, int height) {
   scene.maxRayDepth = 2;
   scene.background = Color(20.0f, 20.0f, 40.0f);
   scene.ambientLight = Color(25.0f);
-  scene.pointLights.push_back({"sun", {3.0, 10.0, 4.0}, Color(12000.0f)});
-  scene.triangularLights.push_back({"panel", {-3, 6, -1}, {-1, 6, 0}, {-3, 6, 1}, Color(3000.0f)});
+  scene.lights.of<PointLight>().push_back({"sun", {3.0, 10.0, 4.0}, Color(12000.0f)});
+  scene.lights.of<TriangularLight>().push_back({"panel", {-3, 6, -1}, {-1, 6, 0}, {-3, 6, 1}, Color(3000.0f)});
   Material ground;
   ground.id = "ground";
   ground.ambient = Color(0.3f);
