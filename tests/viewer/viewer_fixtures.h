@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "rayview/scene_loader.h"
@@ -69,6 +70,12 @@ class FakeHost : public ScriptHost {
     tradeoff.error = "cancelled";
   }
   TradeoffState tradeoffState() const override { return tradeoff; }
+  std::string loadReference(const std::string& path) override {
+    referencePath = path;
+    return referenceError;
+  }
+  std::optional<ImageError> finalComparison() const override { return final ? comparison : std::nullopt; }
+  std::string comparisonProblem() const override { return sizeProblem; }
 
   void frame(ScriptRunner& runner) {
     runner.step(*this);
@@ -83,6 +90,8 @@ class FakeHost : public ScriptHost {
   int exitCode = -1;
   double measuredScale = 0.0;
   TradeoffState tradeoff;
+  std::string referencePath, referenceError, sizeProblem;
+  std::optional<ImageError> comparison;  // of the final pass, once final
 };
 
 }  // namespace rayview::viewer_testing
