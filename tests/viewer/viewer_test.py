@@ -22,6 +22,9 @@ Cases:
                step, and Ctrl+Q with unsaved edits asks: Escape cancels, D discards and quits
   pick         `pick I J` names the mesh a pixel shows; a real click on the image picks, a double-click moves the
                pivot (the view turns), F then frames the picked mesh
+  compare      --compare and the `compare` script command: exact=100% against `rayview render` of the scene, the
+               headless figures against a modified reference; holding Space shows the reference, D the difference
+               (viewer_compare_case.py)
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -35,6 +38,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from viewer_compare_case import case_compare  # noqa: E402
 from viewer_harness import (  # noqa: E402
     last_generation,
     title_of,
@@ -530,7 +534,7 @@ def case_no_display(args, work):
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
-         "undo": case_undo, "pick": case_pick}
+         "undo": case_undo, "pick": case_pick, "compare": case_compare}
 
 
 def main():
