@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <stdexcept>
 #include <string>
@@ -12,6 +13,20 @@ namespace rayview {
 double psnrFromRmse(double rmse) {
   if (rmse <= 0.0) return std::numeric_limits<double>::infinity();
   return 20.0 * std::log10(kMaxChannelValue / rmse);
+}
+
+std::string formatPsnr(double psnrDb) {
+  if (std::isinf(psnrDb)) return "inf";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", psnrDb);
+  return text;
+}
+
+std::string comparisonSummary(const ImageError& error) {
+  char text[128];
+  std::snprintf(text, sizeof text, "exact=%.3f%% within1=%.3f%% maxdiff=%d psnr=", error.pctExact, pctWithin1(error),
+                error.maxChannelDifference);
+  return text + formatPsnr(error.psnrDb);
 }
 
 ImageError compareToReference(const Image& image, const Image& reference) {

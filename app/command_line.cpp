@@ -137,6 +137,10 @@ std::vector<OptionSpec> makeOptionTable() {
        [](CommandLine& c, const std::string&) { c.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",
        [](CommandLine& c, const std::string& v) { c.scriptPath = v; }},
+      {"--compare", "REF.png|REF.ppm", kView,
+       "compare the render with a reference image of its size: the Compare panel's figures, hold Space to see the "
+       "reference, D for the difference (see docs/viewer.md)",
+       [](CommandLine& c, const std::string& v) { c.comparePath = v; }},
       {"--out", "DIR", kBench, "directory for tradeoff.csv and the plots (created when missing)",
        [](CommandLine& c, const std::string& v) { c.outputDirectory = v; }},
       {"--scale", "F", kBench, "render at F times the camera's resolution (0 < F <= 4; default 1)",

@@ -30,6 +30,7 @@ struct CommandLine {
   // and into the scene's parameters once it is loaded (see knobs.h).
   std::vector<KnobAssignment> knobs;
   std::string scriptPath;  // view: --script FILE (automation, see docs/viewer.md)
+  std::string comparePath;  // view: --compare REF (a reference image, see docs/viewer.md)
   std::string benchName;                // bench: the benchmark to run ("tradeoff")
   std::vector<std::string> scenePaths;  // bench: every SCENE given
   std::string outputDirectory;          // bench: --out DIR

@@ -1,6 +1,5 @@
 #include "compare_command.h"
 
-#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 
@@ -25,12 +24,8 @@ int runCompareCommand(const CommandLine& command) {
     return kExitBadInput;
   }
   const ImageError error = compareToReference(image, reference);
-  const double within1 = 100.0 - error.pctOffByMoreThan1;
-  char psnr[32];
-  if (std::isinf(error.psnrDb)) std::snprintf(psnr, sizeof psnr, "inf");
-  else std::snprintf(psnr, sizeof psnr, "%.2f", error.psnrDb);
-  std::printf("exact=%.3f%% within1=%.3f%% maxdiff=%d psnr=%s\n", error.pctExact, within1, error.maxChannelDifference,
-              psnr);
+  const double within1 = pctWithin1(error);
+  std::printf("%s\n", comparisonSummary(error).c_str());
   if (!command.diffPath.empty()) {
     try {
       writeImageFile(command.diffPath, differenceImage(image, reference));

@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
     case CommandKind::View:
 #ifdef RAYVIEW_HAVE_VIEWER
       return runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,
-                                     command.scriptPath});
+                                     command.scriptPath, command.comparePath});
 #else
       // Built without the viewer: render the scene headless instead and say where the image went.
       command.kind = CommandKind::Render;

@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "rayview/image_metrics.h"
 #include "rayview/plot.h"
@@ -58,6 +60,33 @@ TEST(ImageMetrics, OneChannelOfHalfThePixels) {
   // 4 channels of 24 off by 2: sqrt(4 * 4 / 24).
   EXPECT_DOUBLE_EQ(e.rmse, std::sqrt(16.0 / 24.0));
   EXPECT_DOUBLE_EQ(e.pctOffByMoreThan1, 50.0);
+}
+
+TEST(ImageMetrics, SummaryIsTheLineCompareAndTheViewerPrint) {
+  EXPECT_EQ(comparisonSummary(compareToReference(filled(4, 4, 9), filled(4, 4, 9))),
+            "exact=100.000% within1=100.000% maxdiff=0 psnr=inf");
+  const Image reference = filled(4, 2, 10);
+  Image image = reference;
+  image.pixel(0, 0)[0] = 11;  // within 1
+  image.pixel(1, 0)[2] = 40;  // off by 30
+  // 6 of 8 exact, 7 of 8 within 1; rmse sqrt((1 + 900) / 24).
+  EXPECT_EQ(comparisonSummary(compareToReference(image, reference)),
+            "exact=75.000% within1=87.500% maxdiff=30 psnr=" + formatPsnr(psnrFromRmse(std::sqrt(901.0 / 24.0))));
+  EXPECT_EQ(formatPsnr(48.0849), "48.08");
+}
+
+TEST(ImageMetrics, DifferenceImageColoursEachPixelByItsLargestChannelDifference) {
+  const Image reference = filled(4, 1, 200);
+  Image image = reference;
+  image.pixel(1, 0)[0] = 201;  // 1
+  image.pixel(2, 0)[1] = 192;  // 8
+  image.pixel(3, 0)[2] = 0;    // 200
+  const Image diff = differenceImage(image, reference);
+  auto rgb = [&](int x) { return std::vector<int>(diff.pixel(x, 0), diff.pixel(x, 0) + 3); };
+  EXPECT_EQ(rgb(0), (std::vector<int>{50, 50, 50}));  // identical: the reference at a quarter
+  EXPECT_EQ(rgb(1), (std::vector<int>{40, 90, 255}));  // blue
+  EXPECT_EQ(rgb(2), (std::vector<int>{255, 220, 0}));  // yellow
+  EXPECT_EQ(rgb(3), (std::vector<int>{255, 0, 0}));    // red
 }
 
 TEST(ImageMetrics, SizesMustMatch) {

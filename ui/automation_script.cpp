@@ -175,7 +175,7 @@ Script parseScript(const std::string& text, const std::string& file) {
     LineParser p(c, file);
 
     // Commands whose argument is a path or free text: the rest of the line, spaces included.
-    if (c.name == "open" || c.name == "screenshot" || c.name == "expect-error") {
+    if (c.name == "open" || c.name == "screenshot" || c.name == "expect-error" || c.name == "compare") {
       if (rest.empty()) p.fail("'" + c.name + "' needs " + (c.name == "expect-error" ? "the text to expect" : "a path"));
       c.args = {rest};
     } else if (c.name == "save-frame" || c.name == "save-scene") {

@@ -68,8 +68,14 @@ void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWa
 }
 
 void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Shortcuts& shortcuts) {
-  if (!e.pressed || e.repeat) return;
   const bool control = (e.mods & GLFW_MOD_CONTROL) != 0;
+  if (e.key == GLFW_KEY_SPACE) {
+    // A release always counts, even when a field took the focus while the key was down: never stuck flipped.
+    if (!e.pressed) flipHeld_ = false;
+    else if (!control && !imguiWantsKeyboard) flipHeld_ = true;
+    return;
+  }
+  if (!e.pressed || e.repeat) return;
   const bool shift = (e.mods & GLFW_MOD_SHIFT) != 0;
   // Control shortcuts and F5 mean nothing to a text field, so they work while one is focused.
   if (control && e.key == GLFW_KEY_S) (shift ? shortcuts.saveScene : shortcuts.saveFrame) = true;
@@ -82,6 +88,7 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
   else if (e.key == GLFW_KEY_F9) shortcuts.togglePanels = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
+  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_D) shortcuts.toggleDifference = true;
 }
 
 }  // namespace rayview

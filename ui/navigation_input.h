@@ -22,6 +22,7 @@ struct Shortcuts {
   bool togglePanels = false; // F9
   bool undo = false;         // Ctrl+Z
   bool redo = false;         // Ctrl+Shift+Z, Ctrl+Y
+  bool toggleDifference = false;  // D: the difference from the reference image
   // A left click on the image (pressed and released without moving more than kClickSlop pixels): where, in
   // window coordinates, and whether it completed a double-click.
   std::optional<std::pair<double, double>> click;
@@ -39,6 +40,11 @@ class NavigationInput {
   // `imageHeight` of the image itself (so that a pan moves the scene with the cursor).
   void handle(const std::vector<InputEvent>& events, bool imguiWantsMouse, bool imguiWantsKeyboard, double viewHeight,
               double imageHeight, SceneSession* session, Shortcuts& shortcuts);
+
+  // Space is held: the reference image shows instead of the render (a key held, not a toggle).
+  bool flipHeld() const { return flipHeld_; }
+  // Keys stop counting as held (their release may go elsewhere, e.g. while a modal takes the input).
+  void releaseKeys() { flipHeld_ = false; }
 
   // A navigation drag is in progress (the render holds its coarse level meanwhile).
   bool dragging() const { return drag_ != Drag::None; }
@@ -58,6 +64,7 @@ class NavigationInput {
   bool maybeClick_ = false;  // the left button went down on the image and has not moved far
   std::optional<std::chrono::steady_clock::time_point> lastClickTime_;
   double lastClickX_ = 0.0, lastClickY_ = 0.0;
+  bool flipHeld_ = false;
 };
 
 }  // namespace rayview

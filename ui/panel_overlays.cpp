@@ -1,4 +1,4 @@
-// Windows that float over the image: the load error and the load progress.
+// Windows that float over the image: the load error, the load progress, what the image area shows.
 #include <cfloat>
 
 #include <imgui.h>
@@ -49,6 +49,15 @@ float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float w
   }
   ImGui::End();
   return below;
+}
+
+void drawViewLabel(const std::string& text, float right, float top) {
+  if (text.empty()) return;
+  ImGui::SetNextWindowPos(ImVec2(right, top), ImGuiCond_Always, ImVec2(1.0f, 0.0f));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  if (ImGui::Begin("##view_label", nullptr, kOverlayFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoInputs))
+    ImGui::TextUnformatted(text.c_str());
+  ImGui::End();
 }
 
 }  // namespace rayview

@@ -11,6 +11,7 @@
 #include "rayview/diagnostics.h"
 #include "rayview/tradeoff.h"
 #include "recent_files.h"
+#include "reference_compare.h"
 #include "scene_loader_task.h"
 #include "scene_session.h"
 
@@ -27,6 +28,8 @@ struct PanelActions {
   bool togglePanels = false;
   std::optional<double> measureTradeoff;  // at this resolution scale
   bool cancelTradeoff = false;
+  std::optional<std::string> loadReference;  // the Compare panel's path
+  bool toggleDifference = false;
 };
 
 // The text fields and toggles of the file panels, kept between frames.
@@ -71,6 +74,20 @@ struct TradeoffPanelState {
   bool showPlot = false;                 // the plot floats over the image (turned on by a new result)
 };
 
+// The "Compare" panel: the reference's path field and the difference view (its checkbox and D).
+struct ComparePanelState {
+  std::string path;
+  bool showDifference = false;
+  bool reveal = false;  // open the header and scroll to it once (a reference was given or loaded)
+};
+
+// What the Compare panel shows of the comparison: the reference, the image on screen and its figures.
+struct CompareInfo {
+  const ReferenceComparison& comparison;
+  int imageWidth = 0, imageHeight = 0;  // of the image on screen; 0 before the first pass
+  bool figuresCurrent = false;          // the figures are of the final pass on screen (not refining)
+};
+
 struct CameraPanelState {
   bool keepFieldOfView = true;  // a resolution edit changes the other side, not the near plane
 };
@@ -113,6 +130,8 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display);
 void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,
                        PanelActions& actions);
 
+void drawComparePanel(ComparePanelState& state, const CompareInfo& info, PanelActions& actions);
+
 // Over the image's bottom-right corner (`right`, `bottom`): preview level, pass time, Mrays/s, latencies, sizes.
 // `oneLine`: level, pass time, speed and the edit's latency on one line.
 void drawStatsOverlay(const ViewerStats& stats, float right, float bottom, bool oneLine);
@@ -121,6 +140,8 @@ void drawStatsOverlay(const ViewerStats& stats, float right, float bottom, bool 
 // and the load progress. Each returns the y below itself (`y` when it is not shown).
 float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
 float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
+// At the image area's top right (`right`, `top`), when it shows something else than the render: what it shows.
+void drawViewLabel(const std::string& text, float right, float top);
 // The plot of the last measurement (the texture), at its size or smaller to fit, closable (state.showPlot).
 void drawTradeoffPlot(TradeoffPanelState& state, const ImageTexture& plot, float x, float y, float maxWidth,
                       float maxHeight);

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "rayview/knobs.h"
+#include "reference_compare.h"
 #include "scene_session.h"
 
 namespace rayview {
@@ -82,6 +83,25 @@ bool ScriptRunner::waitIsOver(ScriptHost& host) {
                                                                                           : current_->numbers[0]) +
                      " s");
       return false;
+    case Wait::Compare: {
+      if (const std::string problem = host.editProblem(); !problem.empty()) {
+        fail("the edits cannot be rendered: " + problem);
+        return false;
+      }
+      if (const std::string problem = host.comparisonProblem(); !problem.empty()) {
+        fail("compare: " + problem);
+        return false;
+      }
+      const std::optional<ImageError> figures = host.finalFrameShown() && !host.loading() ? host.finalComparison()
+                                                                                          : std::nullopt;
+      if (figures) {
+        std::printf("%s\n", comparisonLine(current_->args[0], *figures).c_str());
+        std::fflush(stdout);
+        return true;
+      }
+      if (late) fail("compare: no final pass within " + std::to_string(kDefaultWaitFinalSeconds) + " s");
+      return false;
+    }
     case Wait::Load:
       if (!host.loading()) return true;
       if (late) fail("the scene did not load within " + std::to_string(kDefaultLoadSeconds) + " s");
@@ -148,6 +168,10 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     host.measureTradeoff(c.numbers[0]);
     wait_ = Wait::Tradeoff;
     deadline_ = Clock::now() + seconds(c.numbers[1]);
+  } else if (name == "compare") {
+    if (const std::string error = host.loadReference(c.args[0]); !error.empty()) return fail("compare: " + error);
+    wait_ = Wait::Compare;
+    deadline_ = Clock::now() + seconds(kDefaultWaitFinalSeconds);
   } else if (name == "undo" || name == "redo") {
     SceneSession* session = host.session();
     if (!session) return fail("no scene is loaded");

@@ -1,15 +1,17 @@
 #pragma once
 // Runs an automation script from the UI loop: at most one command per UI frame, and a waiting command
-// (wait-final, open, sleep, wait-frames, measure-tradeoff) holds the script until its condition is met or its
+// (wait-final, open, sleep, wait-frames, measure-tradeoff, compare) holds the script until its condition is met or its
 // time is up.
 // The viewer is reached only through ScriptHost, the same operations its keys and panels use.
 
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "automation_script.h"
+#include "rayview/image_metrics.h"
 
 namespace rayview {
 
@@ -45,6 +47,11 @@ class ScriptHost {
   virtual void measureTradeoff(double resolutionScale) = 0;
   virtual void cancelTradeoff() = 0;
   virtual TradeoffState tradeoffState() const = 0;
+  // Compare with a reference image: load it ("" when it loaded, otherwise why not, naming the file); the figures
+  // of the final pass on screen against it, once they are computed; why there can be none ("" while there may be).
+  virtual std::string loadReference(const std::string& path) = 0;
+  virtual std::optional<ImageError> finalComparison() const = 0;
+  virtual std::string comparisonProblem() const = 0;
   virtual void quit(int exitCode) = 0;
 };
 
@@ -62,7 +69,7 @@ class ScriptRunner {
 
  private:
   using Clock = std::chrono::steady_clock;
-  enum class Wait { None, Final, Load, Frames, Until, Tradeoff, SaveFrame };
+  enum class Wait { None, Final, Load, Frames, Until, Tradeoff, SaveFrame, Compare };
 
   void start(const ScriptCommand& command, ScriptHost& host);
   bool waitIsOver(ScriptHost& host);

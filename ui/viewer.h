@@ -14,6 +14,7 @@ struct ViewerOptions {
   int threads = 0;                     // render threads; 0: one per hardware thread
   std::vector<KnobAssignment> knobs;   // written into the settings, and into the first scene's parameters
   std::string scriptPath;              // automation (docs/viewer.md); empty: none
+  std::string comparePath;             // a reference image to compare the render with; empty: none
 };
 
 // Opens the window and runs until it closes; returns the exit status (rayview/exit_codes.h). Without a

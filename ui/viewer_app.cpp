@@ -20,7 +20,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
       imgui_(window_.handle(), window_.contentScale(), window_.framebufferScale()),
       renderer_(options.threads),
       recent_(RecentFiles::defaultStorage()),
-      tradeoff_(options.threads) {
+      tradeoff_(options.threads),
+      pendingReference_(options.comparePath) {
   if (script) script_.emplace(std::move(*script));
   stats_.threads = renderer_.threads();
   // Wake the UI loop when a pass is published, so it can sleep while passes render.
@@ -48,6 +49,8 @@ int ViewerApp::run() {
     if (window_.takeContentScaleChange()) imgui_.setScale(window_.contentScale(), window_.framebufferScale());
     if (const std::vector<std::string> dropped = window_.takeDroppedPaths(); !dropped.empty()) openFromUser(dropped.front());
     changed |= pollLoader();
+    // --compare is checked against the size of the first scene's image.
+    if (!pendingReference_.empty() && !loading()) loadReference(std::exchange(pendingReference_, {}));
     changed |= pollFileWatch(now);
     changed |= pollTradeoff();
     // Read before taking the frame: when the renderer was idle, its last pass is certainly taken below.
@@ -97,6 +100,8 @@ bool ViewerApp::takeNewFrame() {
   stats_.megaRaysPerSecond = frame_.megaRaysPerSecond;
   stats_.width = frame_.image.width;
   stats_.height = frame_.image.height;
+  // The figures against a reference follow each final pass, never a coarse one.
+  if (frame_.final) comparison_.compareFinal(frame_.image, frame_.version);
   return true;
 }
 
@@ -159,6 +164,7 @@ void ViewerApp::drawFrame() {
       else if (e.key == GLFW_KEY_ESCAPE || e.key == GLFW_KEY_C) keyAnswer = Answer::Cancel;
     }
     input.clear();
+    navigation_.releaseKeys();  // a release of a held key would not reach it
   }
   // While Ctrl+O's focus is on its way to the path field, typed keys belong to the field, not to shortcuts.
   navigation_.handle(input, io.WantCaptureMouse, io.WantCaptureKeyboard || filePanel_.focusOpenPath,
@@ -189,11 +195,13 @@ void ViewerApp::drawFrame() {
   updateTitle();
   startRequestedTradeoff(l);
 
-  if (!texture_.empty()) {
+  if (const ImageTexture& shown = shownImage(); !shown.empty()) {
     ImGui::GetBackgroundDrawList()->AddImage(
-        reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture_.id())), ImVec2(l.imageX, l.imageY),
+        reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(shown.id())), ImVec2(l.imageX, l.imageY),
         ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight));
   }
+  drawViewLabel(viewLabel(), l.viewX + l.viewWidth - ImGui::GetStyle().WindowPadding.x,
+                l.viewY + ImGui::GetStyle().WindowPadding.y);
 
   int framebufferWidth = 0, framebufferHeight = 0;
   window_.framebufferSize(framebufferWidth, framebufferHeight);
@@ -268,6 +276,9 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       const std::string why = whyNoTradeoff();
       drawTradeoffPanel(tradeoffPanel_, session_->edits().camera, why.empty(), why, actions);
     }
+    const CompareInfo compare{comparison_, haveFrame_ ? frame_.image.width : 0, haveFrame_ ? frame_.image.height : 0,
+                              finalComparison().has_value()};
+    drawComparePanel(comparePanel_, compare, actions);
     ImGui::PopItemWidth();
   }
   if (!display_.hidePanels) ImGui::End();
@@ -298,6 +309,8 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
   if (actions.cancelTradeoff) cancelTradeoff();
   if (actions.measureTradeoff) measureTradeoff(*actions.measureTradeoff);
+  if (actions.loadReference) loadReference(*actions.loadReference);
+  if (actions.toggleDifference || shortcuts.toggleDifference) toggleDifference();
   if (shortcuts.quit) quitFromUser();
   if (session_ && shortcuts.undo) session_->undo();
   if (session_ && shortcuts.redo) session_->redo();

@@ -76,6 +76,9 @@ class ViewerApp final : public ScriptHost {
   void measureTradeoff(double resolutionScale) override;
   void cancelTradeoff() override { stopTradeoff("cancelled", true); }
   TradeoffState tradeoffState() const override;
+  std::string loadReference(const std::string& path) override;
+  std::optional<ImageError> finalComparison() const override;
+  std::string comparisonProblem() const override;
   void quit(int exitCode) override;
 
  private:
@@ -105,6 +108,12 @@ class ViewerApp final : public ScriptHost {
   void startRequestedTradeoff(const Layout& layout);
   bool pollTradeoff();
   void stopTradeoff(const std::string& why, bool restartRender);
+
+  // Comparing with a reference image (viewer_compare.cpp): the image the image area shows this frame (the
+  // render, the reference while Space is held, or the difference), uploaded if it changed.
+  const ImageTexture& shownImage();
+  std::string viewLabel() const;  // what the image area shows, unless it is the render
+  void toggleDifference();
 
   // One UI frame
   void drawFrame();
@@ -182,6 +191,14 @@ class ViewerApp final : public ScriptHost {
   std::uint64_t measuredSerial_ = 0, measuredCommit_ = 0;  // what the last measurement saw
   std::string tradeoffError_;                // why the newest measurement has no report
   int revealFrames_ = 0;                     // frames until a new result is on screen
+
+  // Comparing with a reference image.
+  ReferenceComparison comparison_;
+  ComparePanelState comparePanel_;
+  std::string pendingReference_;  // --compare: loaded once the first scene has loaded (or failed to)
+  ImageTexture referenceTexture_;
+  ImageTexture differenceTexture_;
+  ImageView shownView_ = ImageView::Render;
 
   Confirm confirm_ = Confirm::None;
   std::string confirmOpenPath_;

@@ -104,6 +104,13 @@ def main():
     r = run(["compare", "--help"], a.rayview)
     check(r.returncode == 0 and r.stdout.startswith("usage: rayview compare") and "--min-within1" in r.stdout
           and "--threads" not in r.stdout, "compare --help prints compare's usage and options")
+    r = run(["--help"], a.rayview)
+    compare_line = [line for line in r.stdout.splitlines() if line.strip().startswith("--compare ")]
+    check(r.returncode == 0 and len(compare_line) == 1 and compare_line[0].endswith("[viewer]"),
+          "the viewer's --compare REF is in --help, marked [viewer]")
+    r = run(["render", scene, "-o", os.path.join(a.scratch, "x.png"), "--compare", default_png], a.rayview)
+    check(r.returncode == 2 and "'--compare' does not apply to 'rayview render'" in r.stderr,
+          "--compare is the viewer's: 'rayview render' refuses it")
     r = run(["rendr", scene], a.rayview)
     check(r.returncode == 2 and "unknown command 'rendr' (did you mean 'render'?)" in r.stderr,
           "a misspelt command is an unknown command with a suggestion")

@@ -1,13 +1,17 @@
 #pragma once
-// What the viewer's logic tests share: the test scene, a loaded session's parts, scratch directories.
+// What the viewer's logic tests share: the test scene, a loaded session's parts, scratch directories, a fake
+// viewer for scripts.
 
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "rayview/scene_loader.h"
 #include "scene_session.h"
+#include "script_runner.h"
 #include "support/image_compare.h"
 
 namespace rayview::viewer_testing {
@@ -34,5 +38,60 @@ inline LoadedSceneParts loadParts() {
   parts.accel = AccelKind::Reference;
   return parts;
 }
+
+// A host that records what the runner asks of the viewer.
+class FakeHost : public ScriptHost {
+ public:
+  explicit FakeHost(SceneSession* session) : session_(session) {}
+  SceneSession* session() override { return session_; }
+  void open(const std::string& path) override {
+    opened = path;
+    loadingFrames = 2;
+  }
+  void reload() override { loadingFrames = 1; }
+  bool loading() const override { return loadingFrames > 0; }
+  std::string loadError() const override { return loadingFrames > 0 ? "" : error; }
+  std::string scenePath() const override { return "scene.xml"; }
+  std::uint64_t sceneSerial() const override { return serial; }
+  bool finalFrameShown() const override { return final; }
+  std::string editProblem() const override { return {}; }
+  std::filesystem::path saveFrame(const std::string& path) override { return savedFrame = path; }
+  std::filesystem::path saveScene(const std::string& path) override { return path; }
+  void screenshot(const std::string&) override {}
+  std::string stateLine() const override { return "state"; }
+  void resizeWindow(int, int) override {}
+  void quit(int code) override { exitCode = code; }
+  void measureTradeoff(double scale) override {
+    measuredScale = scale;
+    tradeoff.running = true;
+  }
+  void cancelTradeoff() override {
+    tradeoff.running = false;
+    tradeoff.error = "cancelled";
+  }
+  TradeoffState tradeoffState() const override { return tradeoff; }
+  std::string loadReference(const std::string& path) override {
+    referencePath = path;
+    return referenceError;
+  }
+  std::optional<ImageError> finalComparison() const override { return final ? comparison : std::nullopt; }
+  std::string comparisonProblem() const override { return sizeProblem; }
+
+  void frame(ScriptRunner& runner) {
+    runner.step(*this);
+    if (loadingFrames > 0) --loadingFrames;
+  }
+
+  SceneSession* session_;
+  std::string opened, error, savedFrame = "-";
+  int loadingFrames = 0;
+  std::uint64_t serial = 1;
+  bool final = false;
+  int exitCode = -1;
+  double measuredScale = 0.0;
+  TradeoffState tradeoff;
+  std::string referencePath, referenceError, sizeProblem;
+  std::optional<ImageError> comparison;  // of the final pass, once final
+};
 
 }  // namespace rayview::viewer_testing

@@ -96,53 +96,6 @@ TEST(AutomationScript, MeasureTradeoffFillsInItsDefaults) {
   EXPECT_EQ(s.commands[2].numbers, (std::vector<double>{1.0, 30.0}));
 }
 
-// A host that records what the runner asks of the viewer.
-class FakeHost : public ScriptHost {
- public:
-  explicit FakeHost(SceneSession* session) : session_(session) {}
-  SceneSession* session() override { return session_; }
-  void open(const std::string& path) override {
-    opened = path;
-    loadingFrames = 2;
-  }
-  void reload() override { loadingFrames = 1; }
-  bool loading() const override { return loadingFrames > 0; }
-  std::string loadError() const override { return loadingFrames > 0 ? "" : error; }
-  std::string scenePath() const override { return "scene.xml"; }
-  std::uint64_t sceneSerial() const override { return serial; }
-  bool finalFrameShown() const override { return final; }
-  std::string editProblem() const override { return {}; }
-  std::filesystem::path saveFrame(const std::string& path) override { return savedFrame = path; }
-  std::filesystem::path saveScene(const std::string& path) override { return path; }
-  void screenshot(const std::string&) override {}
-  std::string stateLine() const override { return "state"; }
-  void resizeWindow(int, int) override {}
-  void quit(int code) override { exitCode = code; }
-  void measureTradeoff(double scale) override {
-    measuredScale = scale;
-    tradeoff.running = true;
-  }
-  void cancelTradeoff() override {
-    tradeoff.running = false;
-    tradeoff.error = "cancelled";
-  }
-  TradeoffState tradeoffState() const override { return tradeoff; }
-
-  void frame(ScriptRunner& runner) {
-    runner.step(*this);
-    if (loadingFrames > 0) --loadingFrames;
-  }
-
-  SceneSession* session_;
-  std::string opened, error, savedFrame = "-";
-  int loadingFrames = 0;
-  std::uint64_t serial = 1;
-  bool final = false;
-  int exitCode = -1;
-  double measuredScale = 0.0;
-  TradeoffState tradeoff;
-};
-
 TEST(ScriptRunner, WaitsForTheFinalPassThenRunsOneCommandPerFrame) {
   SceneSession session(loadParts(), RenderSettings{});
   FakeHost host(&session);

@@ -22,6 +22,9 @@ Cases:
                step, and Ctrl+Q with unsaved edits asks: Escape cancels, D discards and quits
   pick         `pick I J` names the mesh a pixel shows; a real click on the image picks, a double-click moves the
                pivot (the view turns), F then frames the picked mesh
+  compare      --compare and the `compare` script command: exact=100% against `rayview render` of the scene, the
+               headless figures against a modified reference; holding Space shows the reference, D the difference
+               (viewer_compare_case.py)
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -35,6 +38,7 @@ import sys
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from viewer_compare_case import case_compare  # noqa: E402
 from viewer_harness import (  # noqa: E402
     last_generation,
     title_of,
@@ -493,9 +497,11 @@ def case_hidpi(args, work):
     def pixel(x, y):
         return pixels[(y * width + x) * 3:(y * width + x) * 3 + 3]
 
-    # Below the last panel header the column is empty: panel background out to twice the 400-pixel width.
-    panel = pixel(20, height - 20)
-    if pixel(780, height - 20) != panel or pixel(840, height - 20) == panel:
+    # The column's top padding row, above its first button: panel background out to about twice the 400-pixel
+    # width (760, short of the scrollbar the column has when its panels are taller than the window), then the
+    # image area. (Not a row below the last panel header: whether there is one depends on how many panels fit.)
+    panel = pixel(20, 6)
+    if pixel(760, 6) != panel or pixel(840, 6) == panel:
         raise Failure("the panel column should be about 800 pixels wide at content scale 2")
     print(f"  {shot}: 2560x1600, panel column about 800 pixels wide")
 
@@ -530,7 +536,7 @@ def case_no_display(args, work):
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
-         "undo": case_undo, "pick": case_pick}
+         "undo": case_undo, "pick": case_pick, "compare": case_compare}
 
 
 def main():

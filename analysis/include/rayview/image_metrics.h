@@ -2,6 +2,7 @@
 // How far an image is from a reference image: the figures the speed-for-accuracy trade is judged by.
 
 #include <limits>
+#include <string>
 
 #include "rayview/image.h"
 
@@ -19,6 +20,16 @@ struct ImageError {
 
 // 20 log10(255 / rmse); +inf for rmse 0.
 double psnrFromRmse(double rmse);
+
+// % of pixels no channel of which differs by more than 1.
+inline double pctWithin1(const ImageError& error) { return 100.0 - error.pctOffByMoreThan1; }
+
+// PSNR in dB with two decimals, "inf" for identical images.
+std::string formatPsnr(double psnrDb);
+
+// The figures as `rayview compare` prints them and the viewer's `compare` script command repeats them:
+// "exact=97.370% within1=98.321% maxdiff=37 psnr=48.08".
+std::string comparisonSummary(const ImageError& error);
 
 // Throws std::invalid_argument when the sizes differ.
 ImageError compareToReference(const Image& image, const Image& reference);
