@@ -21,15 +21,12 @@ Like viewer_test.py, each case runs itself under `xvfb-run` (skipped, exit 77, w
 import argparse
 import os
 import random
-import shutil
-import subprocess
 import sys
 import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from viewer_harness import (SCREEN, SKIP, Failure, Viewer, copy_scene, fresh_directory,  # noqa: E402
-                         viewer_window, xdotool)
+from viewer_harness import (Failure, Viewer, copy_scene, run_case, viewer_window, xdotool)  # noqa: E402
 
 # Resident memory may grow this much between the end of the warm-up and the end of the soak. Under ASan the
 # allocator keeps freed blocks in its quarantine (bounded by quarantine_size_mb, set small below) and
@@ -284,25 +281,7 @@ def main():
     args = parser.parse_args()
     args.rayview = os.path.abspath(args.rayview)
 
-    if not os.environ.get("RAYVIEW_UNDER_XVFB"):
-        xvfb_run = shutil.which("xvfb-run")
-        if not xvfb_run:
-            print("SKIPPED: xvfb-run is not installed (apt-get install xvfb); the viewer tests need a virtual display")
-            return SKIP
-        environment = dict(os.environ, RAYVIEW_UNDER_XVFB="1")
-        return subprocess.call([xvfb_run, "-a", "-s", SCREEN, sys.executable, os.path.abspath(__file__)] + sys.argv[1:],
-                               env=environment)
-
-    work = fresh_directory(os.path.abspath(args.output), args.case)
-    os.environ["XDG_CONFIG_HOME"] = os.path.join(work, "config")
-    started = time.monotonic()
-    try:
-        CASES[args.case](args, work)
-    except Failure as failure:
-        print(f"FAILED {args.case}: {failure}")
-        return 1
-    print(f"passed {args.case} in {time.monotonic() - started:.1f} s (files in {work})")
-    return 0
+    return run_case(__file__, CASES, args)
 
 
 if __name__ == "__main__":

@@ -7,6 +7,7 @@ import queue
 import shutil
 import struct
 import subprocess
+import sys
 import threading
 import time
 import zlib
@@ -263,3 +264,31 @@ def cpu_seconds(pid):
         fields = f.read().rsplit(")", 1)[1].split()
     # utime and stime are fields 14 and 15 of the file, 12 and 13 after the command name.
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+# ---------------------------------------------------------------------------------------------- running a case
+
+def run_case(script, cases, args, screen=SCREEN, needs_display=True):
+    """The main of viewer_test.py and stress_test.py: re-runs `script` (with the same arguments) under
+    `xvfb-run` unless already there (SKIP when xvfb-run is missing), then runs cases[args.case](args, work)
+    in a fresh directory under args.output, with the viewer's settings kept there. Returns the exit code."""
+    if needs_display and not os.environ.get("RAYVIEW_UNDER_XVFB"):
+        xvfb_run = shutil.which("xvfb-run")
+        if not xvfb_run:
+            print("SKIPPED: xvfb-run is not installed (apt-get install xvfb); the viewer tests need a virtual display")
+            return SKIP
+        environment = dict(os.environ, RAYVIEW_UNDER_XVFB="1")
+        return subprocess.call([xvfb_run, "-a", "-s", screen, sys.executable, os.path.abspath(script)] + sys.argv[1:],
+                               env=environment)
+
+    work = fresh_directory(os.path.abspath(args.output), args.case)
+    # Recent files and any other settings go to the case's directory, never to the user's ~/.config.
+    os.environ["XDG_CONFIG_HOME"] = os.path.join(work, "config")
+    started = time.monotonic()
+    try:
+        cases[args.case](args, work)
+    except Failure as failure:
+        print(f"FAILED {args.case}: {failure}")
+        return 1
+    print(f"passed {args.case} in {time.monotonic() - started:.1f} s (files in {work})")
+    return 0

@@ -52,15 +52,14 @@ from viewer_harness import (  # noqa: E402
     SCENE,
     SCREEN,
     SCREENS,
-    SKIP,
     Viewer,
     copy_scene,
     expect_different,
     expect_same,
-    fresh_directory,
     key,
     read_png,
     render_headless,
+    run_case,
     viewer_environment,
     viewer_window,
     xdotool)
@@ -547,27 +546,8 @@ def main():
     args = parser.parse_args()
     args.rayview = os.path.abspath(args.rayview)
 
-    if args.case != "no-display" and not os.environ.get("RAYVIEW_UNDER_XVFB"):
-        xvfb_run = shutil.which("xvfb-run")
-        if not xvfb_run:
-            print("SKIPPED: xvfb-run is not installed (apt-get install xvfb); the viewer tests need a virtual display")
-            return SKIP
-        environment = dict(os.environ, RAYVIEW_UNDER_XVFB="1")
-        screen = SCREENS.get(args.case, SCREEN)
-        return subprocess.call([xvfb_run, "-a", "-s", screen, sys.executable, os.path.abspath(__file__)] + sys.argv[1:],
-                               env=environment)
-
-    work = fresh_directory(os.path.abspath(args.output), args.case)
-    # Recent files and any other settings go to the case's directory, never to the user's ~/.config.
-    os.environ["XDG_CONFIG_HOME"] = os.path.join(work, "config")
-    started = time.monotonic()
-    try:
-        CASES[args.case](args, work)
-    except Failure as failure:
-        print(f"FAILED {args.case}: {failure}")
-        return 1
-    print(f"passed {args.case} in {time.monotonic() - started:.1f} s (files in {work})")
-    return 0
+    return run_case(__file__, CASES, args, screen=SCREENS.get(args.case, SCREEN),
+                    needs_display=args.case != "no-display")
 
 
 if __name__ == "__main__":
