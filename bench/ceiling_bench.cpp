@@ -247,14 +247,23 @@ RecordedRays generate(const WhittedGenerator& generator, const std::vector<Tile>
 
 constexpr std::size_t kChunk = 4096;
 
+// Runs hitsOf(i) for i in [0, items) on the pool and sums what they return (hits: so no work is idle).
+template <class HitsOf>
+std::uint64_t sumInParallel(ThreadPool& pool, std::size_t items, HitsOf&& hitsOf) {
+  std::vector<std::uint64_t> hits(items, 0);
+  pool.parallelFor(items, [&](std::size_t i) { hits[i] = hitsOf(i); });
+  std::uint64_t total = 0;
+  for (std::uint64_t h : hits) total += h;
+  return total;
+}
+
 // Casts `count` rays drawn evenly from `recorded` (see the file comment); returns hits, so nothing is idle.
 std::uint64_t castRecorded(RTCScene scene, const std::vector<RTCRay>& recorded, std::uint64_t count, bool occlusion,
                            ThreadPool& pool) {
   if (count == 0 || recorded.empty()) return 0;
   const std::uint64_t m = recorded.size();
   const std::size_t chunks = static_cast<std::size_t>((count + kChunk - 1) / kChunk);
-  std::vector<std::uint64_t> hits(chunks, 0);
-  pool.parallelFor(chunks, [&](std::size_t c) {
+  return sumInParallel(pool, chunks, [&](std::size_t c) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     const std::uint64_t end = std::min<std::uint64_t>(count, (c + 1) * kChunk);
@@ -271,17 +280,13 @@ std::uint64_t castRecorded(RTCScene scene, const std::vector<RTCRay>& recorded, 
         h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
       }
     }
-    hits[c] = h;
+    return h;
   });
-  std::uint64_t total = 0;
-  for (std::uint64_t h : hits) total += h;
-  return total;
 }
 
 std::uint64_t castCameraSingle(RTCScene scene, const Camera& camera, const std::vector<Tile>& tiles, ThreadPool& pool) {
   const CameraBasis basis = cameraBasis(camera);
-  std::vector<std::uint64_t> hits(tiles.size(), 0);
-  pool.parallelFor(tiles.size(), [&](std::size_t index) {
+  return sumInParallel(pool, tiles.size(), [&](std::size_t index) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     const Tile& t = tiles[index];
@@ -292,17 +297,13 @@ std::uint64_t castCameraSingle(RTCScene scene, const Camera& camera, const std::
         rtcIntersect1(scene, &context, &rh);
         h += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
       }
-    hits[index] = h;
+    return h;
   });
-  std::uint64_t total = 0;
-  for (std::uint64_t h : hits) total += h;
-  return total;
 }
 
 std::uint64_t castCameraPackets(RTCScene scene, const Camera& camera, const std::vector<Tile>& tiles, ThreadPool& pool) {
   const CameraBasis basis = cameraBasis(camera);
-  std::vector<std::uint64_t> hits(tiles.size(), 0);
-  pool.parallelFor(tiles.size(), [&](std::size_t index) {
+  return sumInParallel(pool, tiles.size(), [&](std::size_t index) {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
@@ -332,11 +333,8 @@ std::uint64_t castCameraPackets(RTCScene scene, const Camera& camera, const std:
         rtcIntersect16(valid, scene, &context, &packet);
         for (int k = 0; k < 16; ++k) h += valid[k] && packet.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
       }
-    hits[index] = h;
+    return h;
   });
-  std::uint64_t total = 0;
-  for (std::uint64_t h : hits) total += h;
-  return total;
 }
 
 struct SceneResult {
