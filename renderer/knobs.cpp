@@ -143,13 +143,14 @@ const Knob& accelKnob() { return *findKnob("accel"); }
 const Knob& pixelSamplesKnob() { return *findKnob("samples"); }
 
 void applyKnobs(std::span<const KnobAssignment> assignments, KnobTarget target) {
+  // A row's setter writes only its home; the other reference is a stand-in that is never written.
+  SceneParameters noParameters;
+  RenderSettings noSettings;
+  SceneParameters& parameters = target.parameters ? *target.parameters : noParameters;
+  RenderSettings& settings = target.settings ? *target.settings : noSettings;
   for (const KnobAssignment& a : assignments) {
     const bool present = a.knob->home == KnobHome::Parameters ? target.parameters != nullptr : target.settings != nullptr;
-    if (!present) continue;
-    SceneParameters unusedParameters;
-    RenderSettings unusedSettings;
-    a.knob->set(target.parameters ? *target.parameters : unusedParameters,
-                target.settings ? *target.settings : unusedSettings, a.value);
+    if (present) a.knob->set(parameters, settings, a.value);
   }
 }
 
