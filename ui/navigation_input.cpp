@@ -18,13 +18,14 @@ void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWa
       case InputEvent::Kind::MouseButton:
         if (e.pressed && drag_ == Drag::None && !imguiWantsMouse && session) {
           const bool shift = (e.mods & GLFW_MOD_SHIFT) != 0;
-          if (e.button == GLFW_MOUSE_BUTTON_LEFT) drag_ = shift ? Drag::Pan : Drag::Orbit;
+          const bool control = (e.mods & GLFW_MOD_CONTROL) != 0;
+          if (e.button == GLFW_MOUSE_BUTTON_LEFT) drag_ = control ? Drag::Image : shift ? Drag::Pan : Drag::Orbit;
           else if (e.button == GLFW_MOUSE_BUTTON_MIDDLE) drag_ = Drag::Pan;
           if (drag_ != Drag::None) {
             button_ = e.button;
             lastX_ = pressX_ = e.x;
             lastY_ = pressY_ = e.y;
-            maybeClick_ = e.button == GLFW_MOUSE_BUTTON_LEFT && !shift;
+            maybeClick_ = e.button == GLFW_MOUSE_BUTTON_LEFT && !shift && !control;
           }
         } else if (!e.pressed && e.button == button_) {
           drag_ = Drag::None;
@@ -44,20 +45,31 @@ void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWa
         }
         break;
       case InputEvent::Kind::CursorMove: {
+        cursorX_ = e.x;
+        cursorY_ = e.y;
         if (drag_ == Drag::None || !session) break;
         if (std::abs(e.x - pressX_) > kClickSlop || std::abs(e.y - pressY_) > kClickSlop) maybeClick_ = false;
         const double dx = e.x - lastX_, dy = e.y - lastY_;
         lastX_ = e.x;
         lastY_ = e.y;
-        // Grab the scene: it turns and slides with the cursor.
-        if (drag_ == Drag::Orbit)
+        // Grab the scene: it turns and slides with the cursor. Ctrl: grab the image instead.
+        if (drag_ == Drag::Image) {
+          shortcuts.imagePanX += dx;
+          shortcuts.imagePanY += dy;
+        } else if (drag_ == Drag::Orbit)
           session->navigate([&](OrbitCamera& o) { o.orbit(-dx * radiansPerPixel, dy * radiansPerPixel); });
         else
           session->navigate([&](OrbitCamera& o) { o.pan(-dx * viewsPerPixel, dy * viewsPerPixel); });
         break;
       }
       case InputEvent::Kind::Scroll:
-        if (!imguiWantsMouse && session && e.y != 0.0) session->navigate([&](OrbitCamera& o) { o.dolly(e.y); });
+        if (imguiWantsMouse || !session || e.y == 0.0) break;
+        if ((e.mods & GLFW_MOD_CONTROL) != 0) {
+          shortcuts.imageWheelZoomBy *= std::pow(kWheelZoomStep, e.y);
+          shortcuts.imageWheelAt = {cursorX_, cursorY_};
+        } else {
+          session->navigate([&](OrbitCamera& o) { o.dolly(e.y); });
+        }
         break;
       case InputEvent::Kind::Key:
         // Keys typed right after Ctrl+O go to the path field, which takes the focus a frame later.
@@ -89,6 +101,10 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_D) shortcuts.toggleDifference = true;
+  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_0 || e.key == GLFW_KEY_KP_0)) shortcuts.imageFit = true;
+  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_1 || e.key == GLFW_KEY_KP_1)) shortcuts.imageOneToOne = true;
+  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_EQUAL || e.key == GLFW_KEY_KP_ADD)) shortcuts.imageZoomBy *= 2.0;
+  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_MINUS || e.key == GLFW_KEY_KP_SUBTRACT)) shortcuts.imageZoomBy *= 0.5;
 }
 
 }  // namespace rayview

@@ -23,6 +23,14 @@ struct Shortcuts {
   bool undo = false;         // Ctrl+Z
   bool redo = false;         // Ctrl+Shift+Z, Ctrl+Y
   bool toggleDifference = false;  // D: the difference from the reference image
+  // The image view (image_placement.h): 0 fits, 1 shows 1:1, + and - zoom by 2 at the view's centre,
+  // Ctrl+wheel zooms at the cursor, Ctrl+drag moves the image.
+  bool imageFit = false;
+  bool imageOneToOne = false;
+  double imageZoomBy = 1.0;                       // at the view's centre
+  double imageWheelZoomBy = 1.0;                  // at imageWheelAt
+  std::pair<double, double> imageWheelAt{0.0, 0.0};
+  double imagePanX = 0.0, imagePanY = 0.0;        // window units
   // A left click on the image (pressed and released without moving more than kClickSlop pixels): where, in
   // window coordinates, and whether it completed a double-click.
   std::optional<std::pair<double, double>> click;
@@ -33,6 +41,8 @@ struct Shortcuts {
 inline constexpr double kClickSlop = 3.0;
 // A second click this soon after the first, and as close, is a double-click.
 inline constexpr double kDoubleClickSeconds = 0.4;
+// One wheel notch with Ctrl zooms the image by this factor.
+inline constexpr double kWheelZoomStep = 1.25;
 
 class NavigationInput {
  public:
@@ -54,7 +64,7 @@ class NavigationInput {
   }
 
  private:
-  enum class Drag { None, Orbit, Pan };
+  enum class Drag { None, Orbit, Pan, Image };  // Image: Ctrl+drag moves the image, not the camera
   void handleKey(const InputEvent& e, bool imguiWantsKeyboard, Shortcuts& shortcuts);
 
   Drag drag_ = Drag::None;
@@ -65,6 +75,7 @@ class NavigationInput {
   std::optional<std::chrono::steady_clock::time_point> lastClickTime_;
   double lastClickX_ = 0.0, lastClickY_ = 0.0;
   bool flipHeld_ = false;
+  double cursorX_ = 0.0, cursorY_ = 0.0;  // the last cursor position seen, for the wheel's zoom
 };
 
 }  // namespace rayview

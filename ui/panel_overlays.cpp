@@ -60,4 +60,12 @@ void drawViewLabel(const std::string& text, float right, float top) {
   ImGui::End();
 }
 
+void drawReadoutOverlay(const std::string& text, float left, float bottom) {
+  ImGui::SetNextWindowPos(ImVec2(left, bottom), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  if (ImGui::Begin("##readout", nullptr, kOverlayFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoInputs))
+    ImGui::TextUnformatted(text.c_str());
+  ImGui::End();
+}
+
 }  // namespace rayview

@@ -140,6 +140,8 @@ void drawStatsOverlay(const ViewerStats& stats, float right, float bottom, bool 
 // and the load progress. Each returns the y below itself (`y` when it is not shown).
 float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
 float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
+// At the image area's bottom left (`left`, `bottom`): the pixel under the cursor and its values.
+void drawReadoutOverlay(const std::string& text, float left, float bottom);
 // At the image area's top right (`right`, `top`), when it shows something else than the render: what it shows.
 void drawViewLabel(const std::string& text, float right, float top);
 // The plot of the last measurement (the texture), at its size or smaller to fit, closable (state.showPlot).

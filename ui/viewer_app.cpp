@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 #include <GL/gl.h>
@@ -21,7 +22,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
       renderer_(options.threads),
       recent_(RecentFiles::defaultStorage()),
       tradeoff_(options.threads),
-      pendingReference_(options.comparePath) {
+      pendingReference_(options.comparePath),
+      printReadout_(std::getenv("RAYVIEW_PRINT_READOUT") != nullptr) {
   if (script) script_.emplace(std::move(*script));
   stats_.threads = renderer_.threads();
   // Wake the UI loop when a pass is published, so it can sleep while passes render.
@@ -135,13 +137,15 @@ ViewerApp::Layout ViewerApp::layout() const {
   l.viewX = l.panelWidth;
   l.viewWidth = std::max(io.DisplaySize.x - l.panelWidth, 1.0f);
   l.viewHeight = std::max(io.DisplaySize.y, 1.0f);
+  l.framebufferScale = window_.framebufferScale();
   if (!texture_.empty()) {
-    // Fit the image in the view, keeping its aspect; its pixels are square.
-    const float scale = std::min(l.viewWidth / texture_.width(), l.viewHeight / texture_.height());
-    l.imageWidth = texture_.width() * scale;
-    l.imageHeight = texture_.height() * scale;
-    l.imageX = l.viewX + 0.5f * (l.viewWidth - l.imageWidth);
-    l.imageY = l.viewY + 0.5f * (l.viewHeight - l.imageHeight);
+    // Fitted (aspect kept, square pixels) unless the user zoomed (image_placement.h).
+    const ScreenRect placed = placement_.place({l.viewX, l.viewY, l.viewWidth, l.viewHeight}, texture_.width(),
+                                               texture_.height(), l.framebufferScale);
+    l.imageX = static_cast<float>(placed.x);
+    l.imageY = static_cast<float>(placed.y);
+    l.imageWidth = static_cast<float>(placed.width);
+    l.imageHeight = static_cast<float>(placed.height);
   }
   return l;
 }
@@ -150,7 +154,7 @@ void ViewerApp::drawFrame() {
   if (haveFrame_) texture_.update(frame_.image, frame_.version);
   imgui_.beginFrame();
   const ImGuiIO& io = ImGui::GetIO();
-  const Layout l = layout();
+  Layout l = layout();
 
   Shortcuts shortcuts;
   std::vector<InputEvent> input = window_.takeInput();
@@ -167,8 +171,12 @@ void ViewerApp::drawFrame() {
     navigation_.releaseKeys();  // a release of a held key would not reach it
   }
   // While Ctrl+O's focus is on its way to the path field, typed keys belong to the field, not to shortcuts.
+  // Orbit and pan speeds follow the image as shown, up to the view's size (a zoomed-in image turns no slower).
+  const float navigationHeight = l.imageHeight > 0.0f ? std::min(l.imageHeight, l.viewHeight) : l.viewHeight;
   navigation_.handle(input, io.WantCaptureMouse, io.WantCaptureKeyboard || filePanel_.focusOpenPath,
-                     l.viewHeight, l.imageHeight > 0.0f ? l.imageHeight : l.viewHeight, session_.get(), shortcuts);
+                     l.viewHeight, navigationHeight, session_.get(), shortcuts);
+  applyImageView(shortcuts, l);
+  l = layout();
   if (shortcuts.focusOpen) {
     // Before the panels are drawn, so the Scene panel already holds this frame's typed characters.
     filePanel_.focusOpenPath = true;
@@ -195,11 +203,8 @@ void ViewerApp::drawFrame() {
   updateTitle();
   startRequestedTradeoff(l);
 
-  if (const ImageTexture& shown = shownImage(); !shown.empty()) {
-    ImGui::GetBackgroundDrawList()->AddImage(
-        reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(shown.id())), ImVec2(l.imageX, l.imageY),
-        ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight));
-  }
+  if (const ImageTexture& shown = shownImage(); !shown.empty()) drawImage(shown, l);
+  drawPixelReadout(l);
   drawViewLabel(viewLabel(), l.viewX + l.viewWidth - ImGui::GetStyle().WindowPadding.x,
                 l.viewY + ImGui::GetStyle().WindowPadding.y);
 
@@ -325,14 +330,15 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
 }
 
 void ViewerApp::pickAt(double x, double y, bool doubleClick, const Layout& l) {
-  if (!session_ || !(l.imageWidth > 0.0f) || !(l.imageHeight > 0.0f)) return;
-  // The image is drawn stretched over the image area: the fraction across it is the fraction across the image.
-  const double u = (x - l.imageX) / l.imageWidth, v = (y - l.imageY) / l.imageHeight;
-  if (!(u >= 0.0 && u < 1.0 && v >= 0.0 && v < 1.0)) return;
+  if (!session_) return;
+  // Only on the image area, and there on the image as placed (fitted or zoomed).
+  if (x < l.viewX || x >= l.viewX + l.viewWidth || y < l.viewY || y >= l.viewY + l.viewHeight) return;
   const Camera& camera = session_->committedEdits().camera;
-  const int i = std::min(static_cast<int>(u * camera.width), camera.width - 1);
-  const int j = std::min(static_cast<int>(v * camera.height), camera.height - 1);
-  const std::optional<PickResult> pick = session_->pick(i, j);
+  const std::optional<ImagePixel> pixel =
+      ImagePlacement::pixelAt({l.imageX, l.imageY, l.imageWidth, l.imageHeight}, camera.width, camera.height,
+                              screenPixelCentre(x, l.framebufferScale), screenPixelCentre(y, l.framebufferScale));
+  if (!pixel) return;
+  const std::optional<PickResult> pick = session_->pick(pixel->i, pixel->j);
   std::printf("%s\n", pick ? describePick(*pick, session_->loaded(), session_->edits()).c_str() : "picked nothing");
   std::fflush(stdout);
   if (pick && doubleClick) session_->navigate([&](OrbitCamera& o) { o.setPivot(pick->point); });

@@ -15,6 +15,7 @@
 #include "image_texture.h"
 #include "imgui_layer.h"
 #include "navigation_input.h"
+#include "image_placement.h"
 #include "panels.h"
 #include "rayview/progressive_renderer.h"
 #include "recent_files.h"
@@ -86,7 +87,8 @@ class ViewerApp final : public ScriptHost {
   struct Layout {
     float panelWidth = 0.0f;
     float viewX = 0.0f, viewY = 0.0f, viewWidth = 0.0f, viewHeight = 0.0f;      // the area for the image
-    float imageX = 0.0f, imageY = 0.0f, imageWidth = 0.0f, imageHeight = 0.0f;  // the image, aspect kept
+    float imageX = 0.0f, imageY = 0.0f, imageWidth = 0.0f, imageHeight = 0.0f;  // the image as placed (placement_)
+    float framebufferScale = 1.0f;
   };
 
   // Loading
@@ -114,6 +116,13 @@ class ViewerApp final : public ScriptHost {
   const ImageTexture& shownImage();
   std::string viewLabel() const;  // what the image area shows, unless it is the render
   void toggleDifference();
+
+  // The image view (viewer_image_view.cpp): fit, 1:1, zoom and pan from the keys and the mouse; the image
+  // drawn where placement_ puts it, clipped to the image area, with a pixel grid at high zoom; the readout of
+  // the pixel under the cursor.
+  void applyImageView(const Shortcuts& shortcuts, const Layout& layout);
+  void drawImage(const ImageTexture& shown, const Layout& layout);
+  void drawPixelReadout(const Layout& layout);
 
   // One UI frame
   void drawFrame();
@@ -199,6 +208,13 @@ class ViewerApp final : public ScriptHost {
   ImageTexture referenceTexture_;
   ImageTexture differenceTexture_;
   ImageView shownView_ = ImageView::Render;
+
+  // The image view.
+  ImagePlacement placement_;
+  int placedWidth_ = 0, placedHeight_ = 0;  // the image size the placement was made for
+  std::optional<ImagePixel> readoutPixel_;  // the pixel under the cursor last frame, and what was shown of it
+  std::string readoutText_;
+  bool printReadout_ = false;               // RAYVIEW_PRINT_READOUT: tools driving the window read it on stdout
 
   Confirm confirm_ = Confirm::None;
   std::string confirmOpenPath_;

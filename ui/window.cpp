@@ -98,6 +98,9 @@ void Window::onScroll(GLFWwindow* window, double dx, double dy) {
   e.kind = InputEvent::Kind::Scroll;
   e.x = dx;
   e.y = dy;
+  // GLFW gives the wheel no modifiers: Ctrl+wheel zooms the image, so read Ctrl here.
+  if (glfwGetKey(window, GLFW_KEY_LEFT_CONTROL) == GLFW_PRESS || glfwGetKey(window, GLFW_KEY_RIGHT_CONTROL) == GLFW_PRESS)
+    e.mods |= GLFW_MOD_CONTROL;
   self.input_.push_back(e);
   self.activity_ = true;
 }

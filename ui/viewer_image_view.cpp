@@ -1,0 +1,115 @@
+// The viewer's image view: fit, 1:1, zoom and pan (keys 0, 1, + and -, Ctrl+wheel, Ctrl+drag); the image
+// drawn where the placement puts it, clipped to the image area, with a grid around the pixels at high zoom;
+// and the readout of the pixel under the cursor (render and reference values).
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+#include <imgui.h>
+
+#include "panels.h"
+#include "viewer_app.h"
+
+namespace rayview {
+namespace {
+
+std::string rgbText(const Image& image, const ImagePixel& p) {
+  const std::uint8_t* c = image.pixel(p.i, p.j);
+  return std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]);
+}
+
+}  // namespace
+
+void ViewerApp::applyImageView(const Shortcuts& shortcuts, const Layout& l) {
+  if (texture_.empty()) return;
+  const ScreenRect view{l.viewX, l.viewY, l.viewWidth, l.viewHeight};
+  const int w = texture_.width(), h = texture_.height();
+  const double scale = l.framebufferScale;
+  // Another image size (another scene or resolution) starts fitted again.
+  if (w != placedWidth_ || h != placedHeight_) {
+    placedWidth_ = w;
+    placedHeight_ = h;
+    placement_.fit();
+  }
+  const double centreX = view.x + 0.5 * view.width, centreY = view.y + 0.5 * view.height;
+  bool changed = false;
+  if (shortcuts.imageFit) placement_.fit(), changed = true;
+  if (shortcuts.imageOneToOne) placement_.zoomAt(1.0, centreX, centreY, view, w, h, scale), changed = true;
+  if (shortcuts.imageZoomBy != 1.0) {
+    placement_.zoomAt(placement_.zoom(view, w, h, scale) * shortcuts.imageZoomBy, centreX, centreY, view, w, h, scale);
+    changed = true;
+  }
+  if (shortcuts.imageWheelZoomBy != 1.0) {
+    placement_.zoomAt(placement_.zoom(view, w, h, scale) * shortcuts.imageWheelZoomBy, shortcuts.imageWheelAt.first,
+                      shortcuts.imageWheelAt.second, view, w, h, scale);
+    changed = true;
+  }
+  if (shortcuts.imagePanX != 0.0 || shortcuts.imagePanY != 0.0) {
+    placement_.pan(shortcuts.imagePanX, shortcuts.imagePanY, view, w, h, scale);
+    changed = true;
+  }
+  if (!changed) return;
+  framesToDraw_ = kSettleFrames;
+  // Tools driving the window (tests) follow the view on stdout.
+  if (placement_.fitted()) std::printf("image view fit (zoom %.3f)\n", placement_.zoom(view, w, h, scale));
+  else std::printf("image view zoom %.3f\n", placement_.zoom(view, w, h, scale));
+  std::fflush(stdout);
+}
+
+void ViewerApp::drawImage(const ImageTexture& shown, const Layout& l) {
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  draw->PushClipRect(ImVec2(l.viewX, l.viewY), ImVec2(l.viewX + l.viewWidth, l.viewY + l.viewHeight), true);
+  draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(shown.id())), ImVec2(l.imageX, l.imageY),
+                 ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight));
+  // A grid around the pixels once each is big enough to see it, over the visible ones only.
+  const double unitsPerPixel = l.imageWidth / shown.width();
+  if (unitsPerPixel * l.framebufferScale >= kPixelGridZoom) {
+    const ImU32 colour = IM_COL32(128, 128, 128, 96);
+    const int firstColumn = std::max(0, static_cast<int>(std::floor((l.viewX - l.imageX) / unitsPerPixel)));
+    const int lastColumn =
+        std::min(shown.width(), static_cast<int>(std::ceil((l.viewX + l.viewWidth - l.imageX) / unitsPerPixel)));
+    const int firstRow = std::max(0, static_cast<int>(std::floor((l.viewY - l.imageY) / unitsPerPixel)));
+    const int lastRow =
+        std::min(shown.height(), static_cast<int>(std::ceil((l.viewY + l.viewHeight - l.imageY) / unitsPerPixel)));
+    for (int i = firstColumn; i <= lastColumn; ++i) {
+      const float x = l.imageX + static_cast<float>(i * unitsPerPixel);
+      draw->AddLine(ImVec2(x, l.imageY + firstRow * unitsPerPixel), ImVec2(x, l.imageY + lastRow * unitsPerPixel), colour);
+    }
+    for (int j = firstRow; j <= lastRow; ++j) {
+      const float y = l.imageY + static_cast<float>(j * unitsPerPixel);
+      draw->AddLine(ImVec2(l.imageX + firstColumn * unitsPerPixel, y), ImVec2(l.imageX + lastColumn * unitsPerPixel, y),
+                    colour);
+    }
+  }
+  draw->PopClipRect();
+}
+
+void ViewerApp::drawPixelReadout(const Layout& l) {
+  const ImGuiIO& io = ImGui::GetIO();
+  std::optional<ImagePixel> pixel;
+  const bool onView = io.MousePos.x >= l.viewX && io.MousePos.x < l.viewX + l.viewWidth && io.MousePos.y >= l.viewY &&
+                      io.MousePos.y < l.viewY + l.viewHeight;
+  if (haveFrame_ && onView && !io.WantCaptureMouse)
+    pixel = ImagePlacement::pixelAt({l.imageX, l.imageY, l.imageWidth, l.imageHeight}, frame_.image.width,
+                                    frame_.image.height, screenPixelCentre(io.MousePos.x, l.framebufferScale),
+                                    screenPixelCentre(io.MousePos.y, l.framebufferScale));
+  if (!pixel) {
+    readoutPixel_.reset();
+    return;
+  }
+  std::string text = "pixel " + std::to_string(pixel->i) + ", " + std::to_string(pixel->j) + ": render " +
+                     rgbText(frame_.image, *pixel);
+  if (comparison_.comparable(frame_.image)) text += ", reference " + rgbText(comparison_.reference(), *pixel);
+  if (!frame_.final) text += " (preview pass)";
+  drawReadoutOverlay(text, l.viewX + ImGui::GetStyle().WindowPadding.x,
+                     l.viewY + l.viewHeight - ImGui::GetStyle().WindowPadding.y);
+  if (printReadout_ && (readoutPixel_ != pixel || readoutText_ != text)) {
+    std::printf("readout %s\n", text.c_str());
+    std::fflush(stdout);
+  }
+  readoutPixel_ = pixel;
+  readoutText_ = text;
+}
+
+}  // namespace rayview
