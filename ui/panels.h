@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "display_mapping.h"
 #include "image_texture.h"
 #include "rayview/diagnostics.h"
 #include "rayview/tradeoff.h"
@@ -52,6 +53,7 @@ struct DisplayOptions {
   bool showStats = true;
   bool oneLineStats = false;  // the stats on one line even in a large window (a small one always has them so)
   bool hidePanels = false;    // F9: the image takes the whole window
+  DisplayMapping mapping;     // exposure and gamma of the render and the reference (the difference stays raw)
 };
 
 // Below this window size (at content scale 1) the stats take one line, so they do not cover the image.

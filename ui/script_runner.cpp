@@ -207,6 +207,12 @@ void ScriptRunner::checkExpectedError(const ScriptCommand& c, ScriptHost& host) 
 }
 
 void ScriptRunner::applySet(const ScriptCommand& c, ScriptHost& host) {
+  // Display settings need no scene: they apply to whatever the image area shows.
+  if (c.args[0] == "exposure" || c.args[0] == "gamma") {
+    DisplayMapping mapping = host.displayMapping();
+    (c.args[0] == "exposure" ? mapping.exposureStops : mapping.gamma) = static_cast<float>(c.numbers[0]);
+    return host.setDisplayMapping(mapping);
+  }
   SceneSession* session = host.session();
   if (!session) return fail("no scene is loaded");
   SceneParameters& edits = session->edits();

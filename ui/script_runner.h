@@ -11,6 +11,7 @@
 #include <string>
 
 #include "automation_script.h"
+#include "display_mapping.h"
 #include "rayview/image_metrics.h"
 
 namespace rayview {
@@ -52,6 +53,9 @@ class ScriptHost {
   virtual std::string loadReference(const std::string& path) = 0;
   virtual std::optional<ImageError> finalComparison() const = 0;
   virtual std::string comparisonProblem() const = 0;
+  // Exposure and gamma: how the image area shows the image. Setting them never restarts the render.
+  virtual DisplayMapping displayMapping() const = 0;
+  virtual void setDisplayMapping(const DisplayMapping& mapping) = 0;
   virtual void quit(int exitCode) = 0;
 };
 

@@ -225,6 +225,8 @@ std::string ViewerApp::stateLine() const {
   std::snprintf(timings, sizeof timings, " first_pass_ms=%.1f final_pass_ms=%.1f", stats_.editToFirstPassMs,
                 stats_.editToFinalPassMs);
   line += timings;
+  line += " exposure=" + formatNumber(display_.mapping.exposureStops) +
+          " gamma=" + formatNumber(display_.mapping.gamma);
   line += " error=" + std::string(loadError_.empty() ? "0" : "1");
   line += " scene=" + describe(scenePath_);
   return line;

@@ -1,5 +1,5 @@
 // Exposure and gamma in the viewer, without a window: the mapping of 8-bit values, the image shown per source and
-// when it is mapped again.
+// when it is mapped again, and the `set exposure` and `set gamma` script commands.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -7,10 +7,15 @@
 
 #include <gtest/gtest.h>
 
+#include "automation_script.h"
 #include "display_mapping.h"
+#include "script_runner.h"
+#include "viewer_fixtures.h"
 
 namespace rayview {
 namespace {
+
+using namespace viewer_testing;
 
 std::uint8_t shown(int level, float stops, float gamma) {
   return displayLevel(static_cast<std::uint8_t>(level), DisplayMapping{stops, gamma});
@@ -107,6 +112,49 @@ TEST(MappedImage, AtTheDefaultsIsTheSourceItselfAndMapsAgainOnlyOnAChange) {
   const std::uint64_t third = shownImage.serial();
   EXPECT_EQ(&shownImage.of(raw, 2, DisplayMapping{}), &raw);  // reset: the pass itself again, uploaded again
   EXPECT_GT(shownImage.serial(), third);
+}
+
+// ------------------------------------------------------------------------------------------------ scripts
+
+std::string scriptError(const std::string& text) {
+  try {
+    parseScript(text, "t.rvs");
+  } catch (const ScriptError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+TEST(AutomationScript, ExposureAndGammaParse) {
+  const Script s = parseScript("set exposure +1.5\nset exposure -8\nset gamma 0.2\nset gamma 5\n", "t.rvs");
+  ASSERT_EQ(s.commands.size(), 4u);
+  EXPECT_EQ(s.commands[0].args, std::vector<std::string>{"exposure"});
+  EXPECT_EQ(s.commands[0].numbers, std::vector<double>{1.5});
+  EXPECT_EQ(s.commands[1].numbers, std::vector<double>{-8.0});
+  EXPECT_EQ(s.commands[2].args, std::vector<std::string>{"gamma"});
+  EXPECT_EQ(s.commands[3].numbers, std::vector<double>{5.0});
+}
+
+TEST(AutomationScript, ExposureAndGammaOutsideTheirLimitsNameTheLine) {
+  EXPECT_EQ(scriptError("wait-final\nset exposure 9\n"), "t.rvs:2: 'set exposure STOPS' takes -8 to 8, not 9");
+  EXPECT_EQ(scriptError("set gamma 0\n"), "t.rvs:1: 'set gamma GAMMA' takes 0.2 to 5, not 0");
+  EXPECT_EQ(scriptError("set gamma 0.19\n"), "t.rvs:1: 'set gamma GAMMA' takes 0.2 to 5, not 0.19");
+  EXPECT_EQ(scriptError("set exposure\n"), "t.rvs:1: usage: set exposure STOPS");
+  EXPECT_EQ(scriptError("set gamma 1 2\n"), "t.rvs:1: usage: set gamma GAMMA");
+  EXPECT_NE(scriptError("set exposure bright\n").find("expects a number, not 'bright'"), std::string::npos);
+  EXPECT_NE(scriptError("set\n").find("exposure, gamma"), std::string::npos);
+}
+
+TEST(ScriptRunner, ExposureAndGammaNeedNoSceneAndChangeOnlyTheDisplay) {
+  FakeHost host(nullptr);  // before any scene has loaded
+  ScriptRunner runner(parseScript("set exposure 1\nset gamma 2.2\nset exposure -0.5\n", "t"));
+  host.frame(runner);
+  EXPECT_EQ(host.mapping, (DisplayMapping{1.0f, 1.0f}));
+  host.frame(runner);
+  EXPECT_EQ(host.mapping, (DisplayMapping{1.0f, 2.2f}));
+  host.frame(runner);
+  EXPECT_EQ(host.mapping, (DisplayMapping{-0.5f, 2.2f}));  // each command sets its own value, keeps the other
+  EXPECT_FALSE(runner.failed()) << runner.failure();
 }
 
 }  // namespace

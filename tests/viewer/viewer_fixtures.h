@@ -60,6 +60,8 @@ class FakeHost : public ScriptHost {
   void screenshot(const std::string&) override {}
   std::string stateLine() const override { return "state"; }
   void resizeWindow(int, int) override {}
+  DisplayMapping displayMapping() const override { return mapping; }
+  void setDisplayMapping(const DisplayMapping& m) override { mapping = m; }
   void quit(int code) override { exitCode = code; }
   void measureTradeoff(double scale) override {
     measuredScale = scale;
@@ -84,6 +86,7 @@ class FakeHost : public ScriptHost {
 
   SceneSession* session_;
   std::string opened, error, savedFrame = "-";
+  DisplayMapping mapping;
   int loadingFrames = 0;
   std::uint64_t serial = 1;
   bool final = false;
