@@ -40,6 +40,9 @@ struct FilePanelState {
   std::string lastSaved;  // "saved /path/scene_001.png", shown under the buttons
   bool lastSaveFailed = false;  // lastSaved is an error: shown in red, whole, wrapped
   bool frameSavePending = false;  // Ctrl+S waits for the final pass
+  // Save frame and Ctrl+S write the image as displayed (exposure and gamma applied) rather than raw, the default:
+  // raw is what `rayview render` writes.
+  bool saveFrameDisplayed = false;
   bool reloadOnChange = true;
   // Ctrl+O: open the Scene section, focus the path field with its text selected. ImGui activates the field a
   // frame or two after the request; characters typed meanwhile are held here and replayed into the field.

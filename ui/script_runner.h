@@ -38,7 +38,8 @@ class ScriptHost {
   // The final pass of the current edits is on screen and nothing is pending.
   virtual bool finalFrameShown() const = 0;
   virtual std::string editProblem() const = 0;  // why the current edits are not rendered ("" when they are)
-  virtual std::filesystem::path saveFrame(const std::string& path) = 0;  // "" = numbered; throws on failure
+  // The final pass, raw (as `rayview render` writes it) or as displayed. "" = numbered; throws on failure.
+  virtual std::filesystem::path saveFrame(const std::string& path, FrameSave what) = 0;
   virtual std::filesystem::path saveScene(const std::string& path) = 0;  // "" = numbered; throws on failure
   virtual void screenshot(const std::string& path) = 0;  // taken when this frame has been drawn
   virtual std::string stateLine() const = 0;

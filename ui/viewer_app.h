@@ -68,7 +68,7 @@ class ViewerApp final : public ScriptHost {
   std::uint64_t sceneSerial() const override { return sceneSerial_; }
   bool finalFrameShown() const override;
   std::string editProblem() const override { return editProblem_; }
-  std::filesystem::path saveFrame(const std::string& path) override;
+  std::filesystem::path saveFrame(const std::string& path, FrameSave what) override;
   std::filesystem::path saveScene(const std::string& path) override;
   void screenshot(const std::string& path) override { pendingScreenshot_ = path; }
   std::string stateLine() const override;

@@ -1,5 +1,6 @@
 // Exposure and gamma in the viewer, without a window: the mapping of 8-bit values, the image shown per source and
-// when it is mapped again, and the `set exposure` and `set gamma` script commands.
+// when it is mapped again, numbered "as displayed" saves, and the `set exposure`, `set gamma` and
+// `save-frame-displayed` script commands.
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "automation_script.h"
 #include "display_mapping.h"
+#include "numbered_file.h"
 #include "script_runner.h"
 #include "viewer_fixtures.h"
 
@@ -114,6 +116,16 @@ TEST(MappedImage, AtTheDefaultsIsTheSourceItselfAndMapsAgainOnlyOnAChange) {
   EXPECT_GT(shownImage.serial(), third);
 }
 
+TEST(NumberedFile, FramesSavedAsDisplayedGetANameOfTheirOwn) {
+  const fs::path directory = freshDirectory("displayed_names");
+  const std::string scene = (directory / "room.xml").string();
+  const Image image(2, 2);
+  EXPECT_EQ(saveFrameNumbered(image, scene).filename(), "room_001.png");
+  EXPECT_EQ(saveFrameNumbered(image, scene, FrameSave::Displayed).filename(), "room_displayed_001.png");
+  EXPECT_EQ(saveFrameNumbered(image, scene, FrameSave::Displayed).filename(), "room_displayed_002.png");
+  EXPECT_EQ(saveFrameNumbered(image, scene, FrameSave::Raw).filename(), "room_002.png");
+}
+
 // ------------------------------------------------------------------------------------------------ scripts
 
 std::string scriptError(const std::string& text) {
@@ -125,14 +137,18 @@ std::string scriptError(const std::string& text) {
   return "no error";
 }
 
-TEST(AutomationScript, ExposureAndGammaParse) {
-  const Script s = parseScript("set exposure +1.5\nset exposure -8\nset gamma 0.2\nset gamma 5\n", "t.rvs");
-  ASSERT_EQ(s.commands.size(), 4u);
+TEST(AutomationScript, ExposureGammaAndDisplayedSavesParse) {
+  const Script s = parseScript("set exposure +1.5\nset exposure -8\nset gamma 0.2\nset gamma 5\n"
+                               "save-frame-displayed out/shown.png\nsave-frame-displayed\n",
+                               "t.rvs");
+  ASSERT_EQ(s.commands.size(), 6u);
   EXPECT_EQ(s.commands[0].args, std::vector<std::string>{"exposure"});
   EXPECT_EQ(s.commands[0].numbers, std::vector<double>{1.5});
   EXPECT_EQ(s.commands[1].numbers, std::vector<double>{-8.0});
   EXPECT_EQ(s.commands[2].args, std::vector<std::string>{"gamma"});
   EXPECT_EQ(s.commands[3].numbers, std::vector<double>{5.0});
+  EXPECT_EQ(s.commands[4].args, std::vector<std::string>{"out/shown.png"});
+  EXPECT_TRUE(s.commands[5].args.empty());  // numbered, as Ctrl+S with "Frame as displayed"
 }
 
 TEST(AutomationScript, ExposureAndGammaOutsideTheirLimitsNameTheLine) {
@@ -154,6 +170,24 @@ TEST(ScriptRunner, ExposureAndGammaNeedNoSceneAndChangeOnlyTheDisplay) {
   EXPECT_EQ(host.mapping, (DisplayMapping{1.0f, 2.2f}));
   host.frame(runner);
   EXPECT_EQ(host.mapping, (DisplayMapping{-0.5f, 2.2f}));  // each command sets its own value, keeps the other
+  EXPECT_FALSE(runner.failed()) << runner.failure();
+}
+
+TEST(ScriptRunner, SaveFrameIsRawAndSaveFrameDisplayedIsAsShownBothOfTheFinalPass) {
+  SceneSession session(loadParts(), RenderSettings{});
+  FakeHost host(&session);
+  ScriptRunner runner(parseScript("save-frame-displayed shown.png\nsave-frame raw.png\n", "t"));
+  host.frame(runner);
+  host.frame(runner);
+  EXPECT_EQ(host.savedFrame, "-");  // not before the final pass
+  host.final = true;
+  host.frame(runner);
+  EXPECT_EQ(host.savedFrame, "shown.png");
+  EXPECT_EQ(host.savedKind, FrameSave::Displayed);
+  host.frame(runner);
+  host.frame(runner);
+  EXPECT_EQ(host.savedFrame, "raw.png");
+  EXPECT_EQ(host.savedKind, FrameSave::Raw);
   EXPECT_FALSE(runner.failed()) << runner.failure();
 }
 

@@ -55,7 +55,10 @@ class FakeHost : public ScriptHost {
   std::uint64_t sceneSerial() const override { return serial; }
   bool finalFrameShown() const override { return final; }
   std::string editProblem() const override { return {}; }
-  std::filesystem::path saveFrame(const std::string& path) override { return savedFrame = path; }
+  std::filesystem::path saveFrame(const std::string& path, FrameSave what) override {
+    savedKind = what;
+    return savedFrame = path;
+  }
   std::filesystem::path saveScene(const std::string& path) override { return path; }
   void screenshot(const std::string&) override {}
   std::string stateLine() const override { return "state"; }
@@ -86,6 +89,7 @@ class FakeHost : public ScriptHost {
 
   SceneSession* session_;
   std::string opened, error, savedFrame = "-";
+  FrameSave savedKind = FrameSave::Raw;
   DisplayMapping mapping;
   int loadingFrames = 0;
   std::uint64_t serial = 1;
