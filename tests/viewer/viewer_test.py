@@ -25,6 +25,9 @@ Cases:
   compare      --compare and the `compare` script command: exact=100% against `rayview render` of the scene, the
                headless figures against a modified reference; holding Space shows the reference, D the difference
                (viewer_compare_case.py)
+  display      exposure +1 by script: the image area is brighter as the mapping says, the render does not restart,
+               raw saves (save-frame, Ctrl+S) equal `rayview render`, save-frame-displayed is mapped; the reference
+               (Space) is mapped too, the difference (D) stays raw (viewer_display_case.py)
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -39,6 +42,7 @@ import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from viewer_compare_case import case_compare  # noqa: E402
+from viewer_display_case import case_display  # noqa: E402
 from viewer_harness import (  # noqa: E402
     last_generation,
     title_of,
@@ -536,7 +540,7 @@ def case_no_display(args, work):
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
-         "undo": case_undo, "pick": case_pick, "compare": case_compare}
+         "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display}
 
 
 def main():
