@@ -5,9 +5,11 @@
 #include <fstream>
 #include <sstream>
 
+#include "display_mapping.h"
 #include "rayview/file_read.h"
 #include "rayview/knobs.h"
 #include "rayview/light_types.h"
+#include "rayview/scene_writer.h"
 
 namespace rayview {
 namespace {
@@ -91,10 +93,22 @@ void parseSet(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p
   if (t.empty()) {
     std::string names;
     for (const Knob& knob : knobTable()) names += std::string(knob.name) + ", ";
-    p.fail("'set' needs what to set: " + names + "background, ambient, material, light");
+    p.fail("'set' needs what to set: " + names + "background, ambient, material, light, exposure, gamma");
   }
   const std::string& what = t[0];
   c.args = {what};
+  // Display settings, not render knobs: they change how the image is shown, never what is rendered.
+  if (what == "exposure" || what == "gamma") {
+    const bool exposure = what == "exposure";
+    const std::string usage = exposure ? "set exposure STOPS" : "set gamma GAMMA";
+    p.numbers(t, 1, 1, usage);
+    // In float, the type the viewer keeps them in: `set gamma 0.2` is the limit itself.
+    const float value = static_cast<float>(c.numbers[0]);
+    const float low = exposure ? kMinExposureStops : kMinGamma, high = exposure ? kMaxExposureStops : kMaxGamma;
+    if (!(value >= low && value <= high))
+      p.fail("'" + usage + "' takes " + formatNumber(low) + " to " + formatNumber(high) + ", not " + t[1]);
+    return;
+  }
   // The render knobs (rayview/knobs.h): `set NAME VALUE`, checked against the knob's own limits or choices.
   if (const Knob* knob = findKnob(what)) {
     const std::string usage = "set " + what + " " + knob->valueName();
@@ -178,7 +192,7 @@ Script parseScript(const std::string& text, const std::string& file) {
     if (c.name == "open" || c.name == "screenshot" || c.name == "expect-error" || c.name == "compare") {
       if (rest.empty()) p.fail("'" + c.name + "' needs " + (c.name == "expect-error" ? "the text to expect" : "a path"));
       c.args = {rest};
-    } else if (c.name == "save-frame" || c.name == "save-scene") {
+    } else if (c.name == "save-frame" || c.name == "save-frame-displayed" || c.name == "save-scene") {
       if (!rest.empty()) c.args = {rest};  // no path: a new numbered file next to the scene
     } else {
       std::string error;

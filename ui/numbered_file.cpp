@@ -55,9 +55,10 @@ fs::path writeNumberedFile(const fs::path& base, const std::string& extension,
                      base.string());
 }
 
-fs::path saveFrameNumbered(const Image& image, const std::string& scenePath) {
-  return writeNumberedFile(numberedFileBase(scenePath), ".png",
-                           [&](const fs::path& temporary) { writeImageFile(temporary, image); });
+fs::path saveFrameNumbered(const Image& image, const std::string& scenePath, FrameSave what) {
+  fs::path base = numberedFileBase(scenePath);
+  if (what == FrameSave::Displayed) base += "_displayed";
+  return writeNumberedFile(base, ".png", [&](const fs::path& temporary) { writeImageFile(temporary, image); });
 }
 
 fs::path saveSceneNumbered(const SceneParameters& parameters, const Scene& loaded, const std::string& scenePath) {

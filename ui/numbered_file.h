@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "display_mapping.h"
 #include "rayview/image.h"
 #include "rayview/scene.h"
 
@@ -23,8 +24,10 @@ std::filesystem::path numberedFileBase(const std::string& scenePath);
 std::filesystem::path writeNumberedFile(const std::filesystem::path& base, const std::string& extension,
                                         const std::function<void(const std::filesystem::path&)>& write);
 
-// Ctrl+S: the displayed frame as a PNG. Ctrl+Shift+S: the edited scene as XML.
-std::filesystem::path saveFrameNumbered(const Image& image, const std::string& scenePath);
+// Ctrl+S: the final pass as a PNG, scene_NNN.png; saved as displayed (exposure and gamma applied), it is
+// scene_displayed_NNN.png, so that it is never taken for the render itself. Ctrl+Shift+S: the edited scene as XML.
+std::filesystem::path saveFrameNumbered(const Image& image, const std::string& scenePath,
+                                        FrameSave what = FrameSave::Raw);
 std::filesystem::path saveSceneNumbered(const SceneParameters& parameters, const Scene& loaded,
                                         const std::string& scenePath);
 

@@ -1,4 +1,5 @@
-// The "Render" panel (settings that restart the render) and the stats over the image (what it costs).
+// The "Render" panel (settings that restart the render, and the display options that do not: stats, exposure,
+// gamma) and the stats over the image (what it costs).
 #include <algorithm>
 #include <cstdio>
 #include <iterator>
@@ -58,6 +59,28 @@ void triangularLightHint(const SceneParameters& edits, const RenderSettings& set
   }
 }
 
+// Exposure and gamma: display only, like the stats. The sliders change the texture, never the render.
+void editDisplayMapping(DisplayMapping& mapping) {
+  ImGui::SliderFloat("Exposure", &mapping.exposureStops, kMinExposureStops, kMaxExposureStops, "%+.1f stops",
+                     ImGuiSliderFlags_AlwaysClamp);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Display only, the render does not restart. Each value of the image times 2^stops: +1 doubles, "
+                      "-1 halves; 0 shows the image as computed. The image holds 8-bit values, clamped to 255 by the "
+                      "render: what it clipped to white stays one flat value. Ctrl+click to type a value.");
+  ImGui::SliderFloat("Gamma", &mapping.gamma, kMinGamma, kMaxGamma, "%.2f",
+                     ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Display only, the render does not restart. After the exposure, each value v (0 to 1) is shown "
+                      "as v^(1/gamma): above 1 brightens the dark and middle tones, below 1 darkens them; black and "
+                      "white stay. 1 shows the image as computed (the course applies no gamma).");
+  ImGui::BeginDisabled(mapping.identity());
+  if (ImGui::Button("Reset exposure and gamma")) mapping = DisplayMapping{};
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("Exposure 0 and gamma 1: the image exactly as rayview render writes it.");
+  hintText("The reference (Space) is shown with the same exposure and gamma; the difference view (D) is not.");
+}
+
 }  // namespace
 
 void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
@@ -67,6 +90,8 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   ImGui::Checkbox("On one line", &display.oneLineStats);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The stats on one line. In a window smaller than 1280x800 they always are.");
+  editDisplayMapping(display.mapping);
+  ImGui::Separator();
   // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.
   for (const Knob& knob : knobTable()) {
     editKnob(knob, session.edits(), session.settings());

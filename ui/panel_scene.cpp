@@ -89,6 +89,11 @@ void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions)
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Save scene (Ctrl+Shift+S)")) actions.saveSceneNumbered = true;
+  ImGui::Checkbox("Frame as displayed", &state.saveFrameDisplayed);
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Off (the default): Save frame and Ctrl+S write the final pass raw, exactly as rayview render "
+                      "writes it (SCENE_001.png). On: with the exposure and gamma of the Render panel applied, as the "
+                      "image area shows it (SCENE_displayed_001.png).");
   ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Save scene as").x - ImGui::GetStyle().ItemSpacing.x -
                           ImGui::GetStyle().FramePadding.x * 2.0f);
   const bool entered = ImGui::InputTextWithHint("##saveas", "edited.xml", &state.saveScenePath,

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "display_mapping.h"
 #include "image_texture.h"
 #include "rayview/diagnostics.h"
 #include "rayview/tradeoff.h"
@@ -39,6 +40,9 @@ struct FilePanelState {
   std::string lastSaved;  // "saved /path/scene_001.png", shown under the buttons
   bool lastSaveFailed = false;  // lastSaved is an error: shown in red, whole, wrapped
   bool frameSavePending = false;  // Ctrl+S waits for the final pass
+  // Save frame and Ctrl+S write the image as displayed (exposure and gamma applied) rather than raw, the default:
+  // raw is what `rayview render` writes.
+  bool saveFrameDisplayed = false;
   bool reloadOnChange = true;
   // Ctrl+O: open the Scene section, focus the path field with its text selected. ImGui activates the field a
   // frame or two after the request; characters typed meanwhile are held here and replayed into the field.
@@ -52,6 +56,7 @@ struct DisplayOptions {
   bool showStats = true;
   bool oneLineStats = false;  // the stats on one line even in a large window (a small one always has them so)
   bool hidePanels = false;    // F9: the image takes the whole window
+  DisplayMapping mapping;     // exposure and gamma of the render and the reference (the difference stays raw)
 };
 
 // Below this window size (at content scale 1) the stats take one line, so they do not cover the image.

@@ -75,8 +75,11 @@ bool ScriptRunner::waitIsOver(ScriptHost& host) {
         return false;
       }
       if (host.finalFrameShown() && !host.loading()) {
-        // save-frame saves the final pass, as Ctrl+S does: the image `rayview render` writes.
-        if (wait_ == Wait::SaveFrame) host.saveFrame(current_->args.empty() ? std::string() : current_->args[0]);
+        // save-frame saves the final pass, as Ctrl+S does: the image `rayview render` writes; save-frame-displayed
+        // the same pass with the exposure and gamma on screen applied.
+        if (wait_ == Wait::SaveFrame)
+          host.saveFrame(current_->args.empty() ? std::string() : current_->args[0],
+                         current_->name == "save-frame-displayed" ? FrameSave::Displayed : FrameSave::Raw);
         return true;
       }
       if (late) fail("no final pass within " + std::to_string(current_->numbers.empty() ? kDefaultWaitFinalSeconds
@@ -157,7 +160,7 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     applySet(c, host);
   } else if (name == "camera") {
     applyCamera(c, host);
-  } else if (name == "save-frame") {
+  } else if (name == "save-frame" || name == "save-frame-displayed") {
     wait_ = Wait::SaveFrame;
     deadline_ = Clock::now() + seconds(kDefaultWaitFinalSeconds);
   } else if (name == "save-scene") {
@@ -207,6 +210,12 @@ void ScriptRunner::checkExpectedError(const ScriptCommand& c, ScriptHost& host) 
 }
 
 void ScriptRunner::applySet(const ScriptCommand& c, ScriptHost& host) {
+  // Display settings need no scene: they apply to whatever the image area shows.
+  if (c.args[0] == "exposure" || c.args[0] == "gamma") {
+    DisplayMapping mapping = host.displayMapping();
+    (c.args[0] == "exposure" ? mapping.exposureStops : mapping.gamma) = static_cast<float>(c.numbers[0]);
+    return host.setDisplayMapping(mapping);
+  }
   SceneSession* session = host.session();
   if (!session) return fail("no scene is loaded");
   SceneParameters& edits = session->edits();

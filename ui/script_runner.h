@@ -11,6 +11,7 @@
 #include <string>
 
 #include "automation_script.h"
+#include "display_mapping.h"
 #include "rayview/image_metrics.h"
 
 namespace rayview {
@@ -37,7 +38,8 @@ class ScriptHost {
   // The final pass of the current edits is on screen and nothing is pending.
   virtual bool finalFrameShown() const = 0;
   virtual std::string editProblem() const = 0;  // why the current edits are not rendered ("" when they are)
-  virtual std::filesystem::path saveFrame(const std::string& path) = 0;  // "" = numbered; throws on failure
+  // The final pass, raw (as `rayview render` writes it) or as displayed. "" = numbered; throws on failure.
+  virtual std::filesystem::path saveFrame(const std::string& path, FrameSave what) = 0;
   virtual std::filesystem::path saveScene(const std::string& path) = 0;  // "" = numbered; throws on failure
   virtual void screenshot(const std::string& path) = 0;  // taken when this frame has been drawn
   virtual std::string stateLine() const = 0;
@@ -52,6 +54,9 @@ class ScriptHost {
   virtual std::string loadReference(const std::string& path) = 0;
   virtual std::optional<ImageError> finalComparison() const = 0;
   virtual std::string comparisonProblem() const = 0;
+  // Exposure and gamma: how the image area shows the image. Setting them never restarts the render.
+  virtual DisplayMapping displayMapping() const = 0;
+  virtual void setDisplayMapping(const DisplayMapping& mapping) = 0;
   virtual void quit(int exitCode) = 0;
 };
 

@@ -137,14 +137,19 @@ bool ViewerApp::pollFileWatch(Clock::time_point now) {
   return true;
 }
 
-std::filesystem::path ViewerApp::saveFrame(const std::string& path) {
+std::filesystem::path ViewerApp::saveFrame(const std::string& path, FrameSave what) {
   if (!haveFrame_) throw ImageIoError("no frame to save yet");
+  // Raw: the pass itself, as `rayview render` writes it. Displayed: with the exposure and gamma on screen, which
+  // at their defaults is the same image.
+  const Image& image =
+      what == FrameSave::Displayed ? shownRender_.of(frame_.image, frame_.version, display_.mapping) : frame_.image;
   std::filesystem::path saved = path;
-  if (path.empty()) saved = saveFrameNumbered(frame_.image, scenePath_);
-  else writeImageFile(path, frame_.image);
+  if (path.empty()) saved = saveFrameNumbered(image, scenePath_, what);
+  else writeImageFile(path, image);
   filePanel_.frameSavePending = false;
   filePanel_.lastSaveFailed = false;
   filePanel_.lastSaved = "saved " + saved.string();
+  if (what == FrameSave::Displayed) filePanel_.lastSaved += " (as displayed: " + describe(display_.mapping) + ")";
   std::printf("saved %s\n", saved.string().c_str());
   std::fflush(stdout);
   return saved;
@@ -186,7 +191,7 @@ void ViewerApp::saveFrameReporting() {
     return;
   }
   try {
-    saveFrame({});
+    saveFrame({}, filePanel_.saveFrameDisplayed ? FrameSave::Displayed : FrameSave::Raw);
   } catch (const std::exception& error) {
     reportSaveFailure(error);
   }
@@ -225,6 +230,8 @@ std::string ViewerApp::stateLine() const {
   std::snprintf(timings, sizeof timings, " first_pass_ms=%.1f final_pass_ms=%.1f", stats_.editToFirstPassMs,
                 stats_.editToFinalPassMs);
   line += timings;
+  line += " exposure=" + formatNumber(display_.mapping.exposureStops) +
+          " gamma=" + formatNumber(display_.mapping.gamma);
   line += " error=" + std::string(loadError_.empty() ? "0" : "1");
   line += " scene=" + describe(scenePath_);
   return line;

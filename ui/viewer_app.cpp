@@ -150,8 +150,14 @@ ViewerApp::Layout ViewerApp::layout() const {
   return l;
 }
 
+const ImageTexture& ViewerApp::renderTexture() {
+  if (haveFrame_)
+    texture_.update(shownRender_.of(frame_.image, frame_.version, display_.mapping), shownRender_.serial());
+  return texture_;
+}
+
 void ViewerApp::drawFrame() {
-  if (haveFrame_) texture_.update(frame_.image, frame_.version);
+  renderTexture();  // before the layout, which fits the texture's size
   imgui_.beginFrame();
   const ImGuiIO& io = ImGui::GetIO();
   Layout l = layout();

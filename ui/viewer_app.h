@@ -69,7 +69,7 @@ class ViewerApp final : public ScriptHost {
   std::uint64_t sceneSerial() const override { return sceneSerial_; }
   bool finalFrameShown() const override;
   std::string editProblem() const override { return editProblem_; }
-  std::filesystem::path saveFrame(const std::string& path) override;
+  std::filesystem::path saveFrame(const std::string& path, FrameSave what) override;
   std::filesystem::path saveScene(const std::string& path) override;
   void screenshot(const std::string& path) override { pendingScreenshot_ = path; }
   std::string stateLine() const override;
@@ -80,6 +80,8 @@ class ViewerApp final : public ScriptHost {
   std::string loadReference(const std::string& path) override;
   std::optional<ImageError> finalComparison() const override;
   std::string comparisonProblem() const override;
+  DisplayMapping displayMapping() const override { return display_.mapping; }
+  void setDisplayMapping(const DisplayMapping& mapping) override { display_.mapping = mapping; }
   void quit(int exitCode) override;
 
  private:
@@ -111,6 +113,8 @@ class ViewerApp final : public ScriptHost {
   bool pollTradeoff();
   void stopTradeoff(const std::string& why, bool restartRender);
 
+  // The newest pass as displayed (exposure and gamma), uploaded if it or the mapping changed.
+  const ImageTexture& renderTexture();
   // Comparing with a reference image (viewer_compare.cpp): the image the image area shows this frame (the
   // render, the reference while Space is held, or the difference), uploaded if it changed.
   const ImageTexture& shownImage();
@@ -154,7 +158,8 @@ class ViewerApp final : public ScriptHost {
   bool knobsApplied_ = false;  // the command line's knobs went into the first scene loaded
   Window window_;
   ImGuiLayer imgui_;
-  ImageTexture texture_;
+  ImageTexture texture_;  // the render as displayed
+  MappedImage shownRender_;
   ProgressiveRenderer renderer_;
   SceneLoaderTask loader_;
   RecentFiles recent_;
@@ -205,7 +210,8 @@ class ViewerApp final : public ScriptHost {
   ReferenceComparison comparison_;
   ComparePanelState comparePanel_;
   std::string pendingReference_;  // --compare: loaded once the first scene has loaded (or failed to)
-  ImageTexture referenceTexture_;
+  ImageTexture referenceTexture_;  // as displayed, like the render, so that Space flips between like and like
+  MappedImage shownReference_;
   ImageTexture differenceTexture_;
   ImageView shownView_ = ImageView::Render;
 

@@ -58,9 +58,13 @@ const ImageTexture& ViewerApp::shownImage() {
     std::printf("showing %s\n", toString(view));
     std::fflush(stdout);
   }
+  // The reference is displayed as the render is (exposure, gamma), so that where they agree, Space changes nothing.
+  // The difference stays raw: its colours are a code (blue 1, yellow 2 to 8, red more) that exposure would break.
   switch (view) {
     case ImageView::Reference:
-      referenceTexture_.update(comparison_.reference(), comparison_.referenceSerial());
+      referenceTexture_.update(
+          shownReference_.of(comparison_.reference(), comparison_.referenceSerial(), display_.mapping),
+          shownReference_.serial());
       return referenceTexture_;
     case ImageView::Difference:
       differenceTexture_.update(comparison_.difference(frame_.image, frame_.version), comparison_.differenceSerial());
@@ -68,7 +72,8 @@ const ImageTexture& ViewerApp::shownImage() {
     case ImageView::Render:
       break;
   }
-  return texture_;
+  // Again after the panels and the script: an exposure or gamma changed this frame shows this frame.
+  return renderTexture();
 }
 
 }  // namespace rayview

@@ -82,6 +82,9 @@ def soak_script(count, seed, scene, broken, work):
         (2, lambda: [f"set background {rgb(0, 255)}"]),
         (2, lambda: [f"set ambient {rgb(0, 60)}"]),
         (1, lambda: [f"set accel {rng.choice(['embree', 'reference'])}"]),
+        # Display only: the shown image is mapped again, the render goes on.
+        (1, lambda: [f"set exposure {r(-8, 8)}"]),
+        (1, lambda: [f"set gamma {r(0.2, 5)}"]),
         (14, lambda: [f"camera orbit {r(-40, 40)} {r(-20, 20)}"]),
         (8, lambda: [f"camera dolly {r(-3, 3)}"]),
         (4, lambda: [f"camera pan {r(-0.2, 0.2)} {r(-0.2, 0.2)}"]),

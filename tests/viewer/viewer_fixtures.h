@@ -55,11 +55,16 @@ class FakeHost : public ScriptHost {
   std::uint64_t sceneSerial() const override { return serial; }
   bool finalFrameShown() const override { return final; }
   std::string editProblem() const override { return {}; }
-  std::filesystem::path saveFrame(const std::string& path) override { return savedFrame = path; }
+  std::filesystem::path saveFrame(const std::string& path, FrameSave what) override {
+    savedKind = what;
+    return savedFrame = path;
+  }
   std::filesystem::path saveScene(const std::string& path) override { return path; }
   void screenshot(const std::string&) override {}
   std::string stateLine() const override { return "state"; }
   void resizeWindow(int, int) override {}
+  DisplayMapping displayMapping() const override { return mapping; }
+  void setDisplayMapping(const DisplayMapping& m) override { mapping = m; }
   void quit(int code) override { exitCode = code; }
   void measureTradeoff(double scale) override {
     measuredScale = scale;
@@ -84,6 +89,8 @@ class FakeHost : public ScriptHost {
 
   SceneSession* session_;
   std::string opened, error, savedFrame = "-";
+  FrameSave savedKind = FrameSave::Raw;
+  DisplayMapping mapping;
   int loadingFrames = 0;
   std::uint64_t serial = 1;
   bool final = false;

@@ -28,6 +28,9 @@ Cases:
   image-view   key 1 shows the image at 1:1 (pixels equal the headless render), the readout names the pixel under
                the cursor and its values, + zooms about the view's centre (4x4 blocks), Ctrl+wheel about the
                cursor, 0 fits (viewer_image_view_case.py)
+  display      exposure +1 by script: the image area is brighter as the mapping says, the render does not restart,
+               raw saves (save-frame, Ctrl+S) equal `rayview render`, save-frame-displayed is mapped; the reference
+               (Space) is mapped too, the difference (D) stays raw (viewer_display_case.py)
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -43,6 +46,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from viewer_compare_case import case_compare  # noqa: E402
 from viewer_image_view_case import case_image_view  # noqa: E402
+from viewer_display_case import case_display  # noqa: E402
 from viewer_harness import (  # noqa: E402
     last_generation,
     title_of,
@@ -539,7 +543,7 @@ def case_no_display(args, work):
 CASES = {"interaction": case_interaction, "script": case_script, "reload": case_reload,
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
-         "undo": case_undo, "pick": case_pick, "compare": case_compare,
+         "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
          "image-view": case_image_view}
 
 
