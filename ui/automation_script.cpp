@@ -192,7 +192,8 @@ Script parseScript(const std::string& text, const std::string& file) {
     if (c.name == "open" || c.name == "screenshot" || c.name == "expect-error" || c.name == "compare") {
       if (rest.empty()) p.fail("'" + c.name + "' needs " + (c.name == "expect-error" ? "the text to expect" : "a path"));
       c.args = {rest};
-    } else if (c.name == "save-frame" || c.name == "save-frame-displayed" || c.name == "save-scene") {
+    } else if (c.name == "save-frame" || c.name == "save-frame-displayed" || c.name == "save-scene" ||
+               c.name == "save-view") {
       if (!rest.empty()) c.args = {rest};  // no path: a new numbered file next to the scene
     } else {
       std::string error;

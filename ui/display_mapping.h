@@ -36,7 +36,9 @@ Image mapForDisplay(const Image& raw, const DisplayMapping& mapping);
 std::string describe(const DisplayMapping& mapping);
 
 // What a frame save writes: the image as `rayview render` writes it, or as the image area shows it.
-enum class FrameSave { Raw, Displayed };
+// Raw: the render as `rayview render` writes it. Displayed: with exposure and gamma. View: the image area as
+// seen (zoom, exposure, reference or difference), read back from the window.
+enum class FrameSave { Raw, Displayed, View };
 
 // The image shown for one source of images (the render's passes, the reference): mapped again only when the
 // source's version or the mapping changed. At the defaults it is the source's image itself, never a copy.

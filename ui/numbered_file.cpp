@@ -58,6 +58,7 @@ fs::path writeNumberedFile(const fs::path& base, const std::string& extension,
 fs::path saveFrameNumbered(const Image& image, const std::string& scenePath, FrameSave what) {
   fs::path base = numberedFileBase(scenePath);
   if (what == FrameSave::Displayed) base += "_displayed";
+  if (what == FrameSave::View) base += "_view";
   return writeNumberedFile(base, ".png", [&](const fs::path& temporary) { writeImageFile(temporary, image); });
 }
 

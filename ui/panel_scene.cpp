@@ -89,6 +89,13 @@ void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions)
   ImGui::EndDisabled();
   ImGui::SameLine();
   if (ImGui::Button("Save scene (Ctrl+Shift+S)")) actions.saveSceneNumbered = true;
+  ImGui::BeginDisabled(!haveFrame);
+  if (ImGui::Button("Save view as seen")) actions.saveView = true;
+  ImGui::EndDisabled();
+  if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+    ImGui::SetTooltip("The image area exactly as it looks now (zoom, exposure and gamma, the reference or the "
+                      "difference), without the panels and overlays: SCENE_view_001.png. Save frame is the render "
+                      "itself.");
   ImGui::Checkbox("Frame as displayed", &state.saveFrameDisplayed);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("Off (the default): Save frame and Ctrl+S write the final pass raw, exactly as rayview render "

@@ -22,6 +22,7 @@ struct PanelActions {
   std::optional<std::string> open;
   bool reload = false;
   bool saveFrame = false;
+  bool saveView = false;  // the image area as seen, read back from the window
   bool saveSceneNumbered = false;
   std::optional<std::string> saveSceneAs;
   bool frameScene = false;

@@ -167,6 +167,8 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     host.saveScene(c.args.empty() ? std::string() : c.args[0]);
   } else if (name == "screenshot") {
     host.screenshot(c.args[0]);
+  } else if (name == "save-view") {
+    host.saveView(c.args.empty() ? std::string() : c.args[0]);
   } else if (name == "measure-tradeoff") {
     host.measureTradeoff(c.numbers[0]);
     wait_ = Wait::Tradeoff;

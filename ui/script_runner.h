@@ -42,6 +42,8 @@ class ScriptHost {
   virtual std::filesystem::path saveFrame(const std::string& path, FrameSave what) = 0;
   virtual std::filesystem::path saveScene(const std::string& path) = 0;  // "" = numbered; throws on failure
   virtual void screenshot(const std::string& path) = 0;  // taken when this frame has been drawn
+  // The image area as seen, without panels and overlays, when this frame has been drawn ("": numbered).
+  virtual void saveView(const std::string& path) = 0;
   virtual std::string stateLine() const = 0;
   virtual void resizeWindow(int width, int height) = 0;
   // Measure the speed-for-accuracy trade of the scene on screen at this share of its resolution (the render

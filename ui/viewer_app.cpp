@@ -61,7 +61,7 @@ int ViewerApp::run() {
 
     const bool scriptActive = script_ && script_->running();
     if (changed || framesToDraw_ > 0 || scriptActive || loading() || measuring() ||
-        !pendingScreenshot_.empty()) {
+        !pendingScreenshot_.empty() || pendingViewSave_) {
       drawFrame();
       framesToDraw_ = changed ? kSettleFrames : std::max(0, framesToDraw_ - 1);
     }
@@ -75,7 +75,7 @@ int ViewerApp::run() {
 }
 
 double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) const {
-  if (framesToDraw_ > 0 || !pendingScreenshot_.empty()) return 0.0;
+  if (framesToDraw_ > 0 || !pendingScreenshot_.empty() || pendingViewSave_) return 0.0;
   double wait = kIdleWaitSeconds;
   if (watch_.active() && filePanel_.reloadOnChange) wait = std::min(wait, watch_.secondsUntilNextLook(now) + 0.001);
   if (loading()) wait = std::min(wait, kLoadingPollSeconds);
@@ -210,9 +210,11 @@ void ViewerApp::drawFrame() {
   startRequestedTradeoff(l);
 
   if (const ImageTexture& shown = shownImage(); !shown.empty()) drawImage(shown, l);
-  drawPixelReadout(l);
-  drawViewLabel(viewLabel(), l.viewX + l.viewWidth - ImGui::GetStyle().WindowPadding.x,
-                l.viewY + ImGui::GetStyle().WindowPadding.y);
+  if (!pendingViewSave_) {
+    drawPixelReadout(l);
+    drawViewLabel(viewLabel(), l.viewX + l.viewWidth - ImGui::GetStyle().WindowPadding.x,
+                  l.viewY + ImGui::GetStyle().WindowPadding.y);
+  }
 
   int framebufferWidth = 0, framebufferHeight = 0;
   window_.framebufferSize(framebufferWidth, framebufferHeight);
@@ -220,6 +222,7 @@ void ViewerApp::drawFrame() {
   glClearColor(0.09f, 0.09f, 0.1f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   imgui_.render();
+  if (pendingViewSave_) writeViewSave(framebufferWidth, framebufferHeight, l);
   if (!pendingScreenshot_.empty()) {
     const std::string path = std::exchange(pendingScreenshot_, {});
     try {
@@ -299,6 +302,8 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
   const ImGuiIO& io = ImGui::GetIO();
   const float scale = imgui_.layoutScale();
   const bool smallWindow = io.DisplaySize.x < kCompactStatsWidth * scale || io.DisplaySize.y < kCompactStatsHeight * scale;
+  // Saving the view as seen: the image area alone, no overlay over it.
+  if (pendingViewSave_) return;
   if (display_.showStats && haveFrame_)
     drawStatsOverlay(stats_, l.viewX + l.viewWidth - margin, l.viewY + l.viewHeight - margin,
                      display_.oneLineStats || smallWindow);
@@ -316,6 +321,7 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   if (actions.open) openFromUser(*actions.open);
   if (actions.reload || shortcuts.reload) reload();
   if (actions.saveFrame || shortcuts.saveFrame) saveFrameReporting();
+  if (actions.saveView) pendingViewSave_ = std::string();  // drawn and read back next frame
   if (actions.saveSceneNumbered || shortcuts.saveScene) saveSceneReporting({});
   if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
   if (actions.cancelTradeoff) cancelTradeoff();

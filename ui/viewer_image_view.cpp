@@ -1,15 +1,20 @@
 // The viewer's image view: fit, 1:1, zoom and pan (keys 0, 1, + and -, Ctrl+wheel, Ctrl+drag); the image
 // drawn where the placement puts it, clipped to the image area, with a grid around the pixels at high zoom;
 // and the readout of the pixel under the cursor (render and reference values).
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <utility>
 #include <cstdint>
 #include <cstdio>
 #include <string>
 
 #include <imgui.h>
 
+#include "numbered_file.h"
 #include "panels.h"
 #include "viewer_app.h"
+#include "window_capture.h"
 
 namespace rayview {
 namespace {
@@ -110,6 +115,35 @@ void ViewerApp::drawPixelReadout(const Layout& l) {
   }
   readoutPixel_ = pixel;
   readoutText_ = text;
+}
+
+void ViewerApp::writeViewSave(int framebufferWidth, int framebufferHeight, const Layout& l) {
+  const std::string path = std::exchange(*pendingViewSave_, {});
+  pendingViewSave_.reset();
+  try {
+    if (!haveFrame_) throw ImageIoError("no frame to save yet");
+    // The image area in framebuffer pixels, rows from the top.
+    const Image window = readWindowPixels(framebufferWidth, framebufferHeight);
+    const int x0 = std::clamp(static_cast<int>(std::lround(l.viewX * l.framebufferScale)), 0, window.width);
+    const int y0 = std::clamp(static_cast<int>(std::lround(l.viewY * l.framebufferScale)), 0, window.height);
+    const int x1 = std::clamp(static_cast<int>(std::lround((l.viewX + l.viewWidth) * l.framebufferScale)), x0, window.width);
+    const int y1 = std::clamp(static_cast<int>(std::lround((l.viewY + l.viewHeight) * l.framebufferScale)), y0, window.height);
+    if (x1 <= x0 || y1 <= y0) throw ImageIoError("the image area is empty");
+    Image view(x1 - x0, y1 - y0);
+    for (int y = y0; y < y1; ++y)
+      std::copy_n(window.pixel(x0, y), static_cast<std::size_t>(x1 - x0) * 3, view.pixel(0, y - y0));
+    std::filesystem::path saved = path;
+    if (path.empty()) saved = saveFrameNumbered(view, scenePath_, FrameSave::View);
+    else writeImageFile(path, view);
+    filePanel_.lastSaveFailed = false;
+    filePanel_.lastSaved = "saved the view as seen: " + saved.string();
+    std::printf("saved view %s\n", saved.string().c_str());
+    std::fflush(stdout);
+  } catch (const ImageIoError& error) {
+    filePanel_.lastSaved = std::string("view not saved: ") + error.what();
+    filePanel_.lastSaveFailed = true;
+    std::fprintf(stderr, "rayview: view not saved: %s\n", error.what());
+  }
 }
 
 }  // namespace rayview

@@ -61,6 +61,7 @@ class FakeHost : public ScriptHost {
   }
   std::filesystem::path saveScene(const std::string& path) override { return path; }
   void screenshot(const std::string&) override {}
+  void saveView(const std::string&) override {}
   std::string stateLine() const override { return "state"; }
   void resizeWindow(int, int) override {}
   DisplayMapping displayMapping() const override { return mapping; }

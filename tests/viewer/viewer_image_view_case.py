@@ -4,7 +4,8 @@ pixel readout.
 Key 1 shows the 480x300 test image at 1:1 (one screen pixel per image pixel, centred in the 880x800 image area):
 the screenshot's pixels are the headless render's, exactly. The readout names the pixel under the cursor and its
 values (RAYVIEW_PRINT_READOUT puts it on stdout). `+` twice zooms to 4:1 about the view's centre: each image pixel
-is a 4x4 block, the one under the cursor still under it. Ctrl+wheel zooms about the cursor; 0 fits again.
+is a 4x4 block, the one under the cursor still under it; save-view writes that image area alone. Ctrl+wheel zooms
+about the cursor; 0 fits again.
 """
 import os
 
@@ -45,11 +46,11 @@ def case_image_view(args, work):
         start = (j * width + i) * 3
         return tuple(ref[start:start + 3])
 
-    shots = {name: os.path.join(work, f"{name}.png") for name in ("one", "zoom")}
+    shots = {name: os.path.join(work, f"{name}.png") for name in ("one", "zoom", "view")}
     script = os.path.join(work, "image_view.rvs")
     with open(script, "w") as f:
         f.write(f"wait-final\nsleep {KEY_SECONDS}\nscreenshot {shots['one']}\nsleep {KEY_SECONDS}\n"
-                f"screenshot {shots['zoom']}\nsleep {KEY_SECONDS}\nquit\n")
+                f"screenshot {shots['zoom']}\nsave-view {shots['view']}\nsleep {KEY_SECONDS}\nquit\n")
     os.environ["RAYVIEW_PRINT_READOUT"] = "1"
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
     try:
@@ -77,6 +78,7 @@ def case_image_view(args, work):
         xdotool("key", "equal")
         viewer.wait_for("image view zoom 4.000", timeout=KEY_SECONDS)
         viewer.wait_for(f"screenshot {shots['zoom']}", timeout=2 * KEY_SECONDS)
+        viewer.wait_for(f"saved view {shots['view']}", timeout=KEY_SECONDS)
         # Ctrl+wheel zooms about the cursor; 0 fits again.
         xdotool("keydown", "ctrl")
         try:
@@ -100,3 +102,13 @@ def case_image_view(args, work):
     if not zoomed:
         raise Failure("zoom.png: at 4:1 about the view's centre the image pixels should be 4x4 blocks of the render")
     print(f"  zoom.png: at 4:1, image pixel (150, 100) at {zoomed}; sampled pixels are 4x4 blocks of the render")
+
+    # "Save view as seen" (save-view) of the same 4:1 view: the image area alone, 880x800, with no stats,
+    # readout or label over it: render pixels as 4x4 blocks right into its corners.
+    view = read_png(shots["view"])
+    if view[:2] != (880, 800):
+        raise Failure(f"view.png should be the 880x800 image area, not {view[:2]}")
+    corner = (zoomed[0] - 400 + 4 * (130 - 150), zoomed[1] + 4 * (50 - 100))
+    if find_image(view, lambda i, j: ref_pixel(i + 130, j + 50), (220, 200), 4, corner, 0) != corner:
+        raise Failure("view.png: the saved view should be the image area as seen at 4:1, with nothing over it")
+    print("  view.png: 880x800, the 4:1 view with nothing over it (render blocks into its corners)")
