@@ -18,13 +18,15 @@
 // The highest-quality image ("reference" row): full resolution, the scene's maximum depth, referenceLightSamples
 // (when the scene has triangular lights), the reference BVH.
 //
-// Time: the median of `timedRuns` renders of the setting (more for fast settings, one for very slow ones: see
-// TradeoffOptions), on the same thread pool, interleaved round by round over all settings so that a change of
-// machine load hits every setting alike. Only the render is timed (not the BVH build, reported once per
-// accelerator, nor the upscale). A run that other processes slowed (its threads got well under their share of
-// the CPU) is repeated, and the report's notes say how often that happened. Settings that coincide (the
-// baseline is the stride-1 preview, the maximum depth, 1 sample and Embree) are rendered and timed once and
-// share their figures.
+// Time: the median of `timedRuns` rounds (more for fast settings, one for very slow ones: see TradeoffOptions),
+// on the same thread pool, interleaved round by round over all settings so that a change of machine load hits
+// every setting alike. Only the render is timed (not the BVH build, reported once per accelerator, nor the
+// upscale). In a round, a render of 20 ms or more is timed alone; a run that other processes slowed (its
+// threads got well under their share of the CPU) is repeated, and the report's notes say how often that
+// happened. Quicker renders (the coarse preview levels) are timed together at the end of the round, in turn,
+// several times each, and each keeps its fastest time (the reasons: analysis/tradeoff_timing.h). Settings that
+// coincide (the baseline is the stride-1 preview, the maximum depth, 1 sample and Embree) are rendered and
+// timed once and share their figures.
 
 #include <atomic>
 #include <cstdint>
@@ -59,7 +61,7 @@ struct TradeoffOptions {
   // the knobs not measured here (the triangular-light model, the ray start) are kept for every setting, the
   // reference image included. Light samples are 1 except where the light_samples knob varies them.
   RenderSettings baseline;
-  int timedRuns = 3;                // the time is the median of this many runs, except:
+  int timedRuns = 3;                // the time is the median of this many rounds, except:
   double singleRunMs = 10000.0;     //   a setting whose first run takes longer than this is run once,
   double fastRunMs = 250.0;         //   one whose first run takes less than this (noisier) ...
   int fastTimedRuns = 7;            //   ... this many times
@@ -84,8 +86,8 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
 
 struct TradeoffPoint {
   KnobSetting setting;
-  double timeMs = 0.0;       // median render time
-  int runs = 0;              // renders the median was taken over
+  double timeMs = 0.0;       // median render time over the rounds
+  int runs = 0;              // rounds the median was taken over
   ImageError error;          // against the reference image
   std::uint64_t rays = 0;    // rays of one render
 };
@@ -114,7 +116,8 @@ using TradeoffProgressFn = std::function<void(const TradeoffProgress&)>;
 //   worker thread of its own, never from the UI thread, and pauses its progressive renderer meanwhile, or the
 //   times mean little.
 // - Raising `*cancel` stops within one tile of rendering; the report then says cancelled.
-// - `progress` is called on the calling thread before every BVH build and every render.
+// - `progress` is called on the calling thread before every BVH build, every render timed alone and every
+//   round's quick renders timed in turn.
 // Throws std::invalid_argument for a camera without pixels or a resolution scale <= 0.
 TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> geometry,
                                const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
