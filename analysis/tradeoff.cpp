@@ -30,6 +30,18 @@ std::vector<int> depthsToList(int maxDepth, bool hasMirrors) {
   return depths;
 }
 
+// 1, 2, 4 .. most, and `current` (the user's value) in its place when it is not one of them.
+std::vector<int> doublingsWith(int most, int current) {
+  std::vector<int> values;
+  for (int n = 1;; n = std::min(2 * n, most)) {
+    values.push_back(n);
+    if (n == most) break;
+  }
+  if (std::find(values.begin(), values.end(), current) == values.end())
+    values.insert(std::upper_bound(values.begin(), values.end(), current), current);
+  return values;
+}
+
 std::string previewLabel(int stride) { return stride == 1 ? "1" : "1/" + std::to_string(stride); }
 
 // One distinct render: several knob settings may share it.
@@ -80,16 +92,17 @@ std::string_view toString(TradeoffKnob knob) {
 std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, const TradeoffOptions& options) {
   const int maxDepth = std::max(0, scene.maxRayDepth);
   RenderSettings baseline = options.baseline;
-  baseline.lightSamples = 1;
-  baseline.pixelSamples = 1;
   baseline.accel = availableAccel(baseline.accel);
   const bool samplesMatter =
       !scene.triangularLights.empty() && baseline.triangularLightModel == TriangularLightModel::Area;
 
   std::vector<KnobSetting> list;
+  // The best image improves what the user has: more light samples, the reference BVH. It keeps their samples
+  // per pixel: anti-aliased images are not ranked against each other (docs/tradeoff.md).
   RenderSettings best = baseline;
   best.accel = availableAccel(AccelKind::Reference);
-  best.lightSamples = samplesMatter ? std::clamp(options.referenceLightSamples, 1, kMaxLightSamples) : 1;
+  if (samplesMatter)
+    best.lightSamples = std::clamp(std::max(options.referenceLightSamples, baseline.lightSamples), 1, kMaxLightSamples);
   list.push_back({TradeoffKnob::Reference,
                   "depth=" + std::to_string(maxDepth) + " samples=" + std::to_string(best.lightSamples) +
                       " accel=" + std::string(toString(best.accel)),
@@ -102,12 +115,10 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
   }
 
   if (samplesMatter) {
-    const int most = std::clamp(options.maxLightSamples, 1, kMaxLightSamples);
-    for (int n = 1;; n = std::min(2 * n, most)) {
+    for (int n : doublingsWith(std::clamp(options.maxLightSamples, 1, kMaxLightSamples), baseline.lightSamples)) {
       RenderSettings s = baseline;
       s.lightSamples = n;
       list.push_back({TradeoffKnob::LightSamples, std::to_string(n), 1, maxDepth, s});
-      if (n == most) break;
     }
   }
 
@@ -118,12 +129,10 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
     list.push_back({TradeoffKnob::Accel, std::string(toString(kind)), 1, maxDepth, s});
   }
 
-  const int mostPixelSamples = std::clamp(options.maxPixelSamples, 1, kMaxPixelSamples);
-  for (int n = 1;; n = std::min(2 * n, mostPixelSamples)) {
+  for (int n : doublingsWith(std::clamp(options.maxPixelSamples, 1, kMaxPixelSamples), baseline.pixelSamples)) {
     RenderSettings s = baseline;
     s.pixelSamples = n;
     list.push_back({TradeoffKnob::PixelSamples, std::to_string(n), 1, maxDepth, s});
-    if (n == mostPixelSamples) break;
   }
   return list;
 }
@@ -154,6 +163,15 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
     report.notes.push_back("built without Embree: only the reference BVH is measured");
 
   const std::vector<KnobSetting> settings = enumerateKnobSettings(*scene, options);
+  const auto describe = [&](const KnobSetting& k) {
+    SceneParameters rendered = view;
+    rendered.maxRayDepth = k.depth;
+    return describeKnobs(rendered, k.settings);
+  };
+  for (const KnobSetting& k : settings)
+    if (k.knob == TradeoffKnob::Preview && k.stride == 1) report.baseline = k;
+  report.baselineText = describe(report.baseline);
+  report.bestText = describe(settings.front());
   std::vector<Render> renders;
   std::vector<std::size_t> renderOf;
   for (const KnobSetting& k : settings) {

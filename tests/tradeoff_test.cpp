@@ -156,6 +156,42 @@ TEST(KnobEnumeration, TheUsersLightModelAndRayStartHoldForEverySetting) {
   EXPECT_TRUE(settingsOf(all, TradeoffKnob::LightSamples).empty());
 }
 
+TEST(KnobEnumeration, EachRowVariesOneKnobFromTheUsersSettings) {
+  const Scene scene = wallScene(true);  // depth 2, a mirror, a triangular light
+  TradeoffOptions options;
+  options.baseline.lightSamples = 6;
+  options.baseline.pixelSamples = 3;
+  options.baseline.secondaryRayStart = SecondaryRayStart::ExcludeHitTriangle;
+  const std::vector<KnobSetting> all = enumerateKnobSettings(scene, options);
+  RenderSettings users = options.baseline;
+  users.accel = availableAccel(AccelKind::Embree);
+  // The user's own values are among each knob's settings.
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::LightSamples)),
+            (std::vector<std::string>{"1", "2", "4", "6", "8", "16", "32", "64", "128", "256"}));
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::PixelSamples)),
+            (std::vector<std::string>{"1", "2", "3", "4", "8", "16"}));
+  // Every row differs from the user's settings in its own knob only.
+  for (const KnobSetting& k : all) {
+    if (k.knob == TradeoffKnob::Reference) continue;
+    RenderSettings expected = users;
+    if (k.knob == TradeoffKnob::LightSamples) expected.lightSamples = std::stoi(k.label);
+    if (k.knob == TradeoffKnob::PixelSamples) expected.pixelSamples = std::stoi(k.label);
+    if (k.knob == TradeoffKnob::Accel) expected.accel = k.settings.accel;
+    EXPECT_EQ(k.settings, expected) << toString(k.knob) << " " << k.label;
+    EXPECT_EQ(k.depth, k.knob == TradeoffKnob::Depth ? std::stoi(k.label) : 2) << toString(k.knob) << " " << k.label;
+    EXPECT_EQ(k.stride, k.knob == TradeoffKnob::Preview ? k.stride : 1);
+  }
+  // The best image improves the user's settings and keeps their samples per pixel.
+  const KnobSetting& best = all.front();
+  EXPECT_EQ(best.settings.lightSamples, 256);
+  EXPECT_EQ(best.settings.accel, AccelKind::Reference);
+  EXPECT_EQ(best.settings.pixelSamples, 3);
+  EXPECT_EQ(best.settings.secondaryRayStart, SecondaryRayStart::ExcludeHitTriangle);
+  EXPECT_EQ(best.depth, 2);
+  options.baseline.lightSamples = 1000;  // more than the best image's usual count: the best image has as many
+  EXPECT_EQ(enumerateKnobSettings(scene, options).front().settings.lightSamples, 1000);
+}
+
 TEST(KnobEnumeration, DeepScenesListPowersOfTwo) {
   Scene scene = wallScene(false);
   scene.maxRayDepth = 40;
@@ -262,6 +298,33 @@ TEST(MeasureTradeoff, ACoarserPreviewLevelNeverCostsMoreThanAFinerOne) {
     EXPECT_LE(coarser.timeMs, finer.timeMs) << levels[i] << " took " << coarser.timeMs << " ms, " << levels[i + 1]
                                             << " " << finer.timeMs << " ms";
   }
+}
+
+TEST(MeasureTradeoff, TheBaselineIsTheUsersSettingsAndTheReportSaysWhichInThePanelsWords) {
+  ThreadPool pool(2);
+  TradeoffOptions options = quickOptions();
+  options.baseline.accel = availableAccel(AccelKind::Embree);
+  options.baseline.lightSamples = 4;
+  options.baseline.pixelSamples = 2;
+  options.maxLightSamples = 8;
+  options.referenceLightSamples = 8;
+  options.maxPixelSamples = 4;
+  const TradeoffReport report = measureScene(wallScene(true, 16), options, pool);
+  ASSERT_FALSE(report.cancelled);
+  EXPECT_EQ(report.baseline.settings.lightSamples, 4);
+  EXPECT_EQ(report.baseline.settings.pixelSamples, 2);
+  EXPECT_EQ(report.baseline.depth, 2);
+  // The full-resolution preview, 4 light samples and 2 samples per pixel are that one render.
+  const TradeoffPoint& full = pointOf(report, TradeoffKnob::Preview, "1");
+  EXPECT_EQ(full.rays, pointOf(report, TradeoffKnob::LightSamples, "4").rays);
+  EXPECT_EQ(full.rays, pointOf(report, TradeoffKnob::PixelSamples, "2").rays);
+  EXPECT_EQ(full.timeMs, pointOf(report, TradeoffKnob::LightSamples, "4").timeMs);
+  EXPECT_GT(full.rays, pointOf(report, TradeoffKnob::PixelSamples, "1").rays);
+  const std::string traversal = availableAccel(AccelKind::Embree) == AccelKind::Embree ? "Embree" : "reference BVH";
+  EXPECT_EQ(report.baselineText, "Max ray depth 2, Tri-light model area, Light samples 4, Traversal " + traversal +
+                                     ", Ray start offset off the surface, Samples per pixel 2");
+  EXPECT_EQ(report.bestText, "Max ray depth 2, Tri-light model area, Light samples 8, Traversal reference BVH, Ray "
+                             "start offset off the surface, Samples per pixel 2");
 }
 
 TEST(MeasureTradeoff, LightSamplesConvergeToTheReference) {

@@ -93,6 +93,11 @@ void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool can
   ImGui::Text("%s, %d x %d, %zu settings, %.1f s", r.sceneName.c_str(), r.width, r.height, r.points.size(),
               r.totalMs / 1000.0);
   if (state.stale) ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1.0f), "Measured before the last edit or load.");
+  // Every row varies one knob from these; the best image improves them.
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(("Measured against your settings: " + r.baselineText + ".").c_str());
+  ImGui::PopTextWrapPos();
+  hintText(("Best image: " + r.bestText + ".").c_str());
   ImGui::Checkbox("Plot over the image", &state.showPlot);
   const std::string advice = tradeoffAdvice(r);
   if (!advice.empty()) {

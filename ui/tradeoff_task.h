@@ -32,7 +32,7 @@ struct TradeoffRequest {
 };
 
 // What the viewer measures: the committed edits, on the session's geometry (shared), at `scale` of the
-// image's resolution, from the session's settings.
+// image's resolution; every knob is varied from the committed settings (what the user has on screen).
 class SceneSession;
 TradeoffRequest tradeoffRequestFor(const SceneSession& session, double scale);
 
@@ -40,8 +40,8 @@ TradeoffRequest tradeoffRequestFor(const SceneSession& session, double scale);
 int scaledSide(int pixels, double scale);
 
 // One line of advice from a finished report: the fastest setting that keeps all but kAdvicePctOff % of the
-// pixels within 1 of the best image, with the best image's time and the defaults' (the baseline: every knob at
-// its default) for comparison. "" without the reference and the baseline among the points.
+// pixels within 1 of the best image, with the best image's time and that of the user's settings (the baseline)
+// for comparison. "" without the best image and the baseline among the points.
 inline constexpr double kAdvicePctOff = 1.0;
 std::string tradeoffAdvice(const TradeoffReport& report);
 

@@ -55,6 +55,35 @@ TEST(Tradeoff, TheMeasuredSceneHasTheMeshesAndTheCommittedEdits) {
   EXPECT_NE(session.loaded().camera.position, glm::dvec3(1.0, 2.0, 3.0));
 }
 
+TEST(Tradeoff, EveryKnobIsVariedFromTheSettingsOnScreen) {
+  SceneSession session(loadParts(), RenderSettings{});
+  session.edits().maxRayDepth = 1;
+  session.settings().lightSamples = 8;
+  session.settings().pixelSamples = 4;
+  session.settings().triangularLightModel = TriangularLightModel::Directional;
+  session.settings().secondaryRayStart = SecondaryRayStart::ExcludeHitTriangle;
+  std::string problem;
+  ASSERT_NE(session.commit(problem), nullptr) << problem;
+  session.settings().pixelSamples = 16;  // not committed yet: not measured
+
+  const TradeoffRequest request = tradeoffRequestFor(session, 0.25);
+  EXPECT_EQ(request.options.baseline, session.committedSettings());
+  EXPECT_EQ(request.options.baseline.pixelSamples, 4);
+  EXPECT_EQ(request.options.baseline.lightSamples, 8);
+  // Each row differs from what is on screen in its own knob only; the others are the user's.
+  const std::vector<KnobSetting> rows = enumerateKnobSettings(request.parameters, request.options);
+  for (const KnobSetting& k : rows) {
+    if (k.knob == TradeoffKnob::Reference) continue;
+    const std::string row = std::string(toString(k.knob)) + " " + k.label;
+    EXPECT_TRUE(k.knob == TradeoffKnob::Depth || k.depth == 1) << row;
+    EXPECT_TRUE(k.knob == TradeoffKnob::PixelSamples || k.settings.pixelSamples == 4) << row;
+    EXPECT_TRUE(k.knob == TradeoffKnob::LightSamples || k.settings.lightSamples == 8) << row;
+    EXPECT_TRUE(k.knob == TradeoffKnob::Accel || k.settings.accel == session.committedSettings().accel) << row;
+    EXPECT_EQ(k.settings.triangularLightModel, TriangularLightModel::Directional) << row;
+    EXPECT_EQ(k.settings.secondaryRayStart, SecondaryRayStart::ExcludeHitTriangle) << row;
+  }
+}
+
 TEST(Tradeoff, ScaledSideRoundsAsTheMeasurementDoes) {
   EXPECT_EQ(scaledSide(480, 0.25), 120);
   EXPECT_EQ(scaledSide(300, 0.25), 75);
@@ -81,9 +110,9 @@ TEST(Tradeoff, AdviceNamesTheFastestSettingCloseToTheBestImage) {
   std::string advice = tradeoffAdvice(r);
   EXPECT_NE(advice.find("light_samples 32, 40.0 ms"), std::string::npos) << advice;
   EXPECT_NE(advice.find("the best image: 300.0 ms"), std::string::npos) << advice;
-  r.points[2].error.pctOffByMoreThan1 = 0.5;  // the defaults are close enough
+  r.points[2].error.pctOffByMoreThan1 = 0.5;  // the user's settings are close enough
   advice = tradeoffAdvice(r);
-  EXPECT_EQ(advice.rfind("The defaults are enough: 2.0 ms", 0), 0u) << advice;
+  EXPECT_EQ(advice.rfind("Your settings are enough: 2.0 ms", 0), 0u) << advice;
   r.points = {point(TradeoffKnob::Reference, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1", 2.0, 12.0)};
   EXPECT_EQ(tradeoffAdvice(r).rfind("No setting but the best image", 0), 0u) << tradeoffAdvice(r);
 }

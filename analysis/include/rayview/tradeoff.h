@@ -3,8 +3,9 @@
 // baseline, render the scene, time it and compare it with the highest-quality image. No GL: `rayview bench
 // tradeoff` and the viewer both use this.
 //
-// The knobs, each varied alone; the others stay at the baseline (full resolution, depth = the scene's
-// <maxraytracedepth>, 1 light sample, Embree):
+// The knobs, each varied alone; the others stay at the baseline: full resolution, the depth of the parameters
+// measured, and `options.baseline` (the viewer: the user's current settings and edits; the bench: the defaults
+// and its options). Each knob's list includes the baseline's value:
 //   preview       pixel strides 16, 8, 4, 2, 1 (labelled 1/16 .. 1). The image is the blocky upscale the viewer
 //                 shows (every pixel shows the sample at the top-left of its stride block); the time is that
 //                 pass rendered alone from scratch, every pixel of its grid, not the incremental pass the
@@ -15,8 +16,9 @@
 //   accel         Embree and the reference BVH (only the reference when built without Embree).
 //   samples       anti-aliasing, 1, 2, 4 .. maxPixelSamples camera rays per pixel. The reference image keeps 1
 //                 (the course's convention): the error shown is how far anti-aliasing moves the image from it.
-// The highest-quality image ("reference" row): full resolution, the scene's maximum depth, referenceLightSamples
-// (when the scene has triangular lights), the reference BVH.
+// The highest-quality image ("reference" row): the baseline with the reference BVH and at least
+// referenceLightSamples (when light samples matter), at full resolution. It keeps the baseline's depth (the
+// scene's own) and samples per pixel.
 //
 // Time: the median of `timedRuns` rounds (more for fast settings, one for very slow ones: see TradeoffOptions),
 // on the same thread pool, interleaved round by round over all settings so that a change of machine load hits
@@ -25,8 +27,8 @@
 // threads got well under their share of the CPU) is repeated, and the report's notes say how often that
 // happened. Quicker renders (the coarse preview levels) are timed together at the end of the round, in turn,
 // several times each, and each keeps its fastest time (the reasons: analysis/tradeoff_timing.h). Settings that
-// coincide (the baseline is the stride-1 preview, the maximum depth, 1 sample and Embree) are rendered and
-// timed once and share their figures.
+// coincide (the baseline is the stride-1 preview, the depth's maximum, and one value of every other knob) are
+// rendered and timed once and share their figures.
 
 #include <atomic>
 #include <cstdint>
@@ -57,9 +59,9 @@ struct TradeoffOptions {
   int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
   int referenceLightSamples = 256;  // samples per triangular light in the highest-quality image
   int maxPixelSamples = 16;         // the samples knob goes 1, 2, 4 .. this
-  // What every setting starts from. Its accel is what the other knobs use (falls back to the reference BVH);
-  // the knobs not measured here (the triangular-light model, the ray start) are kept for every setting, the
-  // reference image included. Light samples are 1 except where the light_samples knob varies them.
+  // What every setting starts from (its accel falls back to the reference BVH when built without Embree).
+  // Each knob row varies one of its fields; the knobs not measured here (the triangular-light model, the ray
+  // start) are kept for every setting, the reference image included.
   RenderSettings baseline;
   int timedRuns = 3;                // the time is the median of this many rounds, except:
   double singleRunMs = 10000.0;     //   a setting whose first run takes longer than this is run once,
@@ -98,6 +100,9 @@ struct TradeoffReport {
   int threads = 0;
   double embreeBuildMs = 0.0, referenceBuildMs = 0.0;  // 0 when that accelerator was not built
   double totalMs = 0.0;      // the whole measurement, builds included
+  KnobSetting baseline;      // what every knob was varied from (the stride-1 preview)
+  std::string baselineText;  // describeKnobs of the baseline: "Max ray depth 3, Light samples 4, ..."
+  std::string bestText;      // the same for the highest-quality image
   std::vector<TradeoffPoint> points;  // in enumerateKnobSettings order; the reference first
   std::vector<std::string> notes;     // what a reader should know ("no mirrors: depth changes nothing")
   bool cancelled = false;    // then `points` is empty
