@@ -79,7 +79,7 @@ std::string_view toString(TradeoffKnob knob) {
   static const std::string depthName = depthKnob().csvName(), samplesName = lightSamplesKnob().csvName(),
                            accelName = accelKnob().csvName(), pixelSamplesName = pixelSamplesKnob().csvName();
   switch (knob) {
-    case TradeoffKnob::Reference: return "reference";
+    case TradeoffKnob::BestImage: return "best_image";
     case TradeoffKnob::Preview: return "preview";
     case TradeoffKnob::Depth: return depthName;
     case TradeoffKnob::LightSamples: return samplesName;
@@ -103,10 +103,14 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
   best.accel = availableAccel(AccelKind::Reference);
   if (samplesMatter)
     best.lightSamples = std::clamp(std::max(options.referenceLightSamples, baseline.lightSamples), 1, kMaxLightSamples);
-  list.push_back({TradeoffKnob::Reference,
-                  "depth=" + std::to_string(maxDepth) + " samples=" + std::to_string(best.lightSamples) +
-                      " accel=" + std::string(toString(best.accel)),
-                  1, maxDepth, best});
+  SceneParameters atDepth;
+  atDepth.maxRayDepth = maxDepth;
+  std::string bestLabel;  // "depth=6 light_samples=256 accel=reference samples=1", in the CSV's names
+  for (const Knob* k : {&depthKnob(), &lightSamplesKnob(), &accelKnob(), &pixelSamplesKnob()}) {
+    if (!bestLabel.empty()) bestLabel += ' ';
+    bestLabel.append(k->csvName()).append("=").append(k->format(k->get(atDepth, best)));
+  }
+  list.push_back({TradeoffKnob::BestImage, bestLabel, 1, maxDepth, best});
 
   for (int stride : kPreviewStrides) list.push_back({TradeoffKnob::Preview, previewLabel(stride), stride, maxDepth, baseline});
 
@@ -185,7 +189,7 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
       r.stride = k.stride;
       r.depth = k.depth;
       r.settings = k.settings;
-      r.description = std::string(toString(k.knob)) + " " + k.label;
+      r.description = describeRow(k);
     }
   }
 
@@ -223,7 +227,7 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
     r.tracer = std::make_unique<const Tracer>(*r.view, *geometry[static_cast<int>(r.settings.accel)], r.settings);
   }
 
-  // Round 0 renders every setting and keeps its error (renders[0] is the reference: it comes first); later
+  // Round 0 renders every setting and keeps its error (renders[0] is the best image: it comes first); later
   // rounds only time. Interleaved rounds spread slow drifts of the machine's load over all settings. In each
   // round the quick renders are timed last, in turn with each other (tradeoff_timing.h).
   const auto runsFor = [&](const Render& r) {
@@ -233,7 +237,7 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
   };
   const int maxRuns = std::max(timedRuns, options.fastTimedRuns);
   const int width = view.camera.width, height = view.camera.height;
-  Image referenceImage;
+  Image bestImage;
   int slowedRepeated = 0, slowedKept = 0;
   for (int round = 0; round < maxRuns; ++round) {
     std::vector<std::size_t> inTurn;
@@ -264,8 +268,8 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
       }
       if (round == 0) {
         r.rays = run.rays.total();
-        if (i == 0) referenceImage = std::move(run.image);
-        else r.error = compareToReference(run.image, referenceImage);
+        if (i == 0) bestImage = std::move(run.image);
+        else r.error = compareToReference(run.image, bestImage);
         r.quick = run.wallMs < kMinTimedMs;
         if (r.quick) {  // that render gave the image; the time comes below
           inTurn.push_back(i);

@@ -112,7 +112,7 @@ TEST(KnobEnumeration, EveryKnobOfASceneWithMirrorsAndATriangularLight) {
   const Scene scene = wallScene(true);
   const std::vector<KnobSetting> all = enumerateKnobSettings(scene, TradeoffOptions{});
   ASSERT_FALSE(all.empty());
-  EXPECT_EQ(all.front().knob, TradeoffKnob::Reference);
+  EXPECT_EQ(all.front().knob, TradeoffKnob::BestImage);
   EXPECT_EQ(all.front().settings.accel, AccelKind::Reference);
   EXPECT_EQ(all.front().settings.lightSamples, 256);
   EXPECT_EQ(all.front().depth, 2);
@@ -172,7 +172,7 @@ TEST(KnobEnumeration, EachRowVariesOneKnobFromTheUsersSettings) {
             (std::vector<std::string>{"1", "2", "3", "4", "8", "16"}));
   // Every row differs from the user's settings in its own knob only.
   for (const KnobSetting& k : all) {
-    if (k.knob == TradeoffKnob::Reference) continue;
+    if (k.knob == TradeoffKnob::BestImage) continue;
     RenderSettings expected = users;
     if (k.knob == TradeoffKnob::LightSamples) expected.lightSamples = std::stoi(k.label);
     if (k.knob == TradeoffKnob::PixelSamples) expected.pixelSamples = std::stoi(k.label);
@@ -236,7 +236,7 @@ TEST(MeasureTradeoff, PreviewErrorFallsToZeroAtFullResolution) {
   EXPECT_EQ(report.threads, 2);
 
   const TradeoffPoint& reference = report.points.front();
-  EXPECT_EQ(reference.setting.knob, TradeoffKnob::Reference);
+  EXPECT_EQ(reference.setting.knob, TradeoffKnob::BestImage);
   EXPECT_EQ(reference.error.rmse, 0.0);
 
   std::vector<double> previewRmse;
@@ -398,6 +398,45 @@ TEST(MeasureTradeoff, ProgressCountsEveryRender) {
   EXPECT_EQ(lastDone + std::stoi(lastWhat.substr(0, number)), planned);
 }
 
+// ---- The words users see
+
+TEST(TradeoffWords, TheBestImageIsNeverCalledReferenceAndTheKnobsHaveTheRenderPanelsLabels) {
+  const std::vector<KnobSetting> all = enumerateKnobSettings(wallScene(true), TradeoffOptions{});
+  EXPECT_EQ(toString(TradeoffKnob::BestImage), "best_image");
+  EXPECT_EQ(knobLabel(TradeoffKnob::BestImage), "best image");
+  EXPECT_EQ(describeRow(all.front()), "best image");
+  // The knob column shows the Render panel's labels (the knob table's), the CSV keeps its names.
+  EXPECT_EQ(knobLabel(TradeoffKnob::Preview), "Preview level");
+  for (TradeoffKnob knob : {TradeoffKnob::Depth, TradeoffKnob::LightSamples, TradeoffKnob::Accel,
+                            TradeoffKnob::PixelSamples}) {
+    ASSERT_NE(tableKnob(knob), nullptr);
+    EXPECT_EQ(knobLabel(knob), tableKnob(knob)->label);
+    EXPECT_EQ(toString(knob), tableKnob(knob)->csvName());
+  }
+  EXPECT_EQ(knobLabel(TradeoffKnob::Depth), "Max ray depth");
+  EXPECT_EQ(knobLabel(TradeoffKnob::LightSamples), "Light samples");
+  EXPECT_EQ(knobLabel(TradeoffKnob::Accel), "Traversal");
+  EXPECT_EQ(knobLabel(TradeoffKnob::PixelSamples), "Samples per pixel");
+  std::vector<std::string> rows;
+  for (const KnobSetting& k : all) {
+    const std::string row = describeRow(k);
+    rows.push_back(row);
+    EXPECT_EQ(row.find('_'), std::string::npos) << row;  // no snake_case
+    // "reference" only ever names the traversal back-end, by its panel label.
+    const std::size_t reference = row.find("reference");
+    EXPECT_TRUE(reference == std::string::npos || row.substr(reference) == "reference BVH") << row;
+  }
+  const auto has = [&](const std::string& row) { return std::find(rows.begin(), rows.end(), row) != rows.end(); };
+  EXPECT_TRUE(has("Preview level 1/16"));
+  EXPECT_TRUE(has("Max ray depth 2"));
+  EXPECT_TRUE(has("Light samples 64"));
+  EXPECT_TRUE(has("Traversal reference BVH"));
+  EXPECT_TRUE(has("Samples per pixel 4"));
+  if (availableAccel(AccelKind::Embree) == AccelKind::Embree) {
+    EXPECT_TRUE(has("Traversal Embree"));
+  }
+}
+
 // ---- CSV and plot
 
 TEST(TradeoffCsv, HeaderAndARowPerSetting) {
@@ -411,7 +450,7 @@ TEST(TradeoffCsv, HeaderAndARowPerSetting) {
   while (std::getline(rows, line)) {
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7) << line;
     if (count == 0) {
-      EXPECT_EQ(line.rfind("default,reference,", 0), 0u) << line;
+      EXPECT_EQ(line.rfind("default,best_image,depth=2 light_samples=256 accel=reference samples=1,", 0), 0u) << line;
       EXPECT_NE(line.find(",0.0000,inf,0.0000,"), std::string::npos) << line;
     }
     ++count;

@@ -29,11 +29,11 @@ void resultTable(const TradeoffReport& report) {
   for (const TradeoffPoint& p : report.points) {
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(std::string(toString(p.setting.knob)).c_str());
+    ImGui::TextUnformatted(std::string(knobLabel(p.setting.knob)).c_str());
+    if (p.setting.knob == TradeoffKnob::BestImage && ImGui::IsItemHovered())
+      ImGui::SetTooltip("%s", report.bestText.c_str());
     ImGui::TableNextColumn();
-    const bool reference = p.setting.knob == TradeoffKnob::Reference;
-    ImGui::TextUnformatted(reference ? "best" : p.setting.label.c_str());
-    if (reference && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.setting.label.c_str());
+    ImGui::TextUnformatted(settingLabel(p.setting).c_str());
     ImGui::TableNextColumn();
     ImGui::Text("%.1f", p.timeMs);
     ImGui::TableNextColumn();

@@ -31,9 +31,9 @@ std::string tradeoffAdvice(const TradeoffReport& report) {
   const TradeoffPoint* yours = nullptr;  // the baseline: the user's settings
   const TradeoffPoint* fastest = nullptr;
   for (const TradeoffPoint& p : report.points) {
-    if (p.setting.knob == TradeoffKnob::Reference) best = &p;
+    if (p.setting.knob == TradeoffKnob::BestImage) best = &p;
     if (p.setting.knob == TradeoffKnob::Preview && p.setting.stride == 1) yours = &p;
-    if (p.setting.knob == TradeoffKnob::Reference || p.error.pctOffByMoreThan1 > kAdvicePctOff) continue;
+    if (p.setting.knob == TradeoffKnob::BestImage || p.error.pctOffByMoreThan1 > kAdvicePctOff) continue;
     if (!fastest || p.timeMs < fastest->timeMs) fastest = &p;
   }
   if (!best || !yours) return {};
@@ -50,10 +50,10 @@ std::string tradeoffAdvice(const TradeoffReport& report) {
                   yours->timeMs, yours->error.pctOffByMoreThan1, best->timeMs);
   } else {
     std::snprintf(line, sizeof line,
-                  "Fastest with %g%% of pixels or fewer off by more than 1: %s %s, %.1f ms (the best image: %.1f ms; "
+                  "Fastest with %g%% of pixels or fewer off by more than 1: %s, %.1f ms (the best image: %.1f ms; "
                   "your settings: %.1f ms with %.1f%% off).",
-                  kAdvicePctOff, std::string(toString(fastest->setting.knob)).c_str(), fastest->setting.label.c_str(),
-                  fastest->timeMs, best->timeMs, yours->timeMs, yours->error.pctOffByMoreThan1);
+                  kAdvicePctOff, describeRow(fastest->setting).c_str(), fastest->timeMs, best->timeMs, yours->timeMs,
+                  yours->error.pctOffByMoreThan1);
   }
   return line;
 }

@@ -73,7 +73,7 @@ TEST(Tradeoff, EveryKnobIsVariedFromTheSettingsOnScreen) {
   // Each row differs from what is on screen in its own knob only; the others are the user's.
   const std::vector<KnobSetting> rows = enumerateKnobSettings(request.parameters, request.options);
   for (const KnobSetting& k : rows) {
-    if (k.knob == TradeoffKnob::Reference) continue;
+    if (k.knob == TradeoffKnob::BestImage) continue;
     const std::string row = std::string(toString(k.knob)) + " " + k.label;
     EXPECT_TRUE(k.knob == TradeoffKnob::Depth || k.depth == 1) << row;
     EXPECT_TRUE(k.knob == TradeoffKnob::PixelSamples || k.settings.pixelSamples == 4) << row;
@@ -96,6 +96,7 @@ TradeoffPoint point(TradeoffKnob knob, const std::string& label, double ms, doub
   p.setting.knob = knob;
   p.setting.label = label;
   p.setting.stride = stride;
+  if (knob == TradeoffKnob::LightSamples) p.setting.settings.lightSamples = std::stoi(label);
   p.timeMs = ms;
   p.error.pctOffByMoreThan1 = pctOff;
   return p;
@@ -104,16 +105,16 @@ TradeoffPoint point(TradeoffKnob knob, const std::string& label, double ms, doub
 TEST(Tradeoff, AdviceNamesTheFastestSettingCloseToTheBestImage) {
   TradeoffReport r;
   EXPECT_EQ(tradeoffAdvice(r), "");
-  r.points = {point(TradeoffKnob::Reference, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1/2", 1.0, 30.0, 2),
+  r.points = {point(TradeoffKnob::BestImage, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1/2", 1.0, 30.0, 2),
               point(TradeoffKnob::Preview, "1", 2.0, 12.0), point(TradeoffKnob::LightSamples, "32", 40.0, 0.3),
               point(TradeoffKnob::LightSamples, "64", 80.0, 0.0)};
   std::string advice = tradeoffAdvice(r);
-  EXPECT_NE(advice.find("light_samples 32, 40.0 ms"), std::string::npos) << advice;
+  EXPECT_NE(advice.find(": Light samples 32, 40.0 ms"), std::string::npos) << advice;  // the panel's words
   EXPECT_NE(advice.find("the best image: 300.0 ms"), std::string::npos) << advice;
   r.points[2].error.pctOffByMoreThan1 = 0.5;  // the user's settings are close enough
   advice = tradeoffAdvice(r);
   EXPECT_EQ(advice.rfind("Your settings are enough: 2.0 ms", 0), 0u) << advice;
-  r.points = {point(TradeoffKnob::Reference, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1", 2.0, 12.0)};
+  r.points = {point(TradeoffKnob::BestImage, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1", 2.0, 12.0)};
   EXPECT_EQ(tradeoffAdvice(r).rfind("No setting but the best image", 0), 0u) << tradeoffAdvice(r);
 }
 
