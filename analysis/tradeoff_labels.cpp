@@ -1,5 +1,5 @@
 // The words users see for the trade-off measurement (tradeoff.h): the Render panel's labels, from the knob
-// table (renderer/knobs.cpp), its one owner.
+// table (renderer/knobs.cpp), its one owner; and the knob-table values of its rows.
 #include "rayview/tradeoff.h"
 
 namespace rayview {
@@ -22,13 +22,18 @@ std::string_view knobLabel(TradeoffKnob knob) {
   return knob == TradeoffKnob::Preview ? "Preview level" : kBestImageLabel;
 }
 
-std::string settingLabel(const KnobSetting& setting) {
-  if (setting.knob == TradeoffKnob::BestImage) return {};
+std::optional<int> knobValue(const KnobSetting& setting) {
   const Knob* row = tableKnob(setting.knob);
-  if (!row) return setting.label;
+  if (!row) return std::nullopt;
   SceneParameters parameters;
   parameters.maxRayDepth = setting.depth;
-  return row->formatLabel(row->get(parameters, setting.settings));
+  return row->get(parameters, setting.settings);
+}
+
+std::string settingLabel(const KnobSetting& setting) {
+  if (setting.knob == TradeoffKnob::BestImage) return {};
+  const std::optional<int> value = knobValue(setting);
+  return value ? tableKnob(setting.knob)->formatLabel(*value) : setting.label;
 }
 
 std::string describeRow(const KnobSetting& setting) {

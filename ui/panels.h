@@ -27,6 +27,7 @@ struct PanelActions {
   bool togglePanels = false;
   std::optional<double> measureTradeoff;  // at this resolution scale
   bool cancelTradeoff = false;
+  std::optional<std::size_t> applyTradeoffRow;  // Apply: the row's setting (an index into the report's points)
 };
 
 // The text fields and toggles of the file panels, kept between frames.
@@ -109,9 +110,10 @@ void drawLightsPanel(SceneParameters& edits, double sceneRadius);
 // `picked`: the material of the picked mesh, marked; `reveal`: open it (and the section) and scroll to it, once.
 void drawMaterialsPanel(SceneParameters& edits, bool hasTexture, std::optional<std::size_t> picked, bool reveal);
 void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display);
-// `canMeasure` is false (with `why`) while no scene can be measured.
-void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,
-                       PanelActions& actions);
+// `canMeasure` is false (with `why`) while no scene can be measured. `edits` and `settings` are the user's
+// now: the row matching them has no Apply button.
+void drawTradeoffPanel(TradeoffPanelState& state, const SceneParameters& edits, const RenderSettings& settings,
+                       bool canMeasure, const std::string& why, PanelActions& actions);
 
 // Over the image's bottom-right corner (`right`, `bottom`): preview level, pass time, Mrays/s, latencies, sizes.
 // `oneLine`: level, pass time, speed and the edit's latency on one line.

@@ -148,6 +148,10 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     host.measureTradeoff(c.numbers[0]);
     wait_ = Wait::Tradeoff;
     deadline_ = Clock::now() + seconds(c.numbers[1]);
+  } else if (name == "tradeoff-apply") {
+    const Knob* knob = c.args[0] == "advice" ? nullptr : findKnob(c.args[0]);
+    if (const std::string why = host.applyTradeoff(knob, knob ? static_cast<int>(c.numbers[0]) : 0); !why.empty())
+      fail("tradeoff-apply: " + why);
   } else if (name == "undo" || name == "redo") {
     SceneSession* session = host.session();
     if (!session) return fail("no scene is loaded");

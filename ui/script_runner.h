@@ -14,6 +14,7 @@
 namespace rayview {
 
 class SceneSession;
+struct Knob;
 
 // The newest speed-vs-accuracy measurement, as a script sees it.
 struct TradeoffState {
@@ -45,6 +46,9 @@ class ScriptHost {
   virtual void measureTradeoff(double resolutionScale) = 0;
   virtual void cancelTradeoff() = 0;
   virtual TradeoffState tradeoffState() const = 0;
+  // Apply a row of the last result, as its Apply button does: the row setting `knob` to `value`, or (knob
+  // null) the setting the advice suggests. "" when applied, else why not.
+  virtual std::string applyTradeoff(const Knob* knob, int value) = 0;
   virtual void quit(int exitCode) = 0;
 };
 

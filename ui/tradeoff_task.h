@@ -39,12 +39,6 @@ TradeoffRequest tradeoffRequestFor(const SceneSession& session, double scale);
 // The side measured at `scale` of `pixels`, as measureTradeoff rounds it.
 int scaledSide(int pixels, double scale);
 
-// One line of advice from a finished report: the fastest setting that keeps all but kAdvicePctOff % of the
-// pixels within 1 of the best image, with the best image's time and that of the user's settings (the baseline)
-// for comparison. "" without the best image and the baseline among the points.
-inline constexpr double kAdvicePctOff = 1.0;
-std::string tradeoffAdvice(const TradeoffReport& report);
-
 struct TradeoffResult {
   std::uint64_t id = 0;
   bool cancelled = false;

@@ -266,7 +266,7 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       drawMaterialsPanel(session_->edits(), session_->loaded().texture.has_value(), picked,
                          session_->takeMaterialReveal());
       const std::string why = whyNoTradeoff();
-      drawTradeoffPanel(tradeoffPanel_, session_->edits().camera, why.empty(), why, actions);
+      drawTradeoffPanel(tradeoffPanel_, session_->edits(), session_->settings(), why.empty(), why, actions);
     }
     ImGui::PopItemWidth();
   }
@@ -298,6 +298,7 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   if (actions.saveSceneAs) saveSceneReporting(*actions.saveSceneAs);
   if (actions.cancelTradeoff) cancelTradeoff();
   if (actions.measureTradeoff) measureTradeoff(*actions.measureTradeoff);
+  if (actions.applyTradeoffRow) applyTradeoffRow(*actions.applyTradeoffRow);
   if (shortcuts.quit) quitFromUser();
   if (session_ && shortcuts.undo) session_->undo();
   if (session_ && shortcuts.redo) session_->redo();

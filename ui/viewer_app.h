@@ -76,6 +76,7 @@ class ViewerApp final : public ScriptHost {
   void measureTradeoff(double resolutionScale) override;
   void cancelTradeoff() override { stopTradeoff("cancelled", true); }
   TradeoffState tradeoffState() const override;
+  std::string applyTradeoff(const Knob* knob, int value) override;
   void quit(int exitCode) override;
 
  private:
@@ -105,6 +106,8 @@ class ViewerApp final : public ScriptHost {
   void startRequestedTradeoff(const Layout& layout);
   bool pollTradeoff();
   void stopTradeoff(const std::string& why, bool restartRender);
+  // Apply: the setting of row `index` of the result shown goes into the session, as a Render panel edit.
+  void applyTradeoffRow(std::size_t index);
 
   // One UI frame
   void drawFrame();

@@ -21,6 +21,7 @@
 #include "scene_session.h"
 #include "script_runner.h"
 #include "support/image_compare.h"
+#include "tradeoff_advice.h"
 #include "tradeoff_task.h"
 #include "viewer_fixtures.h"
 
@@ -116,6 +117,73 @@ TEST(Tradeoff, AdviceNamesTheFastestSettingCloseToTheBestImage) {
   EXPECT_EQ(advice.rfind("Your settings are enough: 2.0 ms", 0), 0u) << advice;
   r.points = {point(TradeoffKnob::BestImage, "best", 300.0, 0.0), point(TradeoffKnob::Preview, "1", 2.0, 12.0)};
   EXPECT_EQ(tradeoffAdvice(r).rfind("No setting but the best image", 0), 0u) << tradeoffAdvice(r);
+}
+
+// The rows the viewer would measure for the session, with made-up figures: what Apply works on.
+TradeoffReport rowsFor(const SceneSession& session) {
+  const TradeoffRequest request = tradeoffRequestFor(session, 0.25);
+  TradeoffReport report;
+  for (const KnobSetting& k : enumerateKnobSettings(request.parameters, request.options)) {
+    TradeoffPoint& p = report.points.emplace_back();
+    p.setting = k;
+  }
+  return report;
+}
+
+TEST(Tradeoff, ApplyingARowSetsItsKnobAsTheRenderPanelDoesUndoably) {
+  SceneSession session(loadParts(), RenderSettings{});
+  const TradeoffReport report = rowsFor(session);
+  const TradeoffPoint* sixteen = findTradeoffRow(report, lightSamplesKnob(), 16);
+  ASSERT_NE(sixteen, nullptr);
+  EXPECT_EQ(describeRow(sixteen->setting), "Light samples 16");
+  ASSERT_TRUE(applyKnobSetting(session, sixteen->setting));
+  EXPECT_EQ(session.settings().lightSamples, 16);
+  // The edit the Render panel's widget would make: the commit restarts the render, as one undo step.
+  std::string problem;
+  EXPECT_NE(session.commit(problem), nullptr) << problem;
+  EXPECT_EQ(session.committedSettings().lightSamples, 16);
+  EXPECT_EQ(session.history().undoSteps(), 1u);
+  ASSERT_TRUE(session.undo());
+  EXPECT_EQ(session.settings().lightSamples, 1);
+
+  ASSERT_TRUE(applyKnobSetting(session, findTradeoffRow(report, depthKnob(), 0)->setting));
+  EXPECT_EQ(session.edits().maxRayDepth, 0);  // the depth lives in the scene's parameters
+  ASSERT_TRUE(applyKnobSetting(session, findTradeoffRow(report, pixelSamplesKnob(), 4)->setting));
+  EXPECT_EQ(session.settings().pixelSamples, 4);
+  EXPECT_NE(session.commit(problem), nullptr);
+  EXPECT_EQ(session.committedEdits().maxRayDepth, 0);
+  EXPECT_EQ(session.committedSettings().pixelSamples, 4);
+  if (availableAccel(AccelKind::Embree) == AccelKind::Embree) {
+    const TradeoffPoint* embree = findTradeoffRow(report, accelKnob(), static_cast<int>(AccelKind::Embree));
+    ASSERT_NE(embree, nullptr);
+    ASSERT_TRUE(applyKnobSetting(session, embree->setting));
+    EXPECT_TRUE(session.needsRebuild());  // the traversal: the BVH is built again, as from the Render panel
+  }
+}
+
+TEST(Tradeoff, TheBestImageAndThePreviewLevelsAreNotSettingsToApply) {
+  SceneSession session(loadParts(), RenderSettings{});
+  const TradeoffReport report = rowsFor(session);
+  for (const TradeoffPoint& p : report.points) {
+    if (p.setting.knob != TradeoffKnob::BestImage && p.setting.knob != TradeoffKnob::Preview) continue;
+    EXPECT_FALSE(applyKnobSetting(session, p.setting)) << describeRow(p.setting);
+  }
+  EXPECT_FALSE(session.hasPendingEdits());
+  EXPECT_EQ(findTradeoffRow(report, lightSamplesKnob(), 3), nullptr);  // not measured
+}
+
+TEST(Tradeoff, TheAdviceSuggestsARenderSettingNeverAPreviewLevel) {
+  TradeoffReport r;
+  r.points = {point(TradeoffKnob::BestImage, "", 300.0, 0.0), point(TradeoffKnob::Preview, "1/2", 1.0, 0.5, 2),
+              point(TradeoffKnob::Preview, "1", 2.0, 12.0), point(TradeoffKnob::LightSamples, "32", 40.0, 0.3)};
+  // The 1/2 preview is fastest and close enough, but a user cannot choose it: 32 light samples are suggested.
+  ASSERT_NE(tradeoffSuggestion(r), nullptr);
+  EXPECT_EQ(tradeoffSuggestion(r), &r.points[3]);
+  r.points[2].error.pctOffByMoreThan1 = 0.5;  // the user's settings are enough: nothing to apply
+  EXPECT_EQ(tradeoffSuggestion(r), nullptr);
+  r.points[2].error.pctOffByMoreThan1 = 12.0;
+  r.points[3].error.pctOffByMoreThan1 = 3.0;  // nothing close enough
+  EXPECT_EQ(tradeoffSuggestion(r), nullptr);
 }
 
 TradeoffRequest smallRequest(SceneSession& session) {

@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -94,6 +95,9 @@ inline constexpr std::string_view kBestImageLabel = "best image";
 std::string_view knobLabel(TradeoffKnob knob);
 // The knob-table row a knob of the measurement varies; nullptr for the best image and the preview level.
 const Knob* tableKnob(TradeoffKnob knob);
+// The value the setting gives its knob-table row (tableKnob), as Knob::get reads it: the depth, a count, a
+// choice's index. Nothing for the best image and the preview levels (not render settings).
+std::optional<int> knobValue(const KnobSetting& setting);
 // A setting in the panel's words: "1/16", "3", "Embree", "reference BVH"; "" for the best image.
 std::string settingLabel(const KnobSetting& setting);
 // "Light samples 4", "Preview level 1/16", "best image": the row, in the panel's words.
