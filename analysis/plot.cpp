@@ -14,20 +14,21 @@ namespace {
 constexpr Rgb kWhite{255, 255, 255}, kBlack{0, 0, 0}, kInk{40, 40, 40}, kGrey{110, 110, 110};
 constexpr Rgb kMajorGrid{215, 215, 215}, kMinorGrid{238, 238, 238};
 
-// Okabe-Ito colours: distinct for colour-blind readers too.
+// Okabe-Ito colours: distinct for colour-blind readers too. Each series is named by the knob's panel label
+// (knobLabel), with the letter its points' labels start with.
 struct SeriesStyle {
   TradeoffKnob knob;
-  const char* name;
-  const char* labelPrefix;
+  const char* letter;       // after the name in the legend: " (d)"
+  const char* labelPrefix;  // before each point's setting: "d"
   Rgb colour;
   MarkerShape shape;
 };
 constexpr SeriesStyle kSeries[] = {
-    {TradeoffKnob::Preview, "preview level", "", {0, 114, 178}, MarkerShape::Circle},
-    {TradeoffKnob::Depth, "max depth (d)", "d", {213, 94, 0}, MarkerShape::Square},
-    {TradeoffKnob::LightSamples, "light samples (n)", "n=", {0, 158, 115}, MarkerShape::Triangle},
-    {TradeoffKnob::Accel, "accelerator", "", {204, 121, 167}, MarkerShape::Diamond},
-    {TradeoffKnob::PixelSamples, "samples per pixel (s)", "s=", {230, 159, 0}, MarkerShape::Star},
+    {TradeoffKnob::Preview, "", "", {0, 114, 178}, MarkerShape::Circle},
+    {TradeoffKnob::Depth, " (d)", "d", {213, 94, 0}, MarkerShape::Square},
+    {TradeoffKnob::LightSamples, " (n)", "n=", {0, 158, 115}, MarkerShape::Triangle},
+    {TradeoffKnob::Accel, "", "", {204, 121, 167}, MarkerShape::Diamond},
+    {TradeoffKnob::PixelSamples, " (s)", "s=", {230, 159, 0}, MarkerShape::Star},
 };
 
 constexpr double kTitleScale = 2.0, kAxisLabelScale = 1.6, kTickScale = 1.4, kPointLabelScale = 1.3;
@@ -195,7 +196,7 @@ void drawFrameAndTitles(PlotCanvas& canvas, const Axes& axes, const TradeoffRepo
   canvas.text(axes.left, 10 + kFontCapHeight * kTitleScale + 8, subtitle, kTickScale, kGrey);
   canvas.text((axes.left + axes.right) / 2, height - 22, "render time (log scale; BVH build not included)",
               kAxisLabelScale, kInk, TextAlign::Centre);
-  canvas.verticalText(16, (axes.top + axes.bottom) / 2, "RMSE against the reference (0..255, log scale)",
+  canvas.verticalText(16, (axes.top + axes.bottom) / 2, "RMSE against the best image (0..255, log scale)",
                       kAxisLabelScale, kInk);
 }
 
@@ -203,7 +204,7 @@ void drawLegend(PlotCanvas& canvas, const Axes& axes, const TradeoffReport& repo
   const double x = axes.right + 18, legendWidth = width - x - 10;
   double y = axes.top + 4;
   const double rowHeight = 22;
-  const auto entry = [&](const char* name, Rgb colour, MarkerShape shape, bool withLine) {
+  const auto entry = [&](const std::string& name, Rgb colour, MarkerShape shape, bool withLine) {
     if (withLine) canvas.line(x, y + 5, x + 26, y + 5, 2.0, colour);
     canvas.marker(x + 13, y + 5, kMarkerRadius + 1.5, shape, kWhite);
     canvas.marker(x + 13, y + 5, kMarkerRadius, shape, colour);
@@ -213,16 +214,12 @@ void drawLegend(PlotCanvas& canvas, const Axes& axes, const TradeoffReport& repo
   for (const SeriesStyle& s : kSeries)
     if (std::any_of(report.points.begin(), report.points.end(),
                     [&](const TradeoffPoint& p) { return p.setting.knob == s.knob; }))
-      entry(s.name, s.colour, s.shape, true);
-  entry("reference", kBlack, MarkerShape::Star, false);
+      entry(std::string(knobLabel(s.knob)) + s.letter, s.colour, s.shape, true);
+  entry(std::string(kBestImageLabel), kBlack, MarkerShape::Star, false);
   y += 6;
   std::vector<std::string> notes;
-  for (const TradeoffPoint& p : report.points)
-    if (p.setting.knob == TradeoffKnob::Reference) notes.push_back("reference: " + p.setting.label);
-  if (const TradeoffPoint* b = findPoint(report, TradeoffKnob::Preview, "1"))
-    notes.push_back("baseline: preview 1, depth=" + std::to_string(b->setting.depth) +
-                    " samples=" + std::to_string(b->setting.settings.lightSamples) +
-                    " accel=" + std::string(toString(b->setting.settings.accel)));
+  if (!report.bestText.empty()) notes.push_back(std::string(kBestImageLabel) + ": " + report.bestText);
+  if (!report.baselineText.empty()) notes.push_back("baseline: " + report.baselineText);
   notes.insert(notes.end(), report.notes.begin(), report.notes.end());
   for (const std::string& note : notes) {
     for (const std::string& line : wrap(note, 1.2, legendWidth)) {
@@ -286,13 +283,13 @@ Image plotTradeoff(const TradeoffReport& report, int width, int height) {
     }
   }
   for (const TradeoffPoint& p : report.points) labels.reserve(axes.x(p.timeMs), axes.y(p.error.rmse), kMarkerRadius);
-  const TradeoffPoint* reference = findPoint(report, TradeoffKnob::Reference, nullptr);
+  const TradeoffPoint* best = findPoint(report, TradeoffKnob::BestImage, nullptr);
   const TradeoffPoint* baseline = findPoint(report, TradeoffKnob::Preview, "1");
-  // Points that are the reference's or the baseline's render (every knob has one) get one black label.
+  // Points that are the best image's or the baseline's render (every knob has one) get one black label.
   const auto sharedRender = [&](const TradeoffPoint& p) {
-    return (reference && sameRender(p, *reference)) || (baseline && sameRender(p, *baseline));
+    return (best && sameRender(p, *best)) || (baseline && sameRender(p, *baseline));
   };
-  if (reference) labels.place(canvas, axes.x(reference->timeMs), axes.y(0), "reference", kBlack, true);
+  if (best) labels.place(canvas, axes.x(best->timeMs), axes.y(0), std::string(kBestImageLabel), kBlack, true);
   if (baseline) labels.place(canvas, axes.x(baseline->timeMs), axes.y(baseline->error.rmse), "baseline", kBlack, true);
   for (const SeriesStyle& s : kSeries) {
     std::vector<const TradeoffPoint*> series;
@@ -306,12 +303,12 @@ Image plotTradeoff(const TradeoffReport& report, int width, int height) {
       if (sharedRender(*series[i])) continue;
       const bool end = i == 0 || i + 1 == series.size();
       labels.place(canvas, axes.x(series[i]->timeMs), axes.y(series[i]->error.rmse),
-                   s.labelPrefix + series[i]->setting.label, s.colour, end);
+                   s.labelPrefix + settingLabel(series[i]->setting), s.colour, end);
     }
   }
-  if (reference) {
-    canvas.marker(axes.x(reference->timeMs), axes.y(0), kMarkerRadius + 2.5, MarkerShape::Star, kWhite);
-    canvas.marker(axes.x(reference->timeMs), axes.y(0), kMarkerRadius + 1, MarkerShape::Star, kBlack);
+  if (best) {
+    canvas.marker(axes.x(best->timeMs), axes.y(0), kMarkerRadius + 2.5, MarkerShape::Star, kWhite);
+    canvas.marker(axes.x(best->timeMs), axes.y(0), kMarkerRadius + 1, MarkerShape::Star, kBlack);
   }
   return canvas.finish();
 }

@@ -1,7 +1,5 @@
 #include "rayview/tradeoff.h"
 
-#include <time.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -9,29 +7,12 @@
 #include <thread>
 
 #include "rayview/prepared_scene.h"
-#include "rayview/grid_render.h"
 #include "rayview/knobs.h"
 #include "rayview/tracer.h"
+#include "tradeoff_timing.h"
 
 namespace rayview {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-// CPU time of the whole process: with the pool's workers busy and the caller waiting, it is what the render
-// threads got. Compared with wall time it tells whether other processes took the cores meanwhile.
-double processCpuMs() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
-}
-
-// A run shorter than this is not judged: thread wake-up latency alone can halve its CPU share.
-constexpr double kMinMsToJudgeShare = 20.0;
 
 // ---- Enumeration
 
@@ -49,36 +30,19 @@ std::vector<int> depthsToList(int maxDepth, bool hasMirrors) {
   return depths;
 }
 
-std::string previewLabel(int stride) { return stride == 1 ? "1" : "1/" + std::to_string(stride); }
-
-// ---- Rendering one setting
-
-struct Run {
-  Image image;
-  RayCounts rays;
-  double wallMs = 0.0;
-  double cpuShare = 1.0;  // CPU time / (wall time x threads); well below 1 when other processes ran
-};
-
-// Renders the pixels on the stride grid, then fills every pixel with the sample at the top-left of its
-// block, as the viewer publishes a pass. Only the tracing is timed. False when `cancel` was raised.
-bool renderStrided(const Tracer& tracer, int width, int height, int stride, ThreadPool& pool,
-                   const std::atomic<bool>* cancel, Run& run) {
-  Image& image = run.image;
-  RayCounts& rays = run.rays;
-  image = Image(width, height);
-  rays = {};
-  const double cpuStart = processCpuMs();
-  const auto start = Clock::now();
-  const bool complete = renderGrid(
-      [&](int x, int y, RayCounts& counts) { return tracer.tracePixel(x, y, counts); }, stride, 0, pool, image, rays,
-      [cancel] { return cancel && cancel->load(std::memory_order_relaxed); });
-  run.wallMs = msSince(start);
-  run.cpuShare = run.wallMs > 0.0 ? (processCpuMs() - cpuStart) / (run.wallMs * pool.size()) : 1.0;
-  if (!complete) return false;
-  fillBlocks(image, stride);
-  return true;
+// 1, 2, 4 .. most, and `current` (the user's value) in its place when it is not one of them.
+std::vector<int> doublingsWith(int most, int current) {
+  std::vector<int> values;
+  for (int n = 1;; n = std::min(2 * n, most)) {
+    values.push_back(n);
+    if (n == most) break;
+  }
+  if (std::find(values.begin(), values.end(), current) == values.end())
+    values.insert(std::upper_bound(values.begin(), values.end(), current), current);
+  return values;
 }
+
+std::string previewLabel(int stride) { return stride == 1 ? "1" : "1/" + std::to_string(stride); }
 
 // One distinct render: several knob settings may share it.
 struct Render {
@@ -89,14 +53,10 @@ struct Render {
   std::vector<double> timesMs;
   ImageError error;
   std::uint64_t rays = 0;
+  std::shared_ptr<const SceneParameters> view;  // what the tracer renders: the resized camera, this depth
+  std::unique_ptr<const Tracer> tracer;
+  bool quick = false;  // its first render took less than kMinTimedMs: timed in turn with the other quick ones
 };
-
-double median(std::vector<double> values) {
-  if (values.empty()) return 0.0;
-  std::sort(values.begin(), values.end());
-  const std::size_t n = values.size();
-  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
-}
 
 bool buildCancelled(void* user, double) { return !static_cast<const std::atomic<bool>*>(user)->load(); }
 
@@ -119,7 +79,7 @@ std::string_view toString(TradeoffKnob knob) {
   static const std::string depthName = depthKnob().csvName(), samplesName = lightSamplesKnob().csvName(),
                            accelName = accelKnob().csvName(), pixelSamplesName = pixelSamplesKnob().csvName();
   switch (knob) {
-    case TradeoffKnob::Reference: return "reference";
+    case TradeoffKnob::BestImage: return "best_image";
     case TradeoffKnob::Preview: return "preview";
     case TradeoffKnob::Depth: return depthName;
     case TradeoffKnob::LightSamples: return samplesName;
@@ -132,19 +92,24 @@ std::string_view toString(TradeoffKnob knob) {
 std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, const TradeoffOptions& options) {
   const int maxDepth = std::max(0, scene.maxRayDepth);
   RenderSettings baseline = options.baseline;
-  baseline.lightSamples = 1;
-  baseline.pixelSamples = 1;
   baseline.accel = availableAccel(baseline.accel);
   const bool samplesMatter = lightSamplesKnob().matters(scene, baseline);
 
   std::vector<KnobSetting> list;
+  // The best image improves what the user has: more light samples, the reference BVH. It keeps their samples
+  // per pixel: anti-aliased images are not ranked against each other (docs/tradeoff.md).
   RenderSettings best = baseline;
   best.accel = availableAccel(AccelKind::Reference);
-  best.lightSamples = samplesMatter ? std::clamp(options.referenceLightSamples, 1, kMaxLightSamples) : 1;
-  list.push_back({TradeoffKnob::Reference,
-                  "depth=" + std::to_string(maxDepth) + " samples=" + std::to_string(best.lightSamples) +
-                      " accel=" + std::string(toString(best.accel)),
-                  1, maxDepth, best});
+  if (samplesMatter)
+    best.lightSamples = std::clamp(std::max(options.referenceLightSamples, baseline.lightSamples), 1, kMaxLightSamples);
+  SceneParameters atDepth;
+  atDepth.maxRayDepth = maxDepth;
+  std::string bestLabel;  // "depth=6 light_samples=256 accel=reference samples=1", in the CSV's names
+  for (const Knob* k : {&depthKnob(), &lightSamplesKnob(), &accelKnob(), &pixelSamplesKnob()}) {
+    if (!bestLabel.empty()) bestLabel += ' ';
+    bestLabel.append(k->csvName()).append("=").append(k->format(k->get(atDepth, best)));
+  }
+  list.push_back({TradeoffKnob::BestImage, bestLabel, 1, maxDepth, best});
 
   for (int stride : kPreviewStrides) list.push_back({TradeoffKnob::Preview, previewLabel(stride), stride, maxDepth, baseline});
 
@@ -153,12 +118,10 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
   }
 
   if (samplesMatter) {
-    const int most = std::clamp(options.maxLightSamples, 1, kMaxLightSamples);
-    for (int n = 1;; n = std::min(2 * n, most)) {
+    for (int n : doublingsWith(std::clamp(options.maxLightSamples, 1, kMaxLightSamples), baseline.lightSamples)) {
       RenderSettings s = baseline;
       s.lightSamples = n;
       list.push_back({TradeoffKnob::LightSamples, std::to_string(n), 1, maxDepth, s});
-      if (n == most) break;
     }
   }
 
@@ -169,12 +132,10 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
     list.push_back({TradeoffKnob::Accel, std::string(toString(kind)), 1, maxDepth, s});
   }
 
-  const int mostPixelSamples = std::clamp(options.maxPixelSamples, 1, kMaxPixelSamples);
-  for (int n = 1;; n = std::min(2 * n, mostPixelSamples)) {
+  for (int n : doublingsWith(std::clamp(options.maxPixelSamples, 1, kMaxPixelSamples), baseline.pixelSamples)) {
     RenderSettings s = baseline;
     s.pixelSamples = n;
     list.push_back({TradeoffKnob::PixelSamples, std::to_string(n), 1, maxDepth, s});
-    if (n == mostPixelSamples) break;
   }
   return list;
 }
@@ -182,7 +143,7 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
 TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> sceneGeometry,
                                const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
                                const std::atomic<bool>* cancel, const TradeoffProgressFn& progress) {
-  const auto start = Clock::now();
+  const auto start = TimingClock::now();
   TradeoffReport report;
   report.sceneName = sceneName;
   report.threads = pool.size();
@@ -205,6 +166,15 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
     report.notes.push_back("built without Embree: only the reference BVH is measured");
 
   const std::vector<KnobSetting> settings = enumerateKnobSettings(*scene, options);
+  const auto describe = [&](const KnobSetting& k) {
+    SceneParameters rendered = view;
+    rendered.maxRayDepth = k.depth;
+    return describeKnobs(rendered, k.settings);
+  };
+  for (const KnobSetting& k : settings)
+    if (k.knob == TradeoffKnob::Preview && k.stride == 1) report.baseline = k;
+  report.baselineText = describe(report.baseline);
+  report.bestText = describe(settings.front());
   std::vector<Render> renders;
   std::vector<std::size_t> renderOf;
   for (const KnobSetting& k : settings) {
@@ -213,8 +183,13 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
                                      return r.stride == k.stride && r.depth == k.depth && r.settings == k.settings;
                                    });
     renderOf.push_back(static_cast<std::size_t>(same - renders.begin()));
-    if (same == renders.end())
-      renders.push_back({k.stride, k.depth, k.settings, std::string(toString(k.knob)) + " " + k.label, {}, {}, 0});
+    if (same == renders.end()) {
+      Render& r = renders.emplace_back();
+      r.stride = k.stride;
+      r.depth = k.depth;
+      r.settings = k.settings;
+      r.description = describeRow(k);
+    }
   }
 
   const auto isCancelled = [&] { return cancel && cancel->load(); };
@@ -244,31 +219,42 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
     (r.settings.accel == AccelKind::Embree ? report.embreeBuildMs : report.referenceBuildMs) = built->buildMs;
   }
 
-  // Round 0 renders every setting and keeps its error (renders[0] is the reference: it comes first); later
-  // rounds only time. Interleaved rounds spread slow drifts of the machine's load over all settings.
+  for (Render& r : renders) {
+    SceneParameters rendered = view;
+    rendered.maxRayDepth = r.depth;
+    r.view = std::make_shared<const SceneParameters>(std::move(rendered));
+    r.tracer = std::make_unique<const Tracer>(*r.view, *geometry[static_cast<int>(r.settings.accel)], r.settings);
+  }
+
+  // Round 0 renders every setting and keeps its error (renders[0] is the best image: it comes first); later
+  // rounds only time. Interleaved rounds spread slow drifts of the machine's load over all settings. In each
+  // round the quick renders are timed last, in turn with each other (tradeoff_timing.h).
   const auto runsFor = [&](const Render& r) {
     const double first = r.timesMs.front();
     if (first > options.singleRunMs) return 1;
     return first < options.fastRunMs ? std::max(timedRuns, options.fastTimedRuns) : timedRuns;
   };
   const int maxRuns = std::max(timedRuns, options.fastTimedRuns);
-  Image referenceImage;
+  const int width = view.camera.width, height = view.camera.height;
+  Image bestImage;
   int slowedRepeated = 0, slowedKept = 0;
   for (int round = 0; round < maxRuns; ++round) {
+    std::vector<std::size_t> inTurn;
     for (std::size_t i = 0; i < renders.size(); ++i) {
       Render& r = renders[i];
       if (round > 0 && round >= runsFor(r)) continue;
+      if (r.quick) {
+        inTurn.push_back(i);
+        continue;
+      }
       if (isCancelled()) return cancelledReport();
       tell(r.description);
-      view.maxRayDepth = r.depth;
-      const Tracer tracer(view, *geometry[static_cast<int>(r.settings.accel)], r.settings);
-      Run run;
+      TimedRun run;
       // A run during which other processes held the cores is repeated (a few times at most): on a shared
       // machine that keeps bursts of someone else's work out of the medians.
       for (int attempt = 0;; ++attempt) {
-        if (!renderStrided(tracer, view.camera.width, view.camera.height, r.stride, pool, cancel, run))
-          return cancelledReport();
-        const bool slowed = run.wallMs >= kMinMsToJudgeShare && run.cpuShare < options.minCpuShare;
+        if (!renderOnce(*r.tracer, width, height, r.stride, pool, cancel, run)) return cancelledReport();
+        const bool slowed = run.wallMs >= kMinTimedMs && run.cpuShare < options.minCpuShare;
         if (!slowed) break;
         if (attempt >= options.slowedRetries) {
           ++slowedKept;
@@ -279,12 +265,28 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
         std::this_thread::sleep_for(std::chrono::milliseconds(50 << std::min(attempt, 5)));
         if (isCancelled()) return cancelledReport();
       }
-      r.timesMs.push_back(run.wallMs);
+      if (round == 0) {
+        r.rays = run.rays.total();
+        if (i == 0) bestImage = std::move(run.image);
+        else r.error = compareToReference(run.image, bestImage);
+        r.quick = run.wallMs < kMinTimedMs;
+        if (r.quick) {  // that render gave the image; the time comes below
+          inTurn.push_back(i);
+          continue;
+        }
+      }
       ++status.rendersDone;
-      if (round > 0) continue;
-      r.rays = run.rays.total();
-      if (i == 0) referenceImage = std::move(run.image);
-      else r.error = compareToReference(run.image, referenceImage);
+      r.timesMs.push_back(run.wallMs);
+    }
+    if (!inTurn.empty()) {
+      if (isCancelled()) return cancelledReport();
+      tell(std::to_string(inTurn.size()) + " quick settings, in turn");
+      std::vector<QuickRender> quick;
+      for (std::size_t i : inTurn) quick.push_back({renders[i].tracer.get(), renders[i].stride, renders[i].settings.accel});
+      const std::vector<double> timesMs = timeInTurn(quick, width, height, pool, cancel);
+      if (timesMs.empty()) return cancelledReport();
+      for (std::size_t k = 0; k < inTurn.size(); ++k) renders[inTurn[k]].timesMs.push_back(timesMs[k]);
+      status.rendersDone += static_cast<int>(inTurn.size());
     }
     if (round == 0) {
       status.rendersPlanned = 0;

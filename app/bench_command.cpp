@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -32,16 +33,19 @@ void printTable(const TradeoffReport& report) {
   std::printf("%s: %dx%d, %d threads, measured in %.1f s (BVH build: embree %.1f ms, reference %.1f ms)\n",
               report.sceneName.c_str(), report.width, report.height, report.threads, report.totalMs / 1000.0,
               report.embreeBuildMs, report.referenceBuildMs);
+  std::printf("  best image: %s\n  baseline: %s\n", report.bestText.c_str(), report.baselineText.c_str());
   for (const std::string& note : report.notes) std::printf("  note: %s\n", note.c_str());
-  const double referenceMs = report.points.empty() ? 0.0 : report.points.front().timeMs;
-  std::printf("  %-13s %-32s %10s %8s %9s %8s %8s %12s\n", "knob", "setting", "time ms", "x ref", "rmse", "psnr dB",
-              "% off>1", "rays");
+  const double bestMs = report.points.empty() ? 0.0 : report.points.front().timeMs;
+  int settingWidth = 8;  // the best image's setting ("depth=6 light_samples=256 ...") is the widest
+  for (const TradeoffPoint& p : report.points) settingWidth = std::max(settingWidth, static_cast<int>(p.setting.label.size()));
+  std::printf("  %-13s %-*s %10s %8s %9s %8s %8s %12s\n", "knob", settingWidth, "setting", "time ms", "x best", "rmse",
+              "psnr dB", "% off>1", "rays");
   for (const TradeoffPoint& p : report.points) {
     char psnr[16];
     if (std::isinf(p.error.psnrDb)) std::snprintf(psnr, sizeof psnr, "inf");
     else std::snprintf(psnr, sizeof psnr, "%.2f", p.error.psnrDb);
-    std::printf("  %-13s %-32s %10.2f %8.2f %9.4f %8s %8.3f %12llu\n", std::string(toString(p.setting.knob)).c_str(),
-                p.setting.label.c_str(), p.timeMs, p.timeMs > 0.0 ? referenceMs / p.timeMs : 0.0, p.error.rmse, psnr,
+    std::printf("  %-13s %-*s %10.2f %8.2f %9.4f %8s %8.3f %12llu\n", std::string(toString(p.setting.knob)).c_str(),
+                settingWidth, p.setting.label.c_str(), p.timeMs, p.timeMs > 0.0 ? bestMs / p.timeMs : 0.0, p.error.rmse, psnr,
                 p.error.pctOffByMoreThan1, static_cast<unsigned long long>(p.rays));
   }
 }

@@ -122,6 +122,11 @@ std::string Knob::format(int value) const {
   return std::to_string(value);
 }
 
+std::string Knob::formatLabel(int value) const {
+  if (isChoice()) return value >= 0 && value < static_cast<int>(choices.size()) ? std::string(choices[value].label) : "?";
+  return std::to_string(value);
+}
+
 std::string Knob::csvName() const {
   std::string text(name);
   for (char& c : text)
@@ -135,6 +140,18 @@ const Knob* findKnob(std::string_view name) {
   for (const Knob& k : kKnobs)
     if (k.name == name) return &k;
   return nullptr;
+}
+
+std::string describeKnobs(const SceneParameters& parameters, const RenderSettings& settings) {
+  std::string text;
+  for (const Knob& k : kKnobs) {
+    if (!k.matters(parameters, settings)) continue;
+    if (!text.empty()) text += ", ";
+    text += k.label;
+    text += ' ';
+    text += k.formatLabel(k.get(parameters, settings));
+  }
+  return text;
 }
 
 const Knob& depthKnob() { return *findKnob("depth"); }

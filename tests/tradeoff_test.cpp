@@ -12,6 +12,7 @@
 #include "rayview/plot.h"
 #include "rayview/tradeoff.h"
 #include "support/scene_builder.h"
+#include "support/test_meshes.h"
 
 namespace rayview {
 namespace {
@@ -140,7 +141,7 @@ TEST(KnobEnumeration, EveryKnobOfASceneWithMirrorsAndATriangularLight) {
   const Scene scene = wallScene(true);
   const std::vector<KnobSetting> all = enumerateKnobSettings(scene, TradeoffOptions{});
   ASSERT_FALSE(all.empty());
-  EXPECT_EQ(all.front().knob, TradeoffKnob::Reference);
+  EXPECT_EQ(all.front().knob, TradeoffKnob::BestImage);
   EXPECT_EQ(all.front().settings.accel, AccelKind::Reference);
   EXPECT_EQ(all.front().settings.lightSamples, 256);
   EXPECT_EQ(all.front().depth, 2);
@@ -182,6 +183,42 @@ TEST(KnobEnumeration, TheUsersLightModelAndRayStartHoldForEverySetting) {
   }
   // Samples only matter for the area model.
   EXPECT_TRUE(settingsOf(all, TradeoffKnob::LightSamples).empty());
+}
+
+TEST(KnobEnumeration, EachRowVariesOneKnobFromTheUsersSettings) {
+  const Scene scene = wallScene(true);  // depth 2, a mirror, a triangular light
+  TradeoffOptions options;
+  options.baseline.lightSamples = 6;
+  options.baseline.pixelSamples = 3;
+  options.baseline.secondaryRayStart = SecondaryRayStart::ExcludeHitTriangle;
+  const std::vector<KnobSetting> all = enumerateKnobSettings(scene, options);
+  RenderSettings users = options.baseline;
+  users.accel = availableAccel(AccelKind::Embree);
+  // The user's own values are among each knob's settings.
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::LightSamples)),
+            (std::vector<std::string>{"1", "2", "4", "6", "8", "16", "32", "64", "128", "256"}));
+  EXPECT_EQ(labelsOf(settingsOf(all, TradeoffKnob::PixelSamples)),
+            (std::vector<std::string>{"1", "2", "3", "4", "8", "16"}));
+  // Every row differs from the user's settings in its own knob only.
+  for (const KnobSetting& k : all) {
+    if (k.knob == TradeoffKnob::BestImage) continue;
+    RenderSettings expected = users;
+    if (k.knob == TradeoffKnob::LightSamples) expected.lightSamples = std::stoi(k.label);
+    if (k.knob == TradeoffKnob::PixelSamples) expected.pixelSamples = std::stoi(k.label);
+    if (k.knob == TradeoffKnob::Accel) expected.accel = k.settings.accel;
+    EXPECT_EQ(k.settings, expected) << toString(k.knob) << " " << k.label;
+    EXPECT_EQ(k.depth, k.knob == TradeoffKnob::Depth ? std::stoi(k.label) : 2) << toString(k.knob) << " " << k.label;
+    EXPECT_EQ(k.stride, k.knob == TradeoffKnob::Preview ? k.stride : 1);
+  }
+  // The best image improves the user's settings and keeps their samples per pixel.
+  const KnobSetting& best = all.front();
+  EXPECT_EQ(best.settings.lightSamples, 256);
+  EXPECT_EQ(best.settings.accel, AccelKind::Reference);
+  EXPECT_EQ(best.settings.pixelSamples, 3);
+  EXPECT_EQ(best.settings.secondaryRayStart, SecondaryRayStart::ExcludeHitTriangle);
+  EXPECT_EQ(best.depth, 2);
+  options.baseline.lightSamples = 1000;  // more than the best image's usual count: the best image has as many
+  EXPECT_EQ(enumerateKnobSettings(scene, options).front().settings.lightSamples, 1000);
 }
 
 TEST(KnobEnumeration, DeepScenesListPowersOfTwo) {
@@ -228,7 +265,7 @@ TEST(MeasureTradeoff, PreviewErrorFallsToZeroAtFullResolution) {
   EXPECT_EQ(report.threads, 2);
 
   const TradeoffPoint& reference = report.points.front();
-  EXPECT_EQ(reference.setting.knob, TradeoffKnob::Reference);
+  EXPECT_EQ(reference.setting.knob, TradeoffKnob::BestImage);
   EXPECT_EQ(reference.error.rmse, 0.0);
 
   std::vector<double> previewRmse;
@@ -256,6 +293,67 @@ TEST(MeasureTradeoff, PreviewErrorFallsToZeroAtFullResolution) {
     EXPECT_GT(p.timeMs, 0.0);
     EXPECT_EQ(p.runs, 1);
   }
+}
+
+// A sphere of 81 920 triangles filling most of a 200 x 150 image: big enough that a pass costs more the more
+// pixels it traces, as the user's scenes do, while each preview level stays well under a millisecond.
+Scene manyTriangles() {
+  Scene scene;
+  scene.camera = frontCamera(200);
+  scene.camera.height = 150;
+  scene.camera.bottom = -0.75;
+  scene.camera.top = 0.75;
+  scene.materials.push_back(plainMaterial("matte"));
+  testing::Placement placement;
+  placement.centre = {0.0, 0.0, -2.5};
+  placement.size = 1.6;
+  testing::addIcosphere(scene, placement, 6, 0);
+  scene.lights.of<PointLight>().push_back({"point", {1.0, 2.0, 0.0}, Color(4000.0f)});
+  return scene;
+}
+
+TEST(MeasureTradeoff, ACoarserPreviewLevelNeverCostsMoreThanAFinerOne) {
+  ThreadPool pool(2);
+  TradeoffOptions options;  // the repetitions the user's measurement makes
+  options.slowedRetries = 1;  // as the viewer: a busy machine slows the long renders, not this test's subject
+  options.maxPixelSamples = 1;
+  const TradeoffReport report = measureScene(manyTriangles(), options, pool);
+  ASSERT_FALSE(report.cancelled);
+  const char* const levels[] = {"1/16", "1/8", "1/4", "1/2", "1"};
+  for (std::size_t i = 0; i + 1 < std::size(levels); ++i) {
+    const TradeoffPoint& coarser = pointOf(report, TradeoffKnob::Preview, levels[i]);
+    const TradeoffPoint& finer = pointOf(report, TradeoffKnob::Preview, levels[i + 1]);
+    EXPECT_LT(coarser.rays, finer.rays) << levels[i];
+    EXPECT_LE(coarser.timeMs, finer.timeMs) << levels[i] << " took " << coarser.timeMs << " ms, " << levels[i + 1]
+                                            << " " << finer.timeMs << " ms";
+  }
+}
+
+TEST(MeasureTradeoff, TheBaselineIsTheUsersSettingsAndTheReportSaysWhichInThePanelsWords) {
+  ThreadPool pool(2);
+  TradeoffOptions options = quickOptions();
+  options.baseline.accel = availableAccel(AccelKind::Embree);
+  options.baseline.lightSamples = 4;
+  options.baseline.pixelSamples = 2;
+  options.maxLightSamples = 8;
+  options.referenceLightSamples = 8;
+  options.maxPixelSamples = 4;
+  const TradeoffReport report = measureScene(wallScene(true, 16), options, pool);
+  ASSERT_FALSE(report.cancelled);
+  EXPECT_EQ(report.baseline.settings.lightSamples, 4);
+  EXPECT_EQ(report.baseline.settings.pixelSamples, 2);
+  EXPECT_EQ(report.baseline.depth, 2);
+  // The full-resolution preview, 4 light samples and 2 samples per pixel are that one render.
+  const TradeoffPoint& full = pointOf(report, TradeoffKnob::Preview, "1");
+  EXPECT_EQ(full.rays, pointOf(report, TradeoffKnob::LightSamples, "4").rays);
+  EXPECT_EQ(full.rays, pointOf(report, TradeoffKnob::PixelSamples, "2").rays);
+  EXPECT_EQ(full.timeMs, pointOf(report, TradeoffKnob::LightSamples, "4").timeMs);
+  EXPECT_GT(full.rays, pointOf(report, TradeoffKnob::PixelSamples, "1").rays);
+  const std::string traversal = availableAccel(AccelKind::Embree) == AccelKind::Embree ? "Embree" : "reference BVH";
+  EXPECT_EQ(report.baselineText, "Max ray depth 2, Tri-light model area, Light samples 4, Traversal " + traversal +
+                                     ", Ray start offset off the surface, Samples per pixel 2");
+  EXPECT_EQ(report.bestText, "Max ray depth 2, Tri-light model area, Light samples 8, Traversal reference BVH, Ray "
+                             "start offset off the surface, Samples per pixel 2");
 }
 
 TEST(MeasureTradeoff, LightSamplesConvergeToTheReference) {
@@ -311,16 +409,61 @@ TEST(MeasureTradeoff, CancelBeforeStart) {
 TEST(MeasureTradeoff, ProgressCountsEveryRender) {
   ThreadPool pool(2);
   int lastDone = -1, planned = 0, calls = 0;
+  std::string lastWhat;
   measureScene((wallScene(false, 8)), quickOptions(), pool, nullptr,
                   [&](const TradeoffProgress& p) {
                     EXPECT_GE(p.rendersDone, lastDone);
+                    EXPECT_LT(p.rendersDone, p.rendersPlanned) << p.what;
                     lastDone = p.rendersDone;
                     planned = p.rendersPlanned;
+                    lastWhat = p.what;
                     ++calls;
                   });
   EXPECT_GT(planned, 0);
-  EXPECT_EQ(lastDone, planned - 1);  // reported before the last render
-  EXPECT_GE(calls, planned);
+  EXPECT_GE(calls, planned);  // every setting rendered alone once (for its image), then the quick ones together
+  // An 8 x 8 image renders in microseconds: every setting is quick, and the last report is their timing in turn.
+  const std::size_t number = lastWhat.find(" quick settings, in turn");
+  ASSERT_NE(number, std::string::npos) << lastWhat;
+  EXPECT_EQ(lastDone + std::stoi(lastWhat.substr(0, number)), planned);
+}
+
+// ---- The words users see
+
+TEST(TradeoffWords, TheBestImageIsNeverCalledReferenceAndTheKnobsHaveTheRenderPanelsLabels) {
+  const std::vector<KnobSetting> all = enumerateKnobSettings(wallScene(true), TradeoffOptions{});
+  EXPECT_EQ(toString(TradeoffKnob::BestImage), "best_image");
+  EXPECT_EQ(knobLabel(TradeoffKnob::BestImage), "best image");
+  EXPECT_EQ(describeRow(all.front()), "best image");
+  // The knob column shows the Render panel's labels (the knob table's), the CSV keeps its names.
+  EXPECT_EQ(knobLabel(TradeoffKnob::Preview), "Preview level");
+  for (TradeoffKnob knob : {TradeoffKnob::Depth, TradeoffKnob::LightSamples, TradeoffKnob::Accel,
+                            TradeoffKnob::PixelSamples}) {
+    ASSERT_NE(tableKnob(knob), nullptr);
+    EXPECT_EQ(knobLabel(knob), tableKnob(knob)->label);
+    EXPECT_EQ(toString(knob), tableKnob(knob)->csvName());
+  }
+  EXPECT_EQ(knobLabel(TradeoffKnob::Depth), "Max ray depth");
+  EXPECT_EQ(knobLabel(TradeoffKnob::LightSamples), "Light samples");
+  EXPECT_EQ(knobLabel(TradeoffKnob::Accel), "Traversal");
+  EXPECT_EQ(knobLabel(TradeoffKnob::PixelSamples), "Samples per pixel");
+  std::vector<std::string> rows;
+  for (const KnobSetting& k : all) {
+    const std::string row = describeRow(k);
+    rows.push_back(row);
+    EXPECT_EQ(row.find('_'), std::string::npos) << row;  // no snake_case
+    // "reference" only ever names the traversal back-end, by its panel label.
+    const std::size_t reference = row.find("reference");
+    EXPECT_TRUE(reference == std::string::npos || row.substr(reference) == "reference BVH") << row;
+  }
+  const auto has = [&](const std::string& row) { return std::find(rows.begin(), rows.end(), row) != rows.end(); };
+  EXPECT_TRUE(has("Preview level 1/16"));
+  EXPECT_TRUE(has("Max ray depth 2"));
+  EXPECT_TRUE(has("Light samples 64"));
+  EXPECT_TRUE(has("Traversal reference BVH"));
+  EXPECT_TRUE(has("Samples per pixel 4"));
+  if (availableAccel(AccelKind::Embree) == AccelKind::Embree) {
+    EXPECT_TRUE(has("Traversal Embree"));
+  }
 }
 
 // ---- CSV and plot
@@ -336,7 +479,7 @@ TEST(TradeoffCsv, HeaderAndARowPerSetting) {
   while (std::getline(rows, line)) {
     EXPECT_EQ(std::count(line.begin(), line.end(), ','), 7) << line;
     if (count == 0) {
-      EXPECT_EQ(line.rfind("default,reference,", 0), 0u) << line;
+      EXPECT_EQ(line.rfind("default,best_image,depth=2 light_samples=256 accel=reference samples=1,", 0), 0u) << line;
       EXPECT_NE(line.find(",0.0000,inf,0.0000,"), std::string::npos) << line;
     }
     ++count;

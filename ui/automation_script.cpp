@@ -168,6 +168,27 @@ void parseMeasureTradeoff(ScriptCommand& c, const std::vector<std::string>& t, L
   if (!(c.numbers[1] > 0.0)) p.fail("measure-tradeoff needs a positive timeout (" + usage + ")");
 }
 
+// tradeoff-apply advice | tradeoff-apply NAME VALUE: args[0] "advice" or the knob's name, numbers[0] its value.
+void parseTradeoffApply(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p) {
+  std::string names;
+  for (const Knob& knob : knobTable()) {
+    if (!knob.measuredByTradeoff) continue;
+    if (!names.empty()) names += '|';
+    names += knob.name;
+  }
+  const std::string usage = "tradeoff-apply advice, or tradeoff-apply " + names + " VALUE";
+  if (t.size() == 1 && t[0] == "advice") {
+    c.args = {t[0]};
+    return;
+  }
+  const Knob* knob = t.size() == 2 ? findKnob(t[0]) : nullptr;
+  if (!knob || !knob->measuredByTradeoff) p.fail("usage: " + usage);
+  const std::optional<int> value = knob->parse(t[1]);
+  if (!value) p.fail("tradeoff-apply " + t[0] + " expects " + knob->expectation() + " (" + usage + ")");
+  c.args = {t[0], t[1]};
+  c.numbers = {static_cast<double>(*value)};
+}
+
 }  // namespace
 
 Script parseScript(const std::string& text, const std::string& file) {
@@ -203,6 +224,7 @@ Script parseScript(const std::string& text, const std::string& file) {
       else if (c.name == "wait-frames") p.integers(tokens, 0, 1, "wait-frames N", 0, 1000000);
       else if (c.name == "sleep") p.numbers(tokens, 0, 1, "sleep SECONDS");
       else if (c.name == "measure-tradeoff") parseMeasureTradeoff(c, tokens, p);
+      else if (c.name == "tradeoff-apply") parseTradeoffApply(c, tokens, p);
       else if (c.name == "resize") p.integers(tokens, 0, 2, "resize WIDTH HEIGHT", 64, 16384);
       else if (c.name == "quit") {
         if (tokens.size() > 1) p.fail("usage: quit [EXIT_CODE]");

@@ -3,11 +3,13 @@
 #include <iterator>
 #include <cstdint>
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include <imgui.h>
 
 #include "panels.h"
+#include "tradeoff_advice.h"
 #include "tradeoff_task.h"
 #include "widgets.h"
 
@@ -17,37 +19,74 @@ namespace {
 const char* const kScaleNames[] = {"1/4 of the image", "1/2 of the image", "the whole image"};
 static_assert(std::size(kScaleNames) == std::size(kTradeoffScales));
 
-void resultTable(const TradeoffReport& report) {
+// The Apply button of a row that is a render setting: sets the knob as the Render panel does (an undoable
+// edit that restarts the render). The row matching what the user has now says so instead.
+void applyButton(const TradeoffPoint& p, std::size_t index, const SceneParameters& edits,
+                 const RenderSettings& settings, PanelActions& actions) {
+  const Knob* knob = tableKnob(p.setting.knob);
+  const std::optional<int> value = knobValue(p.setting);
+  if (!knob || !value) return;
+  if (knob->get(edits, settings) == *value) {
+    ImGui::TextDisabled("yours");
+    return;
+  }
+  ImGui::PushID(static_cast<int>(index));
+  if (ImGui::SmallButton("Apply")) actions.applyTradeoffRow = index;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Set %s to %s, as in Render (Ctrl+Z undoes it)", std::string(knob->label).c_str(),
+                      settingLabel(p.setting).c_str());
+  ImGui::PopID();
+}
+
+// One row per setting, under a row naming its knob with the Render panel's label.
+void resultTable(const TradeoffReport& report, const SceneParameters& edits, const RenderSettings& settings,
+                 PanelActions& actions) {
   const ImGuiTableFlags flags = ImGuiTableFlags_RowBg | ImGuiTableFlags_BordersInnerV | ImGuiTableFlags_SizingFixedFit;
   if (!ImGui::BeginTable("tradeoff", 5, flags)) return;
-  ImGui::TableSetupColumn("knob");
   ImGui::TableSetupColumn("setting", ImGuiTableColumnFlags_WidthStretch);
   ImGui::TableSetupColumn("ms");
   ImGui::TableSetupColumn("RMSE");
   ImGui::TableSetupColumn("% off>1");
+  ImGui::TableSetupColumn("");
   ImGui::TableHeadersRow();
-  for (const TradeoffPoint& p : report.points) {
+  const ImVec4 knobColour = ImGui::GetStyleColorVec4(ImGuiCol_PlotLinesHovered);
+  for (std::size_t i = 0; i < report.points.size(); ++i) {
+    const TradeoffPoint& p = report.points[i];
+    const bool best = p.setting.knob == TradeoffKnob::BestImage;
+    if (!best && (i == 0 || report.points[i - 1].setting.knob != p.setting.knob)) {
+      ImGui::TableNextRow();
+      ImGui::TableNextColumn();
+      ImGui::TextColored(knobColour, "%s", std::string(knobLabel(p.setting.knob)).c_str());
+    }
     ImGui::TableNextRow();
     ImGui::TableNextColumn();
-    ImGui::TextUnformatted(std::string(toString(p.setting.knob)).c_str());
+    if (best) {
+      ImGui::TextColored(knobColour, "%s", std::string(kBestImageLabel).c_str());
+      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", report.bestText.c_str());
+    } else {
+      ImGui::Indent();
+      ImGui::TextUnformatted(settingLabel(p.setting).c_str());
+      ImGui::Unindent();
+    }
     ImGui::TableNextColumn();
-    const bool reference = p.setting.knob == TradeoffKnob::Reference;
-    ImGui::TextUnformatted(reference ? "best" : p.setting.label.c_str());
-    if (reference && ImGui::IsItemHovered()) ImGui::SetTooltip("%s", p.setting.label.c_str());
-    ImGui::TableNextColumn();
-    ImGui::Text("%.1f", p.timeMs);
+    // Three digits: a coarse preview level takes hundredths of a millisecond.
+    if (p.timeMs < 100.0) ImGui::Text("%.3g", p.timeMs);
+    else ImGui::Text("%.0f", p.timeMs);
     ImGui::TableNextColumn();
     ImGui::Text("%.2f", p.error.rmse);
     ImGui::TableNextColumn();
     ImGui::Text("%.2f", p.error.pctOffByMoreThan1);
+    ImGui::TableNextColumn();
+    applyButton(p, i, edits, settings, actions);
   }
   ImGui::EndTable();
 }
 
 }  // namespace
 
-void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,
-                       PanelActions& actions) {
+void drawTradeoffPanel(TradeoffPanelState& state, const SceneParameters& edits, const RenderSettings& settings,
+                       bool canMeasure, const std::string& why, PanelActions& actions) {
+  const Camera& camera = edits.camera;
   if (state.reveal) ImGui::SetNextItemOpen(true);
   const bool open = ImGui::CollapsingHeader("Speed vs accuracy");
   if (state.reveal) {
@@ -55,8 +94,9 @@ void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool can
     state.reveal = false;
   }
   if (!open) return;
-  hintText("Renders every setting of each knob (preview level, depth, light samples, traversal) and compares "
-           "it with the best image. The render pauses meanwhile; an edit cancels.");
+  hintText("Renders every setting of each knob (Preview level, Max ray depth, Light samples, Traversal, Samples "
+           "per pixel), the others as you have them, and compares it with the best image. The render pauses "
+           "meanwhile; an edit cancels. Apply sets a row's value in Render.");
 
   ImGui::BeginDisabled(state.running);
   char preview[96];
@@ -93,6 +133,11 @@ void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool can
   ImGui::Text("%s, %d x %d, %zu settings, %.1f s", r.sceneName.c_str(), r.width, r.height, r.points.size(),
               r.totalMs / 1000.0);
   if (state.stale) ImGui::TextColored(ImVec4(0.95f, 0.75f, 0.3f, 1.0f), "Measured before the last edit or load.");
+  // Every row varies one knob from these; the best image improves them.
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(("Measured against your settings: " + r.baselineText + ".").c_str());
+  ImGui::PopTextWrapPos();
+  hintText(("Best image: " + r.bestText + ".").c_str());
   ImGui::Checkbox("Plot over the image", &state.showPlot);
   const std::string advice = tradeoffAdvice(r);
   if (!advice.empty()) {
@@ -100,8 +145,13 @@ void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool can
     ImGui::TextUnformatted(advice.c_str());
     ImGui::PopTextWrapPos();
   }
+  if (const TradeoffPoint* suggested = tradeoffSuggestion(r)) {
+    const std::string label = "Apply " + describeRow(suggested->setting);
+    if (ImGui::Button(label.c_str()))
+      actions.applyTradeoffRow = static_cast<std::size_t>(suggested - r.points.data());
+  }
   for (const std::string& note : r.notes) hintText(note.c_str());
-  resultTable(r);
+  resultTable(r, edits, settings, actions);
 }
 
 void drawTradeoffPlot(TradeoffPanelState& state, const ImageTexture& plot, float x, float y, float maxWidth,

@@ -32,6 +32,7 @@ struct PanelActions {
   bool cancelTradeoff = false;
   std::optional<std::string> loadReference;  // the Compare panel's path
   bool toggleDifference = false;
+  std::optional<std::size_t> applyTradeoffRow;  // Apply: the row's setting (an index into the report's points)
 };
 
 // The text fields and toggles of the file panels, kept between frames.
@@ -132,9 +133,10 @@ void drawLightsPanel(SceneParameters& edits, double sceneRadius);
 // `picked`: the material of the picked mesh, marked; `reveal`: open it (and the section) and scroll to it, once.
 void drawMaterialsPanel(SceneParameters& edits, bool hasTexture, std::optional<std::size_t> picked, bool reveal);
 void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display);
-// `canMeasure` is false (with `why`) while no scene can be measured.
-void drawTradeoffPanel(TradeoffPanelState& state, const Camera& camera, bool canMeasure, const std::string& why,
-                       PanelActions& actions);
+// `canMeasure` is false (with `why`) while no scene can be measured. `edits` and `settings` are the user's
+// now: the row matching them has no Apply button.
+void drawTradeoffPanel(TradeoffPanelState& state, const SceneParameters& edits, const RenderSettings& settings,
+                       bool canMeasure, const std::string& why, PanelActions& actions);
 
 void drawComparePanel(ComparePanelState& state, const CompareInfo& info, PanelActions& actions);
 

@@ -71,6 +71,8 @@ class SceneSession {
   bool hasPendingEdits() const;
   // The parameters the running render uses (what editedScene() holds).
   const SceneParameters& committedEdits() const { return committedEdits_; }
+  // The settings it uses (the traversal: the one the geometry was built with).
+  const RenderSettings& committedSettings() const { return committedSettings_; }
 
   // Counts edits that restarted the render (for stats and tests).
   std::uint64_t commitCount() const { return commits_; }

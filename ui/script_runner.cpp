@@ -177,6 +177,10 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     if (const std::string error = host.loadReference(c.args[0]); !error.empty()) return fail("compare: " + error);
     wait_ = Wait::Compare;
     deadline_ = Clock::now() + seconds(kDefaultWaitFinalSeconds);
+  } else if (name == "tradeoff-apply") {
+    const Knob* knob = c.args[0] == "advice" ? nullptr : findKnob(c.args[0]);
+    if (const std::string why = host.applyTradeoff(knob, knob ? static_cast<int>(c.numbers[0]) : 0); !why.empty())
+      fail("tradeoff-apply: " + why);
   } else if (name == "undo" || name == "redo") {
     SceneSession* session = host.session();
     if (!session) return fail("no scene is loaded");

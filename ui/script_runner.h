@@ -17,6 +17,7 @@
 namespace rayview {
 
 class SceneSession;
+struct Knob;
 
 // The newest speed-vs-accuracy measurement, as a script sees it.
 struct TradeoffState {
@@ -59,6 +60,9 @@ class ScriptHost {
   // Exposure and gamma: how the image area shows the image. Setting them never restarts the render.
   virtual DisplayMapping displayMapping() const = 0;
   virtual void setDisplayMapping(const DisplayMapping& mapping) = 0;
+  // Apply a row of the last result, as its Apply button does: the row setting `knob` to `value`, or (knob
+  // null) the setting the advice suggests. "" when applied, else why not.
+  virtual std::string applyTradeoff(const Knob* knob, int value) = 0;
   virtual void quit(int exitCode) = 0;
 };
 

@@ -18,44 +18,12 @@ TradeoffRequest tradeoffRequestFor(const SceneSession& session, double scale) {
   const std::filesystem::path& source = session.loaded().sourcePath;
   request.sceneName = source.empty() ? "default" : source.stem().string();
   request.options.resolutionScale = scale;
-  request.options.baseline = session.settings();
+  request.options.baseline = session.committedSettings();
   return request;
 }
 
 int scaledSide(int pixels, double scale) {
   return std::max(1, static_cast<int>(std::lround(pixels * scale)));
-}
-
-std::string tradeoffAdvice(const TradeoffReport& report) {
-  const TradeoffPoint* best = nullptr;
-  const TradeoffPoint* defaults = nullptr;
-  const TradeoffPoint* fastest = nullptr;
-  for (const TradeoffPoint& p : report.points) {
-    if (p.setting.knob == TradeoffKnob::Reference) best = &p;
-    if (p.setting.knob == TradeoffKnob::Preview && p.setting.stride == 1) defaults = &p;
-    if (p.setting.knob == TradeoffKnob::Reference || p.error.pctOffByMoreThan1 > kAdvicePctOff) continue;
-    if (!fastest || p.timeMs < fastest->timeMs) fastest = &p;
-  }
-  if (!best || !defaults) return {};
-  char line[320];
-  if (!fastest) {
-    std::snprintf(line, sizeof line,
-                  "No setting but the best image (%.1f ms) has %g%% of pixels or fewer off by more than 1; the "
-                  "defaults take %.1f ms with %.1f%% off.",
-                  best->timeMs, kAdvicePctOff, defaults->timeMs, defaults->error.pctOffByMoreThan1);
-  } else if (defaults->error.pctOffByMoreThan1 <= kAdvicePctOff && fastest->timeMs >= defaults->timeMs) {
-    std::snprintf(line, sizeof line,
-                  "The defaults are enough: %.1f ms with %.2f%% of pixels off by more than 1 (the best image: "
-                  "%.1f ms).",
-                  defaults->timeMs, defaults->error.pctOffByMoreThan1, best->timeMs);
-  } else {
-    std::snprintf(line, sizeof line,
-                  "Fastest with %g%% of pixels or fewer off by more than 1: %s %s, %.1f ms (the best image: %.1f ms; "
-                  "the defaults: %.1f ms with %.1f%% off).",
-                  kAdvicePctOff, std::string(toString(fastest->setting.knob)).c_str(), fastest->setting.label.c_str(),
-                  fastest->timeMs, best->timeMs, defaults->timeMs, defaults->error.pctOffByMoreThan1);
-  }
-  return line;
 }
 
 TradeoffTask::TradeoffTask(int threads)

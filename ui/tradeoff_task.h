@@ -32,18 +32,12 @@ struct TradeoffRequest {
 };
 
 // What the viewer measures: the committed edits, on the session's geometry (shared), at `scale` of the
-// image's resolution, from the session's settings.
+// image's resolution; every knob is varied from the committed settings (what the user has on screen).
 class SceneSession;
 TradeoffRequest tradeoffRequestFor(const SceneSession& session, double scale);
 
 // The side measured at `scale` of `pixels`, as measureTradeoff rounds it.
 int scaledSide(int pixels, double scale);
-
-// One line of advice from a finished report: the fastest setting that keeps all but kAdvicePctOff % of the
-// pixels within 1 of the best image, with the best image's time and the defaults' (the baseline: every knob at
-// its default) for comparison. "" without the reference and the baseline among the points.
-inline constexpr double kAdvicePctOff = 1.0;
-std::string tradeoffAdvice(const TradeoffReport& report);
 
 struct TradeoffResult {
   std::uint64_t id = 0;

@@ -288,7 +288,7 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       drawMaterialsPanel(session_->edits(), session_->loaded().texture.has_value(), picked,
                          session_->takeMaterialReveal());
       const std::string why = whyNoTradeoff();
-      drawTradeoffPanel(tradeoffPanel_, session_->edits().camera, why.empty(), why, actions);
+      drawTradeoffPanel(tradeoffPanel_, session_->edits(), session_->settings(), why.empty(), why, actions);
     }
     const CompareInfo compare{comparison_, haveFrame_ ? frame_.image.width : 0, haveFrame_ ? frame_.image.height : 0,
                               finalComparison().has_value()};
@@ -328,6 +328,7 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   if (actions.measureTradeoff) measureTradeoff(*actions.measureTradeoff);
   if (actions.loadReference) loadReference(*actions.loadReference);
   if (actions.toggleDifference || shortcuts.toggleDifference) toggleDifference();
+  if (actions.applyTradeoffRow) applyTradeoffRow(*actions.applyTradeoffRow);
   if (shortcuts.quit) quitFromUser();
   if (session_ && shortcuts.undo) session_->undo();
   if (session_ && shortcuts.redo) session_->redo();

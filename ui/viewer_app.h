@@ -83,6 +83,7 @@ class ViewerApp final : public ScriptHost {
   std::string comparisonProblem() const override;
   DisplayMapping displayMapping() const override { return display_.mapping; }
   void setDisplayMapping(const DisplayMapping& mapping) override { display_.mapping = mapping; }
+  std::string applyTradeoff(const Knob* knob, int value) override;
   void quit(int exitCode) override;
 
  private:
@@ -113,6 +114,8 @@ class ViewerApp final : public ScriptHost {
   void startRequestedTradeoff(const Layout& layout);
   bool pollTradeoff();
   void stopTradeoff(const std::string& why, bool restartRender);
+  // Apply: the setting of row `index` of the result shown goes into the session, as a Render panel edit.
+  void applyTradeoffRow(std::size_t index);
 
   // The newest pass as displayed (exposure and gamma), uploaded if it or the mapping changed.
   const ImageTexture& renderTexture();

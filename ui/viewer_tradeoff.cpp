@@ -6,6 +6,7 @@
 
 #include <imgui.h>
 
+#include "tradeoff_advice.h"
 #include "viewer_app.h"
 
 namespace rayview {
@@ -91,6 +92,26 @@ bool ViewerApp::pollTradeoff() {
   }
   if (session_) restartRender(session_->currentSource());
   return true;
+}
+
+std::string ViewerApp::applyTradeoff(const Knob* knob, int value) {
+  if (!session_) return "no scene is loaded";
+  if (!tradeoffPanel_.report) return "nothing has been measured";
+  const TradeoffReport& report = *tradeoffPanel_.report;
+  const TradeoffPoint* row = knob ? findTradeoffRow(report, *knob, value) : tradeoffSuggestion(report);
+  if (!row && knob) return "the measurement has no row " + std::string(knob->name) + " " + knob->format(value);
+  if (!row) return "the advice suggests no setting: " + tradeoffAdvice(report);
+  applyTradeoffRow(static_cast<std::size_t>(row - report.points.data()));
+  return {};
+}
+
+void ViewerApp::applyTradeoffRow(std::size_t index) {
+  if (!session_ || !tradeoffPanel_.report || index >= tradeoffPanel_.report->points.size()) return;
+  const KnobSetting& setting = tradeoffPanel_.report->points[index].setting;
+  // The same setter as the Render panel's widget: this frame's commit restarts the render, as one undo step.
+  if (!applyKnobSetting(*session_, setting)) return;
+  std::printf("tradeoff applied %s\n", describeRow(setting).c_str());
+  std::fflush(stdout);
 }
 
 void ViewerApp::stopTradeoff(const std::string& why, bool restart) {

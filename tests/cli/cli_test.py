@@ -136,7 +136,30 @@ def main():
     check(r.returncode == 2 and "missing.png" in r.stderr, "an unreadable image exits 2 naming it")
     r = run(["compare", out_png], a.rayview)
     check(r.returncode == 2, "compare with one image is a usage error (exit 2)")
+    check_bench_words(a, scene)
     print("cli: all checks passed")
+
+
+def check_bench_words(a, scene):
+    """`rayview bench tradeoff` calls the highest-quality image the best image: "reference" is a traversal."""
+    out = os.path.join(a.scratch, "tradeoff")
+    r = run(["bench", "tradeoff", scene, "--out", out, "--scale", "0.1", "--threads", "2"], a.rayview)
+    check(r.returncode == 0, "bench tradeoff measures bunny at 1/10 (exit 0)")
+    lines = [line.split() for line in r.stdout.splitlines()]
+    at = next((i for i, words in enumerate(lines) if words[:2] == ["knob", "setting"]), None)
+    check(at is not None and lines[at][2:6] == ["time", "ms", "x", "best"],
+          "the table compares each time with the best image's ('x best')")
+    rows = [words for words in lines[at + 1:] if words and not words[0].startswith("wrote")]
+    check(rows and rows[0][0] == "best_image" and "accel=reference" in rows[0], "the first row is the best image")
+    check(any(row[:2] == ["accel", "reference"] for row in rows), "the reference BVH keeps its knob choice name")
+    check(not any(row[0] == "reference" for row in rows), "no knob row is called 'reference'")
+    check("  best image: Max ray depth" in r.stdout and "Traversal reference BVH" in r.stdout
+          and "  baseline: Max ray depth" in r.stdout, "the table says what the best image and the baseline are")
+    with open(os.path.join(out, "tradeoff.csv")) as f:
+        csv = f.read().splitlines()
+    check(csv[1].startswith("bunny,best_image,") and not any(line.startswith("bunny,reference,") for line in csv)
+          and any(line.startswith("bunny,accel,reference,") for line in csv),
+          "the CSV's knob column: best_image for the best image, accel,reference for the back-end")
 
 
 def check_output_is_never_an_input(a):

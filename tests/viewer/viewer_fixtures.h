@@ -76,6 +76,10 @@ class FakeHost : public ScriptHost {
     tradeoff.error = "cancelled";
   }
   TradeoffState tradeoffState() const override { return tradeoff; }
+  std::string applyTradeoff(const Knob* knob, int value) override {
+    applied = knob ? std::string(knob->name) + " " + std::to_string(value) : "advice";
+    return applyError;
+  }
   std::string loadReference(const std::string& path) override {
     referencePath = path;
     return referenceError;
@@ -98,6 +102,7 @@ class FakeHost : public ScriptHost {
   int exitCode = -1;
   double measuredScale = 0.0;
   TradeoffState tradeoff;
+  std::string applied, applyError;
   std::string referencePath, referenceError, sizeProblem;
   std::optional<ImageError> comparison;  // of the final pass, once final
 };

@@ -174,6 +174,42 @@ TEST(ScriptRunner, MeasureTradeoffWaitsThenPrintsThePointCount) {
   EXPECT_FALSE(runner.failed());
 }
 
+TEST(AutomationScript, TradeoffApplyNamesAMeasuredKnobAndItsValueOrTheAdvice) {
+  const Script script = parseScript("tradeoff-apply light-samples 16\ntradeoff-apply accel reference\n"
+                                    "tradeoff-apply advice\n", "t");
+  ASSERT_EQ(script.commands.size(), 3u);
+  EXPECT_EQ(script.commands[0].args, (std::vector<std::string>{"light-samples", "16"}));
+  EXPECT_EQ(script.commands[0].numbers, (std::vector<double>{16.0}));
+  EXPECT_EQ(script.commands[1].numbers, (std::vector<double>{static_cast<double>(AccelKind::Reference)}));
+  EXPECT_EQ(script.commands[2].args, (std::vector<std::string>{"advice"}));
+  for (const char* bad : {"tradeoff-apply", "tradeoff-apply ray-start offset", "tradeoff-apply preview 4",
+                          "tradeoff-apply light-samples", "tradeoff-apply light-samples many",
+                          "tradeoff-apply accel bvh", "tradeoff-apply advice now"}) {
+    EXPECT_THROW(parseScript(bad, "t"), ScriptError) << bad;
+  }
+  try {
+    parseScript("tradeoff-apply ray-start offset\n", "t");
+  } catch (const ScriptError& error) {
+    EXPECT_NE(std::string(error.what()).find("t:1: usage: tradeoff-apply advice, or tradeoff-apply "
+                                             "depth|light-samples|accel|samples VALUE"),
+              std::string::npos)
+        << error.what();
+  }
+}
+
+TEST(ScriptRunner, TradeoffApplyAsksTheViewerAndFailsWithItsReason) {
+  FakeHost host(nullptr);
+  ScriptRunner runner(parseScript("tradeoff-apply samples 4\ntradeoff-apply advice\n", "t"));
+  host.frame(runner);
+  EXPECT_EQ(host.applied, "samples 4");
+  EXPECT_FALSE(runner.failed());
+  host.applyError = "the advice suggests no setting";
+  host.frame(runner);
+  EXPECT_EQ(host.applied, "advice");
+  ASSERT_TRUE(runner.failed());
+  EXPECT_EQ(runner.failure(), "t:2: tradeoff-apply: the advice suggests no setting");
+}
+
 TEST(ScriptRunner, MeasureTradeoffFailsWhenCancelledOrLate) {
   {
     FakeHost host(nullptr);

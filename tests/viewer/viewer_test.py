@@ -448,7 +448,8 @@ def case_tradeoff(args, work):
     script = os.path.join(work, "tradeoff.rvs")
     with open(script, "w") as f:
         f.write(f"resize 1280 800\nopen {scene}\nwait-final\nmeasure-tradeoff 0.25 240\nscreenshot {shot}\n"
-                "wait-final\nquit\n")
+                "wait-final\ntradeoff-apply light-samples 4\nwait-final\nprint-state\nundo\nwait-final\n"
+                "print-state\nquit\n")
     # The embedded default scene first: `open` replaces it with the small test scene.
     viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
     try:
@@ -456,7 +457,7 @@ def case_tradeoff(args, work):
             raise Failure("the tradeoff script failed\n" + viewer.output())
     finally:
         viewer.kill()
-    lines = [line for line in viewer.stdout if line.startswith("tradeoff")]
+    lines = [line for line in viewer.stdout if line.startswith("tradeoff") and not line.startswith("tradeoff applied")]
     if len(lines) != 1 or len(lines[0].split()) != 3 or lines[0].split()[2] != "points":
         raise Failure("expected one 'tradeoff N points' line\n" + viewer.output())
     points = int(lines[0].split()[1])
@@ -482,7 +483,17 @@ def case_tradeoff(args, work):
     white = sum(p == b"\xff\xff\xff" for p in plot) / len(plot)
     if white < 0.3 or len(set(plot)) < 20:
         raise Failure(f"no plot over the image ({white:.0%} white, {len(set(plot))} colours)")
-    print(f"  {points} points; screenshot {shot}: {len(panel)} colours in the panels, plot {white:.0%} white")
+    # Apply sets the row's knob as the Render panel does: a new final pass, one undo step.
+    if "tradeoff applied Light samples 4" not in viewer.stdout:
+        raise Failure("tradeoff-apply did not apply the row\n" + viewer.output())
+    after = viewer.stdout[viewer.stdout.index("tradeoff applied Light samples 4"):]
+    states = [line for line in after if line.startswith("state ")]
+    if not any(line.startswith("final pass generation") for line in after) or len(states) != 2 \
+            or "light_samples=4 " not in states[0] or " undo=1 redo=0 " not in states[0] \
+            or "light_samples=1 " not in states[1] or " undo=0 redo=1 " not in states[1]:
+        raise Failure("Apply should restart the render as one undoable edit\n" + viewer.output())
+    print(f"  {points} points; screenshot {shot}: {len(panel)} colours in the panels, plot {white:.0%} white; "
+          "applied Light samples 4, undone")
 
 
 def case_hidpi(args, work):

@@ -1,7 +1,7 @@
 #pragma once
 // The error-against-time chart of a tradeoff report, rasterised to an Image (no GL): a log time axis, a log
 // RMSE axis with a separate row for exact (0) results, one coloured series per knob with its settings
-// labelled, the reference as a star, a legend. The viewer may show it as a texture; the bench writes it as PNG.
+// labelled, the best image as a star, a legend. The viewer may show it as a texture; the bench writes it as PNG.
 
 #include "rayview/image.h"
 #include "rayview/tradeoff.h"

@@ -3,8 +3,9 @@
 // baseline, render the scene, time it and compare it with the highest-quality image. No GL: `rayview bench
 // tradeoff` and the viewer both use this.
 //
-// The knobs, each varied alone; the others stay at the baseline (full resolution, depth = the scene's
-// <maxraytracedepth>, 1 light sample, Embree):
+// The knobs, each varied alone; the others stay at the baseline: full resolution, the depth of the parameters
+// measured, and `options.baseline` (the viewer: the user's current settings and edits; the bench: the defaults
+// and its options). Each knob's list includes the baseline's value:
 //   preview       pixel strides 16, 8, 4, 2, 1 (labelled 1/16 .. 1). The image is the blocky upscale the viewer
 //                 shows (every pixel shows the sample at the top-left of its stride block); the time is that
 //                 pass rendered alone from scratch, every pixel of its grid, not the incremental pass the
@@ -12,39 +13,47 @@
 //   depth         0 .. the scene's maximum (every value up to kMaxDepthsListed, then powers of two and the
 //                 maximum). Without mirrors depth changes nothing: only 0 and the maximum are listed.
 //   light_samples 1, 2, 4 .. maxLightSamples, area model; only when the scene has triangular lights.
-//   accel         Embree and the reference BVH (only the reference when built without Embree).
-//   samples       anti-aliasing, 1, 2, 4 .. maxPixelSamples camera rays per pixel. The reference image keeps 1
-//                 (the course's convention): the error shown is how far anti-aliasing moves the image from it.
-// The highest-quality image ("reference" row): full resolution, the scene's maximum depth, referenceLightSamples
-// (when the scene has triangular lights), the reference BVH.
+//   accel         Embree and the reference BVH (only the reference BVH when built without Embree).
+//   samples       anti-aliasing, 1, 2, 4 .. maxPixelSamples camera rays per pixel. The best image keeps the
+//                 baseline's count (1 by default, the course's convention): the error shown is how far
+//                 anti-aliasing moves the image from it.
+// The best image (the highest-quality one; the "best_image" row): the baseline with the reference BVH and at
+// least referenceLightSamples (when light samples matter), at full resolution. It keeps the baseline's depth (the
+// scene's own) and samples per pixel.
 //
-// Time: the median of `timedRuns` renders of the setting (more for fast settings, one for very slow ones: see
-// TradeoffOptions), on the same thread pool, interleaved round by round over all settings so that a change of
-// machine load hits every setting alike. Only the render is timed (not the BVH build, reported once per
-// accelerator, nor the upscale). A run that other processes slowed (its threads got well under their share of
-// the CPU) is repeated, and the report's notes say how often that happened. Settings that coincide (the
-// baseline is the stride-1 preview, the maximum depth, 1 sample and Embree) are rendered and timed once and
-// share their figures.
+// Time: the median of `timedRuns` rounds (more for fast settings, one for very slow ones: see TradeoffOptions),
+// on the same thread pool, interleaved round by round over all settings so that a change of machine load hits
+// every setting alike. Only the render is timed (not the BVH build, reported once per accelerator, nor the
+// upscale). In a round, a render of 20 ms or more is timed alone; a run that other processes slowed (its
+// threads got well under their share of the CPU) is repeated, and the report's notes say how often that
+// happened. Quicker renders (the coarse preview levels) are timed together at the end of the round, in turn,
+// several times each, and each keeps its fastest time (the reasons: analysis/tradeoff_timing.h). Settings that
+// coincide (the baseline is the stride-1 preview, the depth's maximum, and one value of every other knob) are
+// rendered and timed once and share their figures.
 
 #include <atomic>
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "rayview/image_metrics.h"
+#include "rayview/knobs.h"
 #include "rayview/render_settings.h"
 #include "rayview/scene.h"
 #include "rayview/thread_pool.h"
 
 namespace rayview {
 
-enum class TradeoffKnob { Reference, Preview, Depth, LightSamples, Accel, PixelSamples };
+// BestImage is the highest-quality image every setting is compared with. It is never called "reference":
+// that word is the reference BVH's, a traversal back-end (the accel knob's choice).
+enum class TradeoffKnob { BestImage, Preview, Depth, LightSamples, Accel, PixelSamples };
 
-// "reference", "preview", and the knob table's CSV names ("depth", "light_samples", "accel"): the CSV's knob
-// column.
+// The CSV's and the bench's knob column: "best_image", "preview", and the knob table's CSV names ("depth",
+// "light_samples", "accel", "samples").
 std::string_view toString(TradeoffKnob knob);
 
 inline constexpr int kPreviewStrides[] = {16, 8, 4, 2, 1};
@@ -53,13 +62,13 @@ inline constexpr int kMaxDepthsListed = 10;  // deeper scenes list 0, 1, 2, 4, 8
 struct TradeoffOptions {
   double resolutionScale = 1.0;     // the camera resolution is multiplied by this (rounded, at least 1 pixel)
   int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
-  int referenceLightSamples = 256;  // samples per triangular light in the highest-quality image
+  int referenceLightSamples = 256;  // samples per triangular light in the best image (at least)
   int maxPixelSamples = 16;         // the samples knob goes 1, 2, 4 .. this
-  // What every setting starts from. Its accel is what the other knobs use (falls back to the reference BVH);
-  // the knobs not measured here (the triangular-light model, the ray start) are kept for every setting, the
-  // reference image included. Light samples are 1 except where the light_samples knob varies them.
+  // What every setting starts from (its accel falls back to the reference BVH when built without Embree).
+  // Each knob row varies one of its fields; the knobs not measured here (the triangular-light model, the ray
+  // start) are kept for every setting, the best image included.
   RenderSettings baseline;
-  int timedRuns = 3;                // the time is the median of this many runs, except:
+  int timedRuns = 3;                // the time is the median of this many rounds, except:
   double singleRunMs = 10000.0;     //   a setting whose first run takes longer than this is run once,
   double fastRunMs = 250.0;         //   one whose first run takes less than this (noisier) ...
   int fastTimedRuns = 7;            //   ... this many times
@@ -72,21 +81,36 @@ struct TradeoffOptions {
 
 // One setting of one knob: what to render.
 struct KnobSetting {
-  TradeoffKnob knob = TradeoffKnob::Reference;
-  std::string label;        // the CSV's setting column: "1/16", "3", "64", "embree"
+  TradeoffKnob knob = TradeoffKnob::BestImage;
+  std::string label;        // the CSV's setting column: "1/16", "3", "64", "embree" (settingLabel: the panel's)
   int stride = 1;           // pixel stride of the grid rendered; 1 = every pixel
   int depth = 0;            // the max ray depth rendered (SceneParameters::maxRayDepth)
   RenderSettings settings;
 };
 
-// The settings measured for `scene`, the reference first, then knob by knob in the order listed above.
+// The words the viewer's panel and the plots use: "best image", "Preview level", and for the others the knob
+// table's panel label ("Max ray depth", "Light samples", "Traversal", "Samples per pixel"), as the Render
+// panel shows them; never the CSV's snake_case names.
+inline constexpr std::string_view kBestImageLabel = "best image";
+std::string_view knobLabel(TradeoffKnob knob);
+// The knob-table row a knob of the measurement varies; nullptr for the best image and the preview level.
+const Knob* tableKnob(TradeoffKnob knob);
+// The value the setting gives its knob-table row (tableKnob), as Knob::get reads it: the depth, a count, a
+// choice's index. Nothing for the best image and the preview levels (not render settings).
+std::optional<int> knobValue(const KnobSetting& setting);
+// A setting in the panel's words: "1/16", "3", "Embree", "reference BVH"; "" for the best image.
+std::string settingLabel(const KnobSetting& setting);
+// "Light samples 4", "Preview level 1/16", "best image": the row, in the panel's words.
+std::string describeRow(const KnobSetting& setting);
+
+// The settings measured for `scene`, the best image first, then knob by knob in the order listed above.
 std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, const TradeoffOptions& options);
 
 struct TradeoffPoint {
   KnobSetting setting;
-  double timeMs = 0.0;       // median render time
-  int runs = 0;              // renders the median was taken over
-  ImageError error;          // against the reference image
+  double timeMs = 0.0;       // median render time over the rounds
+  int runs = 0;              // rounds the median was taken over
+  ImageError error;          // against the best image
   std::uint64_t rays = 0;    // rays of one render
 };
 
@@ -96,7 +120,10 @@ struct TradeoffReport {
   int threads = 0;
   double embreeBuildMs = 0.0, referenceBuildMs = 0.0;  // 0 when that accelerator was not built
   double totalMs = 0.0;      // the whole measurement, builds included
-  std::vector<TradeoffPoint> points;  // in enumerateKnobSettings order; the reference first
+  KnobSetting baseline;      // what every knob was varied from (the stride-1 preview)
+  std::string baselineText;  // describeKnobs of the baseline: "Max ray depth 3, Light samples 4, ..."
+  std::string bestText;      // the same for the highest-quality image
+  std::vector<TradeoffPoint> points;  // in enumerateKnobSettings order; the best image first
   std::vector<std::string> notes;     // what a reader should know ("no mirrors: depth changes nothing")
   bool cancelled = false;    // then `points` is empty
 };
@@ -104,7 +131,7 @@ struct TradeoffReport {
 struct TradeoffProgress {
   int rendersDone = 0;
   int rendersPlanned = 0;    // exact once every setting has been rendered once (it depends on their times)
-  std::string what;          // "depth 3", "building the reference BVH"
+  std::string what;          // "Max ray depth 3", "building the reference BVH"
 };
 using TradeoffProgressFn = std::function<void(const TradeoffProgress&)>;
 
@@ -114,7 +141,8 @@ using TradeoffProgressFn = std::function<void(const TradeoffProgress&)>;
 //   worker thread of its own, never from the UI thread, and pauses its progressive renderer meanwhile, or the
 //   times mean little.
 // - Raising `*cancel` stops within one tile of rendering; the report then says cancelled.
-// - `progress` is called on the calling thread before every BVH build and every render.
+// - `progress` is called on the calling thread before every BVH build, every render timed alone and every
+//   round's quick renders timed in turn.
 // Throws std::invalid_argument for a camera without pixels or a resolution scale <= 0.
 TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> geometry,
                                const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,

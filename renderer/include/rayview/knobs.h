@@ -55,6 +55,8 @@ struct Knob {
   std::optional<int> parse(std::string_view text) const;
   // The text of `value`: the number, or the choice's name.
   std::string format(int value) const;
+  // The text of `value` in the panel: the number, or the choice's label ("reference BVH").
+  std::string formatLabel(int value) const;
   // The trade-off CSV's name: `name` with '_' for '-'.
   std::string csvName() const;
 };
@@ -63,6 +65,10 @@ struct Knob {
 std::span<const Knob> knobTable();
 // The row called `name`, or nullptr.
 const Knob* findKnob(std::string_view name);
+
+// "Max ray depth 3, Light samples 4, Traversal Embree, ...": every knob that matters for these parameters and
+// settings, by its panel label and value, in the table's order.
+std::string describeKnobs(const SceneParameters& parameters, const RenderSettings& settings);
 
 // The depth knob's row, and the others the trade-off bench refers to.
 const Knob& depthKnob();
