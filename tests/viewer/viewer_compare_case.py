@@ -9,7 +9,7 @@ import os
 import subprocess
 
 from viewer_harness import (
-    IMAGE_CENTRE,
+    flip_then_difference,
     Failure,
     Viewer,
     copy_scene,
@@ -17,8 +17,7 @@ from viewer_harness import (
     read_png,
     render_headless,
     viewer_environment,
-    viewer_window,
-    xdotool)
+    viewer_window)
 
 # The block of the test scene's 480x300 image that the modified reference changes (columns, rows; end excluded):
 # over the red box and the floor, clear of the stats (bottom right) and the view's label (above the image).
@@ -95,17 +94,7 @@ def case_compare(args, work):
         # While the script sleeps: hold Space for the next screenshot, then release it and press D for the last.
         viewer.wait_for(f"screenshot {shots['render']}")
         window = viewer_window(viewer)
-        xdotool("keydown", "space")
-        try:
-            viewer.wait_for("showing reference", timeout=KEY_SECONDS)
-            viewer.wait_for(f"screenshot {shots['held']}", timeout=2 * KEY_SECONDS)
-        finally:
-            xdotool("keyup", "space")
-        viewer.wait_for("showing render", timeout=KEY_SECONDS)
-        xdotool("mousemove", "--window", window, *IMAGE_CENTRE)
-        xdotool("key", "d")
-        viewer.wait_for("showing difference", timeout=KEY_SECONDS)
-        viewer.wait_for(f"screenshot {shots['difference']}", timeout=2 * KEY_SECONDS)
+        flip_then_difference(viewer, window, shots['held'], shots['difference'], KEY_SECONDS)
         again = viewer.wait_for(f"compare {reference} ")
         if "exact=100.000%" not in again:
             raise Failure("loading the identical reference again should give exact=100%: " + again)

@@ -10,7 +10,7 @@ import math
 import os
 
 from viewer_harness import (
-    IMAGE_CENTRE,
+    flip_then_difference,
     Failure,
     Viewer,
     copy_scene,
@@ -18,8 +18,7 @@ from viewer_harness import (
     key,
     read_png,
     render_headless,
-    viewer_window,
-    xdotool)
+    viewer_window)
 
 # How long the script waits between its screenshots while the test holds or presses a key.
 KEY_SECONDS = 3
@@ -121,17 +120,7 @@ quit
         if not figures.endswith(" exact=100.000% within1=100.000% maxdiff=0 psnr=inf"):
             raise Failure("with exposure +1 the final pass should still be identical to `rayview render`: " + figures)
         window = viewer_window(viewer)
-        xdotool("keydown", "space")
-        try:
-            viewer.wait_for("showing reference", timeout=KEY_SECONDS)
-            viewer.wait_for(f"screenshot {files['held']}", timeout=2 * KEY_SECONDS)
-        finally:
-            xdotool("keyup", "space")
-        viewer.wait_for("showing render", timeout=KEY_SECONDS)
-        xdotool("mousemove", "--window", window, *IMAGE_CENTRE)
-        xdotool("key", "d")
-        viewer.wait_for("showing difference", timeout=KEY_SECONDS)
-        viewer.wait_for(f"screenshot {files['difference']}", timeout=2 * KEY_SECONDS)
+        flip_then_difference(viewer, window, files['held'], files['difference'], KEY_SECONDS)
         key(window, "ctrl+s")  # with exposure +1 on screen and "Frame as displayed" off: raw
         saved_by_key = viewer.wait_for("saved ", timeout=KEY_SECONDS).split(" ", 1)[1]
         if viewer.finish() != 0:

@@ -266,6 +266,22 @@ def cpu_seconds(pid):
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
+def flip_then_difference(viewer, window, held_shot, difference_shot, seconds):
+    """While a script sleeps between screenshots: hold Space (the reference) until `held_shot` is taken, release
+    it, press D (the difference view) and wait for `difference_shot`. Each key must take effect within `seconds`."""
+    xdotool("keydown", "space")
+    try:
+        viewer.wait_for("showing reference", timeout=seconds)
+        viewer.wait_for(f"screenshot {held_shot}", timeout=2 * seconds)
+    finally:
+        xdotool("keyup", "space")
+    viewer.wait_for("showing render", timeout=seconds)
+    xdotool("mousemove", "--window", window, *IMAGE_CENTRE)
+    xdotool("key", "d")
+    viewer.wait_for("showing difference", timeout=seconds)
+    viewer.wait_for(f"screenshot {difference_shot}", timeout=2 * seconds)
+
+
 # ---------------------------------------------------------------------------------------------- running a case
 
 def run_case(script, cases, args, screen=SCREEN, needs_display=True):
