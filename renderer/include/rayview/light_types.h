@@ -1,7 +1,7 @@
 #pragma once
 // The one list of light types. Everything else (the scene's light lists, the loader, the writer, the range
 // check, the tracer, the Lights panel, scripts) iterates over this list; a new light type is its own header
-// (see light_type.h for what it provides) plus one entry in LightTypes below.
+// (see light_type.h for what it provides) plus one entry in SceneLights below.
 
 #include <cstddef>
 #include <string>
@@ -59,7 +59,6 @@ class LightLists {
     for (const Light& light : of<Light>())
       if (auto shading = Light::Shading::prepare(light, origin, settings)) out.push_back(*shading);
   }
-
 
   std::tuple<std::vector<Types>...> lists_;
 };
