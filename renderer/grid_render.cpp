@@ -57,4 +57,27 @@ void fillBlocks(Image& image, int stride) {
   }
 }
 
+Image gridSamples(const Image& image, int stride) {
+  if (stride <= 1) return image;
+  Image samples(ceilDiv(image.width, stride), ceilDiv(image.height, stride));
+  for (int gy = 0; gy < samples.height; ++gy)
+    for (int gx = 0; gx < samples.width; ++gx) std::memcpy(samples.pixel(gx, gy), image.pixel(gx * stride, gy * stride), 3);
+  return samples;
+}
+
+Image upscaleBlocks(const Image& samples, int stride, int width, int height) {
+  if (stride <= 1) return samples;
+  Image image(width, height);
+  const auto rowBytes = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height; ++y) {
+    std::uint8_t* row = image.pixel(0, y);
+    if (y % stride != 0) {
+      std::memcpy(row, image.pixel(0, y - 1), rowBytes);
+      continue;
+    }
+    for (int x = 0; x < width; ++x) std::memcpy(row + 3 * x, samples.pixel(x / stride, y / stride), 3);
+  }
+  return image;
+}
+
 }  // namespace rayview

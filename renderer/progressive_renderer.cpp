@@ -142,8 +142,9 @@ void ProgressiveRenderer::publish(std::uint64_t generation, int stride, double p
   frame.passMs = passMs;
   frame.passRays = rays;
   frame.megaRaysPerSecond = passMs > 0.0 ? rays.total() / (passMs * 1000.0) : 0.0;
-  frame.image = samples_;
-  fillBlocks(frame.image, stride);
+  frame.width = samples_.width;
+  frame.height = samples_.height;
+  frame.image = gridSamples(samples_, stride);
   std::function<void()> listener;
   {
     std::lock_guard lock(mutex_);

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <thread>
 
+#include "rayview/grid_render.h"
 #include "rayview/progressive_renderer.h"
 
 namespace rayview {
@@ -87,10 +88,10 @@ TEST(ProgressiveRenderer, EveryPixelIsComputedExactlyOnceAndTheFinalFrameIsExact
     for (int x = 0; x < 37; ++x) ASSERT_EQ(frame.image.pixel(x, y)[0], 10 + (x * 7 + y * 13) % 50);
 }
 
-TEST(ProgressiveRenderer, CoarsePassesAreBlockyUpscalesOfTheirSamples) {
+TEST(ProgressiveRenderer, CoarsePassesPublishOneSamplePerBlockAndUpscaleToBlocks) {
   ProgressiveRenderer renderer(1);
-  auto source = std::make_shared<CountingSource>(40, 40, 0.0f);
-  renderer.setInteractive(true);  // hold the first (coarsest) pass
+  auto source = std::make_shared<CountingSource>(37, 23, 0.0f);  // partial blocks at the right and bottom
+  renderer.setInteractive(true);  // hold the first (coarse) pass
   const auto generation = renderer.restart(source);
   ProgressiveFrame frame;
   for (int i = 0; i < 500 && !renderer.takeFrameIfNewer(0, frame); ++i) std::this_thread::sleep_for(2ms);
@@ -98,16 +99,27 @@ TEST(ProgressiveRenderer, CoarsePassesAreBlockyUpscalesOfTheirSamples) {
   const int s = frame.stride;
   ASSERT_GT(s, 1);
   EXPECT_FALSE(frame.final);
-  for (int y = 0; y < 40; ++y)
-    for (int x = 0; x < 40; ++x) {
+  EXPECT_EQ(frame.width, 37);
+  EXPECT_EQ(frame.height, 23);
+  ASSERT_EQ(frame.image.width, (37 + s - 1) / s);
+  ASSERT_EQ(frame.image.height, (23 + s - 1) / s);
+  for (int gy = 0; gy < frame.image.height; ++gy)
+    for (int gx = 0; gx < frame.image.width; ++gx)
+      ASSERT_EQ(frame.image.pixel(gx, gy)[0], (gx * s * 7 + gy * s * 13) % 50) << gx << "," << gy;
+  const Image blocks = upscaleBlocks(frame.image, s, frame.width, frame.height);
+  ASSERT_EQ(blocks.width, 37);
+  ASSERT_EQ(blocks.height, 23);
+  for (int y = 0; y < 23; ++y)
+    for (int x = 0; x < 37; ++x) {
       const int sx = x - x % s, sy = y - y % s;
-      ASSERT_EQ(frame.image.pixel(x, y)[0], (sx * 7 + sy * 13) % 50) << x << "," << y;
+      ASSERT_EQ(blocks.pixel(x, y)[0], (sx * 7 + sy * 13) % 50) << x << "," << y;
     }
   // Held while interactive: nothing finer arrives.
   std::this_thread::sleep_for(50ms);
   EXPECT_EQ(latest(renderer).stride, s);
   renderer.setInteractive(false);
   EXPECT_TRUE(renderer.waitForFinal(generation, 10s));
+  EXPECT_EQ(latest(renderer).image.width, 37);
 }
 
 TEST(ProgressiveRenderer, CancelMidPassNeverPublishesTheStaleGeneration) {

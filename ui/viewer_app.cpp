@@ -13,6 +13,17 @@
 #include "window_capture.h"
 
 namespace rayview {
+namespace {
+
+// The share of a pass's texture (one texel per block) that the image covers: the blocks at the right and
+// bottom edges reach past it. Drawn over the image area with nearest filtering, the texels are the blocks.
+ImVec2 imageShareOfSamples(const ProgressiveFrame& frame) {
+  if (frame.image.width <= 0 || frame.image.height <= 0) return ImVec2(1.0f, 1.0f);
+  return ImVec2(static_cast<float>(frame.width) / static_cast<float>(frame.image.width * frame.stride),
+                static_cast<float>(frame.height) / static_cast<float>(frame.image.height * frame.stride));
+}
+
+}  // namespace
 
 ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
     : options_(options),
@@ -98,8 +109,8 @@ bool ViewerApp::takeNewFrame() {
   stats_.final = frame_.final;
   stats_.passMs = frame_.passMs;
   stats_.megaRaysPerSecond = frame_.megaRaysPerSecond;
-  stats_.width = frame_.image.width;
-  stats_.height = frame_.image.height;
+  stats_.width = frame_.width;
+  stats_.height = frame_.height;
   // The figures against a reference follow each final pass, never a coarse one.
   if (frame_.final) comparison_.compareFinal(frame_.image, frame_.version);
   return true;
@@ -135,11 +146,12 @@ ViewerApp::Layout ViewerApp::layout() const {
   l.viewX = l.panelWidth;
   l.viewWidth = std::max(io.DisplaySize.x - l.panelWidth, 1.0f);
   l.viewHeight = std::max(io.DisplaySize.y, 1.0f);
-  if (!texture_.empty()) {
+  if (haveFrame_ && frame_.width > 0 && frame_.height > 0) {
     // Fit the image in the view, keeping its aspect; its pixels are square.
-    const float scale = std::min(l.viewWidth / texture_.width(), l.viewHeight / texture_.height());
-    l.imageWidth = texture_.width() * scale;
-    l.imageHeight = texture_.height() * scale;
+    const float width = static_cast<float>(frame_.width), height = static_cast<float>(frame_.height);
+    const float scale = std::min(l.viewWidth / width, l.viewHeight / height);
+    l.imageWidth = width * scale;
+    l.imageHeight = height * scale;
     l.imageX = l.viewX + 0.5f * (l.viewWidth - l.imageWidth);
     l.imageY = l.viewY + 0.5f * (l.viewHeight - l.imageHeight);
   }
@@ -196,9 +208,10 @@ void ViewerApp::drawFrame() {
   startRequestedTradeoff(l);
 
   if (const ImageTexture& shown = shownImage(); !shown.empty()) {
+    const ImVec2 uvMax = &shown == &texture_ ? imageShareOfSamples(frame_) : ImVec2(1.0f, 1.0f);
     ImGui::GetBackgroundDrawList()->AddImage(
         reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(shown.id())), ImVec2(l.imageX, l.imageY),
-        ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight));
+        ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight), ImVec2(0.0f, 0.0f), uvMax);
   }
   drawViewLabel(viewLabel(), l.viewX + l.viewWidth - ImGui::GetStyle().WindowPadding.x,
                 l.viewY + ImGui::GetStyle().WindowPadding.y);
@@ -276,7 +289,7 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       const std::string why = whyNoTradeoff();
       drawTradeoffPanel(tradeoffPanel_, session_->edits().camera, why.empty(), why, actions);
     }
-    const CompareInfo compare{comparison_, haveFrame_ ? frame_.image.width : 0, haveFrame_ ? frame_.image.height : 0,
+    const CompareInfo compare{comparison_, haveFrame_ ? frame_.width : 0, haveFrame_ ? frame_.height : 0,
                               finalComparison().has_value()};
     drawComparePanel(comparePanel_, compare, actions);
     ImGui::PopItemWidth();
