@@ -1,5 +1,6 @@
 #include "rayview/grid_render.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <mutex>
@@ -58,11 +59,22 @@ void fillBlocks(Image& image, int stride) {
 }
 
 Image gridSamples(const Image& image, int stride) {
-  if (stride <= 1) return image;
-  Image samples(ceilDiv(image.width, stride), ceilDiv(image.height, stride));
+  Image samples;
+  copyGridSamples(image, stride, samples);
+  return samples;
+}
+
+void copyGridSamples(const Image& image, int stride, Image& samples) {
+  stride = std::max(stride, 1);
+  samples.width = ceilDiv(image.width, stride);
+  samples.height = ceilDiv(image.height, stride);
+  if (stride == 1) {
+    samples.rgb.assign(image.rgb.begin(), image.rgb.end());  // within the old capacity: no allocation
+    return;
+  }
+  samples.rgb.resize(static_cast<std::size_t>(samples.width) * samples.height * 3);
   for (int gy = 0; gy < samples.height; ++gy)
     for (int gx = 0; gx < samples.width; ++gx) std::memcpy(samples.pixel(gx, gy), image.pixel(gx * stride, gy * stride), 3);
-  return samples;
 }
 
 Image upscaleBlocks(const Image& samples, int stride, int width, int height) {

@@ -25,6 +25,8 @@ void fillBlocks(Image& image, int stride);
 // The samples of the stride grid of `image` (each block's top-left pixel), one pixel per block:
 // ceil(width / stride) x ceil(height / stride). What a coarse pass publishes: far smaller than the image.
 Image gridSamples(const Image& image, int stride);
+// The same into `samples`, reusing its buffer when it is large enough.
+void copyGridSamples(const Image& image, int stride, Image& samples);
 
 // The other way: the width x height image in which every pixel shows its block's sample (what fillBlocks
 // makes of the full-size image).

@@ -101,6 +101,7 @@ class ProgressiveRenderer {
   // Written by the controller only while no pass of another generation can run.
   Image samples_;
   std::vector<PassTime> passTimes_;  // the newest passes, oldest first
+  Image spareImage_;                 // the buffer of the frame published before the newest, reused
   ProgressiveFrame published_;  // guarded by mutex_
   double firstPassMs_ = 0.0;     // of the generation being rendered; guarded by mutex_
   std::function<void()> frameListener_;  // guarded by mutex_
