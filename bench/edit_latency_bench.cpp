@@ -11,7 +11,8 @@
 // level: the median, finest and coarsest over the moves) and first_ms, from the move to that pass in the
 // waiting thread's hands (copied out, as the UI takes it; the texture upload is not in it), median and
 // largest. Goal: first_ms <= 16 at every size, and small scenes at full or half resolution. Each scene's
-// levels and times, move by move, go to stderr.
+// levels and times, move by move, go to stderr. Scenes: the conformance set and the 1M-triangle scene at their
+// size, the project's own scenes (scenes/), and three at 6400x4000.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -169,8 +170,8 @@ void registerDrag(const std::string& name, std::shared_ptr<const Scene> scene) {
       ->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(16);
 }
 
-void registerScenes() {
-  const std::filesystem::path dir = std::filesystem::path(RAYVIEW_SHARED_DIR) / "conformance" / "ceng477";
+// The scene files in `dir`, sorted (the conformance set's .ceng477.xml originals left out).
+std::vector<std::filesystem::path> sceneFiles(const std::filesystem::path& dir) {
   std::vector<std::filesystem::path> files;
   if (std::filesystem::exists(dir))
     for (const auto& entry : std::filesystem::directory_iterator(dir)) {
@@ -178,6 +179,12 @@ void registerScenes() {
       if (name.ends_with(".xml") && !name.ends_with(".ceng477.xml")) files.push_back(entry.path());
     }
   std::sort(files.begin(), files.end());
+  return files;
+}
+
+void registerScenes() {
+  const std::vector<std::filesystem::path> files =
+      sceneFiles(std::filesystem::path(RAYVIEW_SHARED_DIR) / "conformance" / "ceng477");
   std::vector<std::pair<std::string, std::shared_ptr<const Scene>>> scenes;
   for (const auto& file : files)
     scenes.emplace_back(file.stem().string(), std::make_shared<const Scene>(loadSceneFile(file).scene));
@@ -186,6 +193,10 @@ void registerScenes() {
     benchmark::RegisterBenchmark(("EditLatency/" + name).c_str(), measureEditLatency, scene)
         ->UseManualTime()->Unit(benchmark::kMillisecond)->Iterations(8);
   for (const auto& [name, scene] : scenes) registerDrag(name, scene);
+  // The project's own scenes: small ones, whose full pass fits a frame (a soft shadow under triangular_light's
+  // area light is what a user judges while dragging).
+  for (const auto& file : sceneFiles(std::filesystem::path(RAYVIEW_SOURCE_DIR) / "scenes"))
+    registerDrag("own_" + file.stem().string(), std::make_shared<const Scene>(loadSceneFile(file).scene));
   // The huge image of issue 10: a light scene, a heavy one, and a million triangles.
   for (const auto& [name, scene] : scenes)
     if (name == "bunny" || name == "car" || name == "generated_1M_triangles")
