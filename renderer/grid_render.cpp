@@ -1,5 +1,6 @@
 #include "rayview/grid_render.h"
 
+#include <algorithm>
 #include <atomic>
 #include <cstring>
 #include <mutex>
@@ -55,6 +56,40 @@ void fillBlocks(Image& image, int stride) {
     for (int x = 0; x < image.width; ++x)
       if (x % stride != 0) std::memcpy(row + 3 * x, row + 3 * (x - x % stride), 3);
   }
+}
+
+Image gridSamples(const Image& image, int stride) {
+  Image samples;
+  copyGridSamples(image, stride, samples);
+  return samples;
+}
+
+void copyGridSamples(const Image& image, int stride, Image& samples) {
+  stride = std::max(stride, 1);
+  samples.width = ceilDiv(image.width, stride);
+  samples.height = ceilDiv(image.height, stride);
+  if (stride == 1) {
+    samples.rgb.assign(image.rgb.begin(), image.rgb.end());  // within the old capacity: no allocation
+    return;
+  }
+  samples.rgb.resize(static_cast<std::size_t>(samples.width) * samples.height * 3);
+  for (int gy = 0; gy < samples.height; ++gy)
+    for (int gx = 0; gx < samples.width; ++gx) std::memcpy(samples.pixel(gx, gy), image.pixel(gx * stride, gy * stride), 3);
+}
+
+Image upscaleBlocks(const Image& samples, int stride, int width, int height) {
+  if (stride <= 1) return samples;
+  Image image(width, height);
+  const auto rowBytes = static_cast<std::size_t>(width) * 3;
+  for (int y = 0; y < height; ++y) {
+    std::uint8_t* row = image.pixel(0, y);
+    if (y % stride != 0) {
+      std::memcpy(row, image.pixel(0, y - 1), rowBytes);
+      continue;
+    }
+    for (int x = 0; x < width; ++x) std::memcpy(row + 3 * x, samples.pixel(x / stride, y / stride), 3);
+  }
+  return image;
 }
 
 }  // namespace rayview

@@ -1,7 +1,5 @@
 #include "rayview/progressive_renderer.h"
 
-#include <algorithm>
-
 #include "rayview/grid_render.h"
 
 namespace rayview {
@@ -90,15 +88,22 @@ void ProgressiveRenderer::controllerLoop() {
     }
     const bool final = [&] {
       if (!source || source->width() <= 0 || source->height() <= 0) return false;
-      if (samples_.width != source->width() || samples_.height != source->height())
-        samples_ = Image(source->width(), source->height());
+      const int width = source->width(), height = source->height();
+      if (samples_.width != width || samples_.height != height) samples_ = Image(width, height);
+      const int firstStride = choosePreviewStride(passTimes_, width, height,
+                                                  interactive_.load() ? kDragPassBudgetMs : kFirstPassBudgetMs);
+      firstStride_.store(firstStride);
       int previousStride = 0;
-      for (int stride = firstStride_.load(); stride >= 1; previousStride = stride, stride /= 2) {
+      for (int stride = firstStride; stride >= 1; previousStride = stride, stride /= 2) {
         const auto passStart = Clock::now();
         RayCounts rays;
-        if (!renderPass(*source, generation, stride, previousStride, rays)) return false;
+        const bool complete = renderPass(*source, generation, stride, previousStride, rays);
         const double passMs = msBetween(passStart, Clock::now());
-        if (previousStride == 0) adaptFirstStride(stride, passMs);
+        // The pixels on the previous pass's grid were not traced again.
+        const std::int64_t traced =
+            levelPixels(width, height, stride) - (previousStride > 0 ? levelPixels(width, height, previousStride) : 0);
+        remember({stride, traced, passMs, complete});
+        if (!complete) return false;
         publish(generation, stride, passMs, rays, restartTime);
         if (stride == 1) return true;
         // While the user drags, hold the coarse level until the drag ends or the next edit arrives.
@@ -135,32 +140,36 @@ void ProgressiveRenderer::publish(std::uint64_t generation, int stride, double p
   frame.passMs = passMs;
   frame.passRays = rays;
   frame.megaRaysPerSecond = passMs > 0.0 ? rays.total() / (passMs * 1000.0) : 0.0;
-  frame.image = samples_;
-  fillBlocks(frame.image, stride);
+  frame.width = samples_.width;
+  frame.height = samples_.height;
+  // Into the buffer of an earlier publication. At 6400x4000, on the shared 2-core machine, a fresh 77 MB
+  // buffer for the final pass cost 250-1000 ms of page faults, and freeing the final pass's buffer when the
+  // first move of a drag published its pass delayed that pass by 36-66 ms.
+  frame.image = std::move(spareImage_);
+  copyGridSamples(samples_, stride, frame.image);
   std::function<void()> listener;
   {
     std::lock_guard lock(mutex_);
-    if (generation_.load() != generation) return;  // stale: an edit arrived while this pass finished
+    if (generation_.load() != generation) {  // stale: an edit arrived while this pass finished
+      spareImage_ = std::move(frame.image);
+      return;
+    }
     frame.version = published_.version + 1;
     frame.msSinceRestart = msBetween(restartTime, Clock::now());
     if (published_.generation != generation) firstPassMs_ = frame.msSinceRestart;
     frame.firstPassMsSinceRestart = firstPassMs_;
-    published_ = std::move(frame);
+    std::swap(published_, frame);
     listener = frameListener_;
   }
+  spareImage_ = std::move(frame.image);
   if (listener) listener();
 }
 
-void ProgressiveRenderer::adaptFirstStride(int stride, double passMs) {
-  // A pass at stride s costs about (stride / s)^2 times this one. Pick the finest stride that fits the
-  // budget, but refine by one step per restart only, so one cheap frame cannot make the next scene's first
-  // pass slow; coarsen at once.
-  int fitting = kCoarsestStride;
-  for (int s = kCoarsestStride; s >= 1; s /= 2) {
-    const double ratio = static_cast<double>(stride) / s;
-    if (passMs * ratio * ratio <= kFirstPassBudgetMs) fitting = s;
-  }
-  firstStride_.store(fitting < stride ? stride / 2 : fitting);
+void ProgressiveRenderer::remember(const PassTime& pass) {
+  // The choice reads back to the newest complete pass; a few more cover a run of cancelled ones.
+  constexpr std::size_t kKept = 16;
+  if (passTimes_.size() == kKept) passTimes_.erase(passTimes_.begin());
+  passTimes_.push_back(pass);
 }
 
 }  // namespace rayview

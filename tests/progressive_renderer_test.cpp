@@ -6,6 +6,7 @@
 #include <mutex>
 #include <thread>
 
+#include "rayview/grid_render.h"
 #include "rayview/progressive_renderer.h"
 
 namespace rayview {
@@ -65,6 +66,13 @@ ProgressiveFrame latest(const ProgressiveRenderer& renderer) {
   return frame;
 }
 
+// Passes from `stride` down to full resolution, halving: 16 -> 5.
+unsigned passesFrom(int stride) {
+  unsigned passes = 1;
+  for (; stride > 1; stride /= 2) ++passes;
+  return passes;
+}
+
 TEST(ProgressiveRenderer, EveryPixelIsComputedExactlyOnceAndTheFinalFrameIsExact) {
   ProgressiveRenderer renderer(2);
   auto source = std::make_shared<CountingSource>(37, 23, 10.0f);  // sizes that are not multiples of 16
@@ -80,10 +88,10 @@ TEST(ProgressiveRenderer, EveryPixelIsComputedExactlyOnceAndTheFinalFrameIsExact
     for (int x = 0; x < 37; ++x) ASSERT_EQ(frame.image.pixel(x, y)[0], 10 + (x * 7 + y * 13) % 50);
 }
 
-TEST(ProgressiveRenderer, CoarsePassesAreBlockyUpscalesOfTheirSamples) {
+TEST(ProgressiveRenderer, CoarsePassesPublishOneSamplePerBlockAndUpscaleToBlocks) {
   ProgressiveRenderer renderer(1);
-  auto source = std::make_shared<CountingSource>(40, 40, 0.0f);
-  renderer.setInteractive(true);  // hold the first (coarsest) pass
+  auto source = std::make_shared<CountingSource>(37, 23, 0.0f);  // partial blocks at the right and bottom
+  renderer.setInteractive(true);  // hold the first (coarse) pass
   const auto generation = renderer.restart(source);
   ProgressiveFrame frame;
   for (int i = 0; i < 500 && !renderer.takeFrameIfNewer(0, frame); ++i) std::this_thread::sleep_for(2ms);
@@ -91,16 +99,27 @@ TEST(ProgressiveRenderer, CoarsePassesAreBlockyUpscalesOfTheirSamples) {
   const int s = frame.stride;
   ASSERT_GT(s, 1);
   EXPECT_FALSE(frame.final);
-  for (int y = 0; y < 40; ++y)
-    for (int x = 0; x < 40; ++x) {
+  EXPECT_EQ(frame.width, 37);
+  EXPECT_EQ(frame.height, 23);
+  ASSERT_EQ(frame.image.width, (37 + s - 1) / s);
+  ASSERT_EQ(frame.image.height, (23 + s - 1) / s);
+  for (int gy = 0; gy < frame.image.height; ++gy)
+    for (int gx = 0; gx < frame.image.width; ++gx)
+      ASSERT_EQ(frame.image.pixel(gx, gy)[0], (gx * s * 7 + gy * s * 13) % 50) << gx << "," << gy;
+  const Image blocks = upscaleBlocks(frame.image, s, frame.width, frame.height);
+  ASSERT_EQ(blocks.width, 37);
+  ASSERT_EQ(blocks.height, 23);
+  for (int y = 0; y < 23; ++y)
+    for (int x = 0; x < 37; ++x) {
       const int sx = x - x % s, sy = y - y % s;
-      ASSERT_EQ(frame.image.pixel(x, y)[0], (sx * 7 + sy * 13) % 50) << x << "," << y;
+      ASSERT_EQ(blocks.pixel(x, y)[0], (sx * 7 + sy * 13) % 50) << x << "," << y;
     }
   // Held while interactive: nothing finer arrives.
   std::this_thread::sleep_for(50ms);
   EXPECT_EQ(latest(renderer).stride, s);
   renderer.setInteractive(false);
   EXPECT_TRUE(renderer.waitForFinal(generation, 10s));
+  EXPECT_EQ(latest(renderer).image.width, 37);
 }
 
 TEST(ProgressiveRenderer, CancelMidPassNeverPublishesTheStaleGeneration) {
@@ -137,10 +156,72 @@ TEST(ProgressiveRenderer, CancelMidPassNeverPublishesTheStaleGeneration) {
   watcher.join();
   ASSERT_FALSE(seenGenerations.empty());
   for (std::uint64_t g : seenGenerations) EXPECT_EQ(g, secondGeneration);
-  EXPECT_LE(frame.version, 5u);  // versions count publications: at most the second render's five passes
+  // Versions count publications: at most the second render's passes.
+  EXPECT_LE(frame.version, passesFrom(renderer.firstStride()));
   EXPECT_LT(first->total(), 64 * 64);  // the first render stopped early
   for (int y = 0; y < 64; ++y)
     for (int x = 0; x < 64; ++x) ASSERT_EQ(second->count(x, y), 1);
+}
+
+TEST(ProgressiveRenderer, AFinalFrameStartedFromTheCoarsestLevelIsStillExact) {
+  ProgressiveRenderer renderer(2);
+  // A first pass of 16 pixels held 100 ms before it was cancelled: pixels that slow make the next restart
+  // start at the coarsest level.
+  auto slow = std::make_shared<CountingSource>(64, 64, 0.0f, true);
+  renderer.restart(slow);
+  slow->waitUntilStarted();
+  auto source = std::make_shared<CountingSource>(100, 70, 20.0f);
+  const auto generation = renderer.restart(source);
+  std::this_thread::sleep_for(100ms);
+  slow->release();
+  ASSERT_TRUE(renderer.waitForFinal(generation, 10s));
+  EXPECT_EQ(renderer.firstStride(), kCoarsestStride);
+  const ProgressiveFrame frame = latest(renderer);
+  EXPECT_EQ(frame.version, passesFrom(kCoarsestStride));
+  for (int y = 0; y < 70; ++y)
+    for (int x = 0; x < 100; ++x) {
+      ASSERT_EQ(source->count(x, y), 1) << x << "," << y;
+      ASSERT_EQ(frame.image.pixel(x, y)[0], 20 + (x * 7 + y * 13) % 50) << x << "," << y;
+    }
+}
+
+// A source whose every pixel takes at least `msPerPixel` (it sleeps): the slowest a scene can be, whatever the
+// machine.
+class SlowSource final : public PixelSource {
+ public:
+  SlowSource(int size, std::chrono::milliseconds msPerPixel) : size_(size), msPerPixel_(msPerPixel) {}
+  int width() const override { return size_; }
+  int height() const override { return size_; }
+  Color pixel(int, int, RayCounts&) const override {
+    std::this_thread::sleep_for(msPerPixel_);
+    return Color(0.0f);
+  }
+
+ private:
+  int size_;
+  std::chrono::milliseconds msPerPixel_;
+};
+
+TEST(ProgressiveRenderer, WhileDraggingASlowSceneEachMoveShowsALevelCoarserThanTheDefault) {
+  ProgressiveRenderer renderer(2);
+  renderer.setInteractive(true);
+  // The first move: nothing measured yet, the default level (16 pixels of 64x64, at least 32 ms on 2 threads).
+  auto source = std::make_shared<SlowSource>(64, 4ms);
+  auto waitForPassOf = [&](std::uint64_t generation) {
+    ProgressiveFrame frame;
+    for (int i = 0; i < 5000 && !(renderer.takeFrameIfNewer(0, frame) && frame.generation == generation); ++i)
+      std::this_thread::sleep_for(2ms);
+    return frame;
+  };
+  ProgressiveFrame first = waitForPassOf(renderer.restart(source));
+  ASSERT_EQ(first.stride, kUnmeasuredStride);
+  // The next moves: at least 2 ms a pixel does not fit 16 ms at 1/16; the level coarsens and stays coarse.
+  for (int move = 0; move < 3; ++move) {
+    const ProgressiveFrame frame = waitForPassOf(renderer.restart(source));
+    EXPECT_GT(frame.stride, kUnmeasuredStride) << "move " << move;
+    EXPECT_FALSE(frame.final);
+  }
+  renderer.restart(nullptr);
 }
 
 TEST(ProgressiveRenderer, ARestartSupersededBeforeItStartsComputesNothing) {

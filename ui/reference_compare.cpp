@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "rayview/grid_render.h"
+
 namespace rayview {
 namespace {
 
@@ -56,15 +58,19 @@ std::string ReferenceComparison::sizeProblem(int width, int height) const {
 }
 
 void ReferenceComparison::compareFinal(const Image& frame, std::uint64_t version) {
-  if (!comparable(frame) || (figures_ && figuresVersion_ == version)) return;
+  if (!comparable(frame.width, frame.height) || (figures_ && figuresVersion_ == version)) return;
   figures_ = compareToReference(frame, reference_);
   figuresVersion_ = version;
 }
 
-const Image& ReferenceComparison::difference(const Image& frame, std::uint64_t version) {
-  if (comparable(frame) && (differenceSerial_ == 0 || differenceOf_ != version || differenceReference_ != referenceSerial_)) {
-    difference_ = differenceImage(frame, reference_);
-    differenceOf_ = version;
+const Image& ReferenceComparison::difference(const ProgressiveFrame& frame) {
+  if (comparable(frame.width, frame.height) &&
+      (differenceSerial_ == 0 || differenceOf_ != frame.version || differenceReference_ != referenceSerial_)) {
+    // Differenced at the reference's size, block by block, as the coarse pass is seen.
+    difference_ = frame.stride > 1
+                      ? differenceImage(upscaleBlocks(frame.image, frame.stride, frame.width, frame.height), reference_)
+                      : differenceImage(frame.image, reference_);
+    differenceOf_ = frame.version;
     differenceReference_ = referenceSerial_;
     ++differenceSerial_;
   }

@@ -9,6 +9,7 @@
 
 #include "rayview/image.h"
 #include "rayview/image_metrics.h"
+#include "rayview/progressive_renderer.h"
 
 namespace rayview {
 
@@ -36,7 +37,7 @@ class ReferenceComparison {
   const std::string& loadError() const { return loadError_; }
   // Why an image of this size cannot be compared with the reference ("" when it can, or when there is none).
   std::string sizeProblem(int width, int height) const;
-  bool comparable(const Image& image) const { return loaded() && sizeProblem(image.width, image.height).empty(); }
+  bool comparable(int width, int height) const { return loaded() && sizeProblem(width, height).empty(); }
 
   // A final pass: its figures against the reference, once per frame version (nothing when the sizes differ).
   void compareFinal(const Image& frame, std::uint64_t version);
@@ -44,9 +45,10 @@ class ReferenceComparison {
   const std::optional<ImageError>& figures() const { return figures_; }
   std::uint64_t figuresVersion() const { return figuresVersion_; }
 
-  // The false-colour difference (rayview/image_metrics.h) of `frame`, any pass, with the reference; computed
-  // again only for another frame version or reference. Needs comparable(frame).
-  const Image& difference(const Image& frame, std::uint64_t version);
+  // The false-colour difference (rayview/image_metrics.h) of `frame`, any pass (a coarse one as its blocks),
+  // with the reference; computed again only for another frame version or reference. Needs comparable(frame's
+  // size).
+  const Image& difference(const ProgressiveFrame& frame);
   // Increases whenever difference() computes a new image (the texture is uploaded again).
   std::uint64_t differenceSerial() const { return differenceSerial_; }
 

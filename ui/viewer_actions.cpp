@@ -139,6 +139,8 @@ bool ViewerApp::pollFileWatch(Clock::time_point now) {
 
 std::filesystem::path ViewerApp::saveFrame(const std::string& path, FrameSave what) {
   if (!haveFrame_) throw ImageIoError("no frame to save yet");
+  // Callers wait for the final pass; a coarse pass holds one sample per block, never an image to save.
+  if (!frame_.final || frame_.stride != 1) throw ImageIoError("the render is still refining");
   // Raw: the pass itself, as `rayview render` writes it. Displayed: with the exposure and gamma on screen, which
   // at their defaults is the same image.
   const Image& image =

@@ -14,7 +14,6 @@
 #include "window_capture.h"
 
 namespace rayview {
-
 ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
     : options_(options),
       window_("rayview", kInitialWindowWidth, kInitialWindowHeight),
@@ -100,8 +99,8 @@ bool ViewerApp::takeNewFrame() {
   stats_.final = frame_.final;
   stats_.passMs = frame_.passMs;
   stats_.megaRaysPerSecond = frame_.megaRaysPerSecond;
-  stats_.width = frame_.image.width;
-  stats_.height = frame_.image.height;
+  stats_.width = frame_.width;
+  stats_.height = frame_.height;
   // The figures against a reference follow each final pass, never a coarse one.
   if (frame_.final) comparison_.compareFinal(frame_.image, frame_.version);
   return true;
@@ -138,10 +137,11 @@ ViewerApp::Layout ViewerApp::layout() const {
   l.viewWidth = std::max(io.DisplaySize.x - l.panelWidth, 1.0f);
   l.viewHeight = std::max(io.DisplaySize.y, 1.0f);
   l.framebufferScale = window_.framebufferScale();
-  if (!texture_.empty()) {
-    // Fitted (aspect kept, square pixels) unless the user zoomed (image_placement.h).
-    const ScreenRect placed = placement_.place({l.viewX, l.viewY, l.viewWidth, l.viewHeight}, texture_.width(),
-                                               texture_.height(), l.framebufferScale);
+  if (haveFrame_ && frame_.width > 0 && frame_.height > 0) {
+    // Fitted (aspect kept, square pixels) unless the user zoomed (image_placement.h). The image's size, not the
+    // texture's: a coarse pass's texture holds one texel per block.
+    const ScreenRect placed = placement_.place({l.viewX, l.viewY, l.viewWidth, l.viewHeight}, frame_.width,
+                                               frame_.height, l.framebufferScale);
     l.imageX = static_cast<float>(placed.x);
     l.imageY = static_cast<float>(placed.y);
     l.imageWidth = static_cast<float>(placed.width);
@@ -290,7 +290,7 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
       const std::string why = whyNoTradeoff();
       drawTradeoffPanel(tradeoffPanel_, session_->edits(), session_->settings(), why.empty(), why, actions);
     }
-    const CompareInfo compare{comparison_, haveFrame_ ? frame_.image.width : 0, haveFrame_ ? frame_.image.height : 0,
+    const CompareInfo compare{comparison_, haveFrame_ ? frame_.width : 0, haveFrame_ ? frame_.height : 0,
                               finalComparison().has_value()};
     drawComparePanel(comparePanel_, compare, actions);
     ImGui::PopItemWidth();

@@ -32,7 +32,7 @@ std::optional<ImageError> ViewerApp::finalComparison() const {
 std::string ViewerApp::comparisonProblem() const {
   if (!comparison_.loaded()) return comparison_.loadError().empty() ? "no reference image" : comparison_.loadError();
   // Only the final pass counts: a pass of the previous edits may still have another resolution.
-  if (finalFrameShown()) return comparison_.sizeProblem(frame_.image.width, frame_.image.height);
+  if (finalFrameShown()) return comparison_.sizeProblem(frame_.width, frame_.height);
   return {};
 }
 
@@ -50,7 +50,7 @@ void ViewerApp::toggleDifference() {
 }
 
 const ImageTexture& ViewerApp::shownImage() {
-  const bool comparable = haveFrame_ && comparison_.comparable(frame_.image);
+  const bool comparable = haveFrame_ && comparison_.comparable(frame_.width, frame_.height);
   const ImageView view = chooseImageView(navigation_.flipHeld(), comparePanel_.showDifference, comparable);
   if (view != shownView_) {
     shownView_ = view;
@@ -67,7 +67,7 @@ const ImageTexture& ViewerApp::shownImage() {
           shownReference_.serial());
       return referenceTexture_;
     case ImageView::Difference:
-      differenceTexture_.update(comparison_.difference(frame_.image, frame_.version), comparison_.differenceSerial());
+      differenceTexture_.update(comparison_.difference(frame_), comparison_.differenceSerial());
       return differenceTexture_;
     case ImageView::Render:
       break;

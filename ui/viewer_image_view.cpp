@@ -19,17 +19,24 @@
 namespace rayview {
 namespace {
 
-std::string rgbText(const Image& image, const ImagePixel& p) {
-  const std::uint8_t* c = image.pixel(p.i, p.j);
+std::string rgbText(const std::uint8_t* c) {
   return std::to_string(c[0]) + " " + std::to_string(c[1]) + " " + std::to_string(c[2]);
+}
+
+// The share of a pass's texture (one texel per block) that the image covers: the blocks at the right and
+// bottom edges reach past it. Drawn over the image area with nearest filtering, the texels are the blocks.
+ImVec2 imageShareOfSamples(const ProgressiveFrame& frame) {
+  if (frame.image.width <= 0 || frame.image.height <= 0) return ImVec2(1.0f, 1.0f);
+  return ImVec2(static_cast<float>(frame.width) / static_cast<float>(frame.image.width * frame.stride),
+                static_cast<float>(frame.height) / static_cast<float>(frame.image.height * frame.stride));
 }
 
 }  // namespace
 
 void ViewerApp::applyImageView(const Shortcuts& shortcuts, const Layout& l) {
-  if (texture_.empty()) return;
+  if (!haveFrame_ || frame_.width <= 0 || frame_.height <= 0) return;
   const ScreenRect view{l.viewX, l.viewY, l.viewWidth, l.viewHeight};
-  const int w = texture_.width(), h = texture_.height();
+  const int w = frame_.width, h = frame_.height;  // the image's pixels, whatever the pass
   const double scale = l.framebufferScale;
   // Another image size (another scene or resolution) starts fitted again.
   if (w != placedWidth_ || h != placedHeight_) {
@@ -65,18 +72,23 @@ void ViewerApp::applyImageView(const Shortcuts& shortcuts, const Layout& l) {
 void ViewerApp::drawImage(const ImageTexture& shown, const Layout& l) {
   ImDrawList* draw = ImGui::GetBackgroundDrawList();
   draw->PushClipRect(ImVec2(l.viewX, l.viewY), ImVec2(l.viewX + l.viewWidth, l.viewY + l.viewHeight), true);
+  // The render's texture holds a coarse pass's samples, one texel per block; the reference and the difference
+  // are at the image's size.
+  const bool samples = &shown == &texture_;
+  const ImVec2 uvMax = samples ? imageShareOfSamples(frame_) : ImVec2(1.0f, 1.0f);
   draw->AddImage(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(shown.id())), ImVec2(l.imageX, l.imageY),
-                 ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight));
+                 ImVec2(l.imageX + l.imageWidth, l.imageY + l.imageHeight), ImVec2(0.0f, 0.0f), uvMax);
+  const int imageWidth = samples ? frame_.width : shown.width(), imageHeight = samples ? frame_.height : shown.height();
   // A grid around the pixels once each is big enough to see it, over the visible ones only.
-  const double unitsPerPixel = l.imageWidth / shown.width();
+  const double unitsPerPixel = l.imageWidth / imageWidth;
   if (unitsPerPixel * l.framebufferScale >= kPixelGridZoom) {
     const ImU32 colour = IM_COL32(128, 128, 128, 96);
     const int firstColumn = std::max(0, static_cast<int>(std::floor((l.viewX - l.imageX) / unitsPerPixel)));
     const int lastColumn =
-        std::min(shown.width(), static_cast<int>(std::ceil((l.viewX + l.viewWidth - l.imageX) / unitsPerPixel)));
+        std::min(imageWidth, static_cast<int>(std::ceil((l.viewX + l.viewWidth - l.imageX) / unitsPerPixel)));
     const int firstRow = std::max(0, static_cast<int>(std::floor((l.viewY - l.imageY) / unitsPerPixel)));
     const int lastRow =
-        std::min(shown.height(), static_cast<int>(std::ceil((l.viewY + l.viewHeight - l.imageY) / unitsPerPixel)));
+        std::min(imageHeight, static_cast<int>(std::ceil((l.viewY + l.viewHeight - l.imageY) / unitsPerPixel)));
     for (int i = firstColumn; i <= lastColumn; ++i) {
       const float x = l.imageX + static_cast<float>(i * unitsPerPixel);
       draw->AddLine(ImVec2(x, l.imageY + firstRow * unitsPerPixel), ImVec2(x, l.imageY + lastRow * unitsPerPixel), colour);
@@ -96,16 +108,17 @@ void ViewerApp::drawPixelReadout(const Layout& l) {
   const bool onView = io.MousePos.x >= l.viewX && io.MousePos.x < l.viewX + l.viewWidth && io.MousePos.y >= l.viewY &&
                       io.MousePos.y < l.viewY + l.viewHeight;
   if (haveFrame_ && onView && !io.WantCaptureMouse)
-    pixel = ImagePlacement::pixelAt({l.imageX, l.imageY, l.imageWidth, l.imageHeight}, frame_.image.width,
-                                    frame_.image.height, screenPixelCentre(io.MousePos.x, l.framebufferScale),
+    pixel = ImagePlacement::pixelAt({l.imageX, l.imageY, l.imageWidth, l.imageHeight}, frame_.width,
+                                    frame_.height, screenPixelCentre(io.MousePos.x, l.framebufferScale),
                                     screenPixelCentre(io.MousePos.y, l.framebufferScale));
   if (!pixel) {
     readoutPixel_.reset();
     return;
   }
   std::string text = "pixel " + std::to_string(pixel->i) + ", " + std::to_string(pixel->j) + ": render " +
-                     rgbText(frame_.image, *pixel);
-  if (comparison_.comparable(frame_.image)) text += ", reference " + rgbText(comparison_.reference(), *pixel);
+                     rgbText(frame_.image.pixel(pixel->i / std::max(frame_.stride, 1), pixel->j / std::max(frame_.stride, 1)));
+  if (comparison_.comparable(frame_.width, frame_.height))
+    text += ", reference " + rgbText(comparison_.reference().pixel(pixel->i, pixel->j));
   if (!frame_.final) text += " (preview pass)";
   drawReadoutOverlay(text, l.viewX + ImGui::GetStyle().WindowPadding.x,
                      l.viewY + l.viewHeight - ImGui::GetStyle().WindowPadding.y);

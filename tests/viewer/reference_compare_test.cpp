@@ -9,6 +9,7 @@
 
 #include "automation_script.h"
 #include "navigation_input.h"
+#include "rayview/grid_render.h"
 #include "reference_compare.h"
 #include "script_runner.h"
 #include "viewer_fixtures.h"
@@ -24,6 +25,18 @@ Image gradient(int width, int height) {
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 3; ++c) image.pixel(x, y)[c] = static_cast<std::uint8_t>((x * 31 + y * 17 + c * 50) % 256);
   return image;
+}
+
+// A final pass of `image`, as the renderer publishes it.
+ProgressiveFrame finalFrame(const Image& image, std::uint64_t version) {
+  ProgressiveFrame frame;
+  frame.version = version;
+  frame.stride = 1;
+  frame.final = true;
+  frame.width = image.width;
+  frame.height = image.height;
+  frame.image = image;
+  return frame;
 }
 
 // ------------------------------------------------------------------------------------ which image shows
@@ -128,18 +141,41 @@ TEST(ReferenceComparison, TheDifferenceIsTheFalseColourMapOfTheFrameShownRecompu
   ASSERT_TRUE(comparison.load((dir / "ref.png").string(), 8, 4));
   Image frame = reference;
   frame.pixel(2, 1)[1] = static_cast<std::uint8_t>(frame.pixel(2, 1)[1] ^ 0x40);
-  EXPECT_EQ(comparison.difference(frame, 1).rgb, differenceImage(frame, reference).rgb);
-  const std::uint8_t* red = comparison.difference(frame, 1).pixel(2, 1);
+  EXPECT_EQ(comparison.difference(finalFrame(frame, 1)).rgb, differenceImage(frame, reference).rgb);
+  const std::uint8_t* red = comparison.difference(finalFrame(frame, 1)).pixel(2, 1);
   EXPECT_EQ(std::vector<int>(red, red + 3), (std::vector<int>{255, 0, 0}));
   const std::uint64_t serial = comparison.differenceSerial();
-  comparison.difference(frame, 1);
+  comparison.difference(finalFrame(frame, 1));
   EXPECT_EQ(comparison.differenceSerial(), serial);  // the same frame: not computed (nor uploaded) again
-  EXPECT_EQ(comparison.difference(reference, 2).rgb, differenceImage(reference, reference).rgb);
+  EXPECT_EQ(comparison.difference(finalFrame(reference, 2)).rgb, differenceImage(reference, reference).rgb);
   EXPECT_GT(comparison.differenceSerial(), serial);
   const std::uint64_t before = comparison.differenceSerial();
   ASSERT_TRUE(comparison.load((dir / "ref.png").string(), 8, 4));
-  comparison.difference(reference, 2);
+  comparison.difference(finalFrame(reference, 2));
   EXPECT_GT(comparison.differenceSerial(), before);  // another reference, the same frame version
+}
+
+TEST(ReferenceComparison, ACoarsePassIsDifferencedAsTheBlocksOnScreen) {
+  const fs::path dir = freshDirectory("reference_difference_coarse");
+  const Image reference = gradient(7, 3);  // blocks of 4 are cut at the right and bottom edges
+  writeImageFile(dir / "ref.png", reference);
+  ReferenceComparison comparison;
+  ASSERT_TRUE(comparison.load((dir / "ref.png").string(), 7, 3));
+  ProgressiveFrame coarse = finalFrame(gridSamples(reference, 4), 3);
+  coarse.final = false;
+  coarse.stride = 4;
+  coarse.width = 7;
+  coarse.height = 3;
+  ASSERT_EQ(coarse.image.width, 2);
+  const Image& difference = comparison.difference(coarse);
+  ASSERT_EQ(difference.width, 7);
+  ASSERT_EQ(difference.height, 3);
+  EXPECT_EQ(difference.rgb, differenceImage(upscaleBlocks(coarse.image, 4, 7, 3), reference).rgb);
+  // A block's sample is its top-left pixel: there the pass matches the reference; elsewhere it need not.
+  const Image identical = differenceImage(reference, reference);
+  auto at = [](const Image& image, int x, int y) { return std::vector<int>(image.pixel(x, y), image.pixel(x, y) + 3); };
+  EXPECT_EQ(at(difference, 4, 0), at(identical, 4, 0));
+  EXPECT_NE(at(difference, 5, 1), at(identical, 5, 1));
 }
 
 // ------------------------------------------------------------------------------------------------ keys

@@ -22,4 +22,14 @@ bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPo
 // blocky (never blurred) upscale of a coarse pass. In place.
 void fillBlocks(Image& image, int stride);
 
+// The samples of the stride grid of `image` (each block's top-left pixel), one pixel per block:
+// ceil(width / stride) x ceil(height / stride). What a coarse pass publishes: far smaller than the image.
+Image gridSamples(const Image& image, int stride);
+// The same into `samples`, reusing its buffer when it is large enough.
+void copyGridSamples(const Image& image, int stride, Image& samples);
+
+// The other way: the width x height image in which every pixel shows its block's sample (what fillBlocks
+// makes of the full-size image).
+Image upscaleBlocks(const Image& samples, int stride, int width, int height);
+
 }  // namespace rayview

@@ -1,10 +1,13 @@
 #pragma once
 // Coarse-to-fine rendering in the background (the viewer's engine; no GL here).
 //
-// Passes use pixel strides 16, 8, 4, 2, 1 (or start finer, see below). Pass k computes only the pixels on
-// its stride grid that no earlier pass computed, so every pixel is computed exactly once and the final pass
-// equals `rayview render` bit for bit. A published frame is the full-resolution image where every pixel
-// shows the nearest computed sample above-left of it (blocky upscaling, no blur).
+// Passes halve the pixel stride down to 1. The first pass's stride (its preview level) is chosen at each
+// restart from the passes just measured (rayview/preview_level.h): the finest that fits kFirstPassBudgetMs,
+// or kDragPassBudgetMs while the user drags. Pass k computes only the pixels on its stride grid that no
+// earlier pass computed, so every pixel is computed exactly once and the final pass equals `rayview render`
+// bit for bit, whatever the first level was. A coarse pass is published as its samples only, one pixel
+// per block (drawn enlarged with nearest filtering it is the blocky upscale, never a blur): a full-size copy
+// per pass cost about 250 ms at 6400x4000, copying it to the UI and uploading it more.
 //
 // Cancellation by generation: restart() bumps the generation and returns at once; workers check it per
 // tile; a pass whose generation is stale is never published. The UI thread never renders and never waits.
@@ -21,19 +24,19 @@
 
 #include "rayview/image.h"
 #include "rayview/pixel_source.h"
+#include "rayview/preview_level.h"
 #include "rayview/thread_pool.h"
 
 namespace rayview {
-
-inline constexpr int kCoarsestStride = 16;
-// The first pass of a restart is chosen to take about this long (so it shows within one 60 Hz frame).
-inline constexpr double kFirstPassBudgetMs = 8.0;
 
 struct ProgressiveFrame {
   std::uint64_t version = 0;     // increases with every published frame
   std::uint64_t generation = 0;  // the restart this frame belongs to
   int stride = 0;                // 1 = full resolution
   bool final = false;            // all pixels computed
+  int width = 0, height = 0;     // the image's size
+  // The pass's samples, one pixel per stride x stride block: ceil(width / stride) x ceil(height / stride); at
+  // stride 1, the image. upscaleBlocks (rayview/grid_render.h) makes the full-size blocky image.
   Image image;
   double passMs = 0.0;           // time of the pass that completed this frame
   double msSinceRestart = 0.0;   // from restart() to this frame's publication
@@ -57,7 +60,8 @@ class ProgressiveRenderer {
   // UI loop, so it can sleep while a pass renders). Must be cheap and thread-safe. Set it before restart().
   void setFrameListener(std::function<void()> listener);
 
-  // While true (the user is dragging), only the first pass of each restart is rendered.
+  // While true (the user is dragging), only the first pass of each restart is rendered, at the finest level
+  // that fits kDragPassBudgetMs.
   void setInteractive(bool interactive);
 
   // Copies the newest complete frame into `out` if its version is newer than `haveVersion`.
@@ -70,7 +74,7 @@ class ProgressiveRenderer {
   // Blocks until the render of `generation` is final or superseded (tests, automation). Returns true if final.
   bool waitForFinal(std::uint64_t generation, std::chrono::milliseconds timeout) const;
 
-  // The stride the next restart starts with (adapted from measured pass times).
+  // The stride the newest restart started with (chosen from measured pass times).
   int firstStride() const { return firstStride_.load(); }
 
  private:
@@ -79,12 +83,12 @@ class ProgressiveRenderer {
                   RayCounts& rays);
   void publish(std::uint64_t generation, int stride, double passMs,
                const RayCounts& rays, std::chrono::steady_clock::time_point restartTime);
-  void adaptFirstStride(int stride, double passMs);
+  void remember(const PassTime& pass);
 
   ThreadPool pool_;
   std::atomic<std::uint64_t> generation_{0};
   std::atomic<bool> interactive_{false};
-  std::atomic<int> firstStride_{kCoarsestStride};
+  std::atomic<int> firstStride_{kUnmeasuredStride};
 
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
@@ -96,6 +100,8 @@ class ProgressiveRenderer {
 
   // Written by the controller only while no pass of another generation can run.
   Image samples_;
+  std::vector<PassTime> passTimes_;  // the newest passes, oldest first
+  Image spareImage_;                 // the buffer of the frame published before the newest, reused
   ProgressiveFrame published_;  // guarded by mutex_
   double firstPassMs_ = 0.0;     // of the generation being rendered; guarded by mutex_
   std::function<void()> frameListener_;  // guarded by mutex_
