@@ -1,5 +1,7 @@
 #include "rayview/progressive_renderer.h"
 
+#include <algorithm>
+
 #include "rayview/grid_render.h"
 
 namespace rayview {
@@ -93,23 +95,38 @@ void ProgressiveRenderer::controllerLoop() {
       const int firstStride = choosePreviewStride(passTimes_, width, height,
                                                   interactive_.load() ? kDragPassBudgetMs : kFirstPassBudgetMs);
       firstStride_.store(firstStride);
+      // Anti-aliasing: the coarse-to-fine passes trace each pixel's first sample, then one pass per further
+      // sample adds it to the running sums, until the last makes the mean `rayview render` computes.
+      const int pixelSamples = std::max(source->samplesPerPixel(), 1);
+      if (pixelSamples > 1) sums_.resize(static_cast<std::size_t>(width) * height);
+      // While the user drags, hold each pass until the drag ends or the next edit arrives.
+      auto holdWhileDragging = [&] {
+        std::unique_lock lock(mutex_);
+        changed_.wait(lock, [&] { return stopping_ || generation_.load() != generation || !interactive_.load(); });
+        return generation_.load() == generation;
+      };
       int previousStride = 0;
       for (int stride = firstStride; stride >= 1; previousStride = stride, stride /= 2) {
         const auto passStart = Clock::now();
         RayCounts rays;
-        const bool complete = renderPass(*source, generation, stride, previousStride, rays);
+        const bool complete = renderPass(*source, generation, stride, previousStride, pixelSamples > 1, rays);
         const double passMs = msBetween(passStart, Clock::now());
         // The pixels on the previous pass's grid were not traced again.
         const std::int64_t traced =
             levelPixels(width, height, stride) - (previousStride > 0 ? levelPixels(width, height, previousStride) : 0);
         remember({stride, traced, passMs, complete});
         if (!complete) return false;
-        publish(generation, stride, passMs, rays, restartTime);
-        if (stride == 1) return true;
-        // While the user drags, hold the coarse level until the drag ends or the next edit arrives.
-        std::unique_lock lock(mutex_);
-        changed_.wait(lock, [&] { return stopping_ || generation_.load() != generation || !interactive_.load(); });
-        if (generation_.load() != generation) return false;
+        publish(generation, stride, {1, pixelSamples}, passMs, rays, restartTime);
+        if (stride == 1 && pixelSamples == 1) return true;
+        if (!holdWhileDragging()) return false;
+      }
+      for (int k = 1; k < pixelSamples; ++k) {
+        const auto passStart = Clock::now();
+        RayCounts rays;
+        if (!accumulatePass(*source, generation, k, rays)) return false;
+        publish(generation, 1, {k + 1, pixelSamples}, msBetween(passStart, Clock::now()), rays, restartTime);
+        if (k + 1 == pixelSamples) return true;
+        if (!holdWhileDragging()) return false;
       }
       return false;
     }();
@@ -123,20 +140,42 @@ void ProgressiveRenderer::controllerLoop() {
 }
 
 bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t generation, int stride,
-                                     int previousStride, RayCounts& rays) {
+                                     int previousStride, bool firstSamples, RayCounts& rays) {
+  const auto stopped = [&] { return generation_.load(std::memory_order_relaxed) != generation; };
   // Pixels on the previous (coarser) pass's grid were computed by it: never twice.
-  renderGrid([&](int x, int y, RayCounts& counts) { return source.pixel(x, y, counts); }, stride, previousStride,
-             pool_, samples_, rays,
-             [&] { return generation_.load(std::memory_order_relaxed) != generation; });
+  if (firstSamples) {
+    // Each pixel is traced by one worker: its running sum is its own.
+    renderGrid(
+        [&](int x, int y, RayCounts& counts) {
+          return sums_[static_cast<std::size_t>(y) * samples_.width + x] = source.sample(x, y, 0, counts);
+        },
+        stride, previousStride, pool_, samples_, rays, stopped);
+  } else {
+    renderGrid([&](int x, int y, RayCounts& counts) { return source.pixel(x, y, counts); }, stride, previousStride,
+               pool_, samples_, rays, stopped);
+  }
   return generation_.load() == generation;
 }
 
-void ProgressiveRenderer::publish(std::uint64_t generation, int stride, double passMs,
+bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_t generation, int k, RayCounts& rays) {
+  const float count = static_cast<float>(k + 1);
+  renderGrid(
+      [&](int x, int y, RayCounts& counts) {
+        Color& sum = sums_[static_cast<std::size_t>(y) * samples_.width + x];
+        sum += source.sample(x, y, k, counts);
+        return sum / count;  // after the last sample, the expression Tracer::tracePixel ends with
+      },
+      1, 0, pool_, samples_, rays, [&] { return generation_.load(std::memory_order_relaxed) != generation; });
+  return generation_.load() == generation;
+}
+
+void ProgressiveRenderer::publish(std::uint64_t generation, int stride, SampleCount samples, double passMs,
                                   const RayCounts& rays, Clock::time_point restartTime) {
   ProgressiveFrame frame;
   frame.generation = generation;
   frame.stride = stride;
-  frame.final = stride == 1;
+  frame.samples = samples;
+  frame.final = stride == 1 && samples.done == samples.total;
   frame.passMs = passMs;
   frame.passRays = rays;
   frame.megaRaysPerSecond = passMs > 0.0 ? rays.total() / (passMs * 1000.0) : 0.0;

@@ -28,6 +28,11 @@ void illuminateAll(const Shadings& lights, const glm::dvec3& p, std::uint32_t pi
   for (const auto& light : lights) light.illuminate(p, pixelSeed, visit);
 }
 
+// Seeds the pixel's stratified offsets and light samples.
+std::uint32_t seedOfPixel(int i, int j) {
+  return hash32(static_cast<std::uint32_t>(j) * 0x9E3779B1U + static_cast<std::uint32_t>(i));
+}
+
 }  // namespace
 
 ShadingGeometry prepareShadingGeometry(const SceneGeometry& scene, const glm::dvec3& origin) {
@@ -79,18 +84,24 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   useTexture_ = meshes.texture.has_value() && !meshes.texture->rgb.empty();
 }
 
+int Tracer::pixelSamples() const { return std::clamp(settings_.pixelSamples, 1, kMaxPixelSamples); }
+
 Color Tracer::tracePixel(int i, int j, RayCounts& counts) const {
-  const std::uint32_t seed = hash32(static_cast<std::uint32_t>(j) * 0x9E3779B1U + static_cast<std::uint32_t>(i));
-  const int samples = std::clamp(settings_.pixelSamples, 1, kMaxPixelSamples);
-  if (samples == 1) return traceCameraRay(i, j, seed, counts);  // the pixel's centre, as the course's images
+  const int samples = pixelSamples();
+  if (samples == 1) return traceSample(i, j, 0, counts);  // the pixel's centre, as the course's images
   Color sum(0.0f);
-  for (int k = 0; k < samples; ++k) {
-    const glm::vec2 offset = pixelSampleOffset(k, samples, seed);
-    // pixelDirection aims at i + 0.5: shift by the offset from the centre. Light samples vary per camera ray.
-    sum += traceCameraRay(i + (offset.x - 0.5), j + (offset.y - 0.5), hash32(seed + static_cast<std::uint32_t>(k)),
-                          counts);
-  }
+  for (int k = 0; k < samples; ++k) sum += traceSample(i, j, k, counts);
   return sum / static_cast<float>(samples);
+}
+
+Color Tracer::traceSample(int i, int j, int k, RayCounts& counts) const {
+  const std::uint32_t seed = seedOfPixel(i, j);
+  const int samples = pixelSamples();
+  if (samples == 1) return traceCameraRay(i, j, seed, counts);
+  const glm::vec2 offset = pixelSampleOffset(k, samples, seed);
+  // pixelDirection aims at i + 0.5: shift by the offset from the centre. Light samples vary per camera ray.
+  return traceCameraRay(i + (offset.x - 0.5), j + (offset.y - 0.5), hash32(seed + static_cast<std::uint32_t>(k)),
+                        counts);
 }
 
 Color Tracer::traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const {

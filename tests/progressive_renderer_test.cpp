@@ -6,7 +6,12 @@
 #include <mutex>
 #include <thread>
 
+#include "rayview/frame_renderer.h"
 #include "rayview/grid_render.h"
+#include "rayview/pixel_source.h"
+#include "rayview/prepared_scene.h"
+#include "rayview/scene_loader.h"
+#include "rayview/scene_source.h"
 #include "rayview/progressive_renderer.h"
 
 namespace rayview {
@@ -268,6 +273,61 @@ TEST(ProgressiveRenderer, DestroyingWhileRenderingDoesNotHang) {
     renderer.restart(source);
   }
   SUCCEED();
+}
+
+}  // namespace
+}  // namespace rayview
+
+namespace rayview {
+namespace {
+
+// Anti-aliasing in the viewer: after the coarse-to-fine passes of each pixel's first sample, one pass per
+// further sample; every one is published with its count, and the last is `rayview render` bit for bit.
+TEST(ProgressiveRenderer, AntiAliasingSamplesAccumulatePassByPassAndTheLastEqualsTheHeadlessRender) {
+  LoadedScene loaded = loadSceneText(defaultSceneXml(), "default scene", ".");
+  Scene& scene = loaded.scene;
+  scene.camera.width = 96;  // small and not a multiple of the coarse strides
+  scene.camera.height = 70;
+  RenderSettings settings;
+  settings.pixelSamples = 5;
+  settings.lightSamples = 3;  // the light samples vary per camera ray: they must accumulate in order too
+  auto shared = std::make_shared<const Scene>(scene);
+  auto geometry = prepareGeometry(shared, settings.accel);
+  const Tracer tracer(*shared, *geometry->accel, geometry->shading, settings);
+  ThreadPool pool(2);
+  Image headless;
+  FrameStats stats;
+  ASSERT_TRUE(renderFrame(tracer, scene.camera.width, scene.camera.height, pool, headless, stats));
+
+  ProgressiveRenderer renderer(2);
+  std::mutex mutex;
+  std::vector<SampleCount> seen;
+  Image firstSampleOnly;
+  // Called on the controller after each publication, before the next pass: it sees every frame.
+  renderer.setFrameListener([&] {
+    ProgressiveFrame frame;
+    if (!renderer.takeFrameIfNewer(0, frame)) return;
+    std::lock_guard lock(mutex);
+    if (frame.stride != 1) return;
+    seen.push_back(frame.samples);
+    if (frame.samples.done == 1) firstSampleOnly = frame.image;
+  });
+  auto source = std::make_shared<TracedImage>(std::make_shared<const SceneParameters>(scene.parameters()), geometry,
+                                              settings);
+  const std::uint64_t generation = renderer.restart(source);
+  ASSERT_TRUE(renderer.waitForFinal(generation, 60s));
+  ProgressiveFrame final;
+  ASSERT_TRUE(renderer.takeFrameIfNewer(0, final));
+  EXPECT_TRUE(final.final);
+  EXPECT_EQ(final.samples.done, 5);
+  EXPECT_EQ(final.samples.total, 5);
+  EXPECT_EQ(final.image.rgb, headless.rgb) << "the last pass is the headless render, bit for bit";
+
+  std::lock_guard lock(mutex);
+  ASSERT_EQ(seen.size(), 5u) << "one full-resolution frame per sample";
+  for (int k = 0; k < 5; ++k) EXPECT_EQ(seen[k].done, k + 1);
+  // The first full-resolution frame holds one sample per pixel: the edges are not yet smoothed.
+  EXPECT_NE(firstSampleOnly.rgb, headless.rgb);
 }
 
 }  // namespace

@@ -101,8 +101,11 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
 }
 
 void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneLine) {
-  char level[48];
+  char level[64];
   if (s.stride <= 0) std::snprintf(level, sizeof level, "-");
+  else if (s.stride == 1 && s.samples.total > 1)
+    std::snprintf(level, sizeof level, "full resolution, %d/%d samples%s", s.samples.done, s.samples.total,
+                  s.final ? " (final)" : "");
   else if (s.stride == 1) std::snprintf(level, sizeof level, "full resolution%s", s.final ? " (final)" : "");
   else std::snprintf(level, sizeof level, "1/%d (blocks of %dx%d)", s.stride, s.stride, s.stride);
   const StatLine lines[] = {

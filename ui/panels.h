@@ -10,6 +10,7 @@
 #include "display_mapping.h"
 #include "image_texture.h"
 #include "rayview/diagnostics.h"
+#include "rayview/progressive_renderer.h"
 #include "rayview/tradeoff.h"
 #include "recent_files.h"
 #include "reference_compare.h"
@@ -102,6 +103,7 @@ struct CameraPanelState {
 // What the stats panel shows, gathered by the application from the renderer and the loader.
 struct ViewerStats {
   int stride = 0;                 // of the frame on screen; 1 = full resolution
+  SampleCount samples;            // anti-aliasing samples per pixel in the frame on screen, of the setting's
   bool final = false;
   double passMs = 0.0;
   double megaRaysPerSecond = 0.0;

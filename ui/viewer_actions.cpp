@@ -213,6 +213,8 @@ std::string ViewerApp::stateLine() const {
   };
   std::string line = "state generation=" + std::to_string(generation_) +
                      " stride=" + std::to_string(haveFrame_ ? frame_.stride : 0) +
+                     " samples=" + std::to_string(haveFrame_ ? frame_.samples.done : 0) + "/" +
+                     std::to_string(haveFrame_ ? frame_.samples.total : 0) +
                      " final=" + (finalFrameShown() ? "1" : "0");
   if (session_) {
     const Camera& c = session_->edits().camera;

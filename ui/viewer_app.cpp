@@ -96,6 +96,7 @@ bool ViewerApp::takeNewFrame() {
   stats_.editToFirstPassMs = frame_.firstPassMsSinceRestart;
   stats_.editToFinalPassMs = frame_.final ? frame_.msSinceRestart : -1.0;
   stats_.stride = frame_.stride;
+  stats_.samples = frame_.samples;
   stats_.final = frame_.final;
   stats_.passMs = frame_.passMs;
   stats_.megaRaysPerSecond = frame_.megaRaysPerSecond;

@@ -181,8 +181,8 @@ def run(command, **kwargs):
     return result.stdout
 
 
-def render_headless(rayview, scene, output):
-    run([rayview, "render", scene, "-o", output, "--quiet"])
+def render_headless(rayview, scene, output, options=()):
+    run([rayview, "render", scene, "-o", output, "--quiet", *options])
     return output
 
 

@@ -541,6 +541,39 @@ def case_idle_cpu(args, work):
         viewer.kill()
 
 
+def case_anti_aliasing(args, work):
+    """`set samples 6`: the viewer refines past the first full-resolution pass, one pass per sample, and its final
+    pass (and save-frame) is `rayview render --samples 6` exactly; undo goes back to one sample, the course's image."""
+    scene = copy_scene(work)
+    script = os.path.join(work, "aa.rvs")
+    with open(script, "w") as f:
+        f.write(f"""wait-final
+set samples 6
+wait-final
+print-state
+save-frame {work}/aa.png
+undo
+wait-final
+print-state
+save-frame {work}/one.png
+quit
+""")
+    viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
+    try:
+        code = viewer.finish(timeout=120)
+    finally:
+        viewer.kill()
+    if code != 0:
+        raise Failure(f"the script failed ({code})\n" + viewer.output())
+    state = [line for line in viewer.stdout if line.startswith("state ")]
+    print("  " + "\n  ".join(state))
+    if len(state) != 2 or " samples=6/6 final=1 " not in state[0] or " samples=1/1 final=1 " not in state[1]:
+        raise Failure("print-state should show 6 of 6 samples, then 1 of 1 after undo\n" + viewer.output())
+    expect_same(f"{work}/aa.png", render_headless(args.rayview, scene, f"{work}/aa_reference.png", ["--samples", "6"]), 0)
+    expect_same(f"{work}/one.png", render_headless(args.rayview, scene, f"{work}/one_reference.png"), 0)
+    expect_different(f"{work}/aa.png", f"{work}/one.png")
+
+
 def case_no_display(args, work):
     env = {k: v for k, v in os.environ.items() if k not in ("DISPLAY", "WAYLAND_DISPLAY")}
     result = subprocess.run([args.rayview, SCENE], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env,
@@ -555,7 +588,7 @@ CASES = {"interaction": case_interaction, "script": case_script, "reload": case_
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
          "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
-         "image-view": case_image_view}
+         "image-view": case_image_view, "anti-aliasing": case_anti_aliasing}
 
 
 def main():

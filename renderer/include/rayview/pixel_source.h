@@ -16,6 +16,10 @@ class PixelSource {
   virtual int height() const = 0;
   // Radiance of pixel (x, y); must be a pure function of (x, y): called from many threads at once.
   virtual Color pixel(int x, int y, RayCounts& counts) const = 0;
+  // Anti-aliasing: pixel() is the mean of samplesPerPixel() samples, (sample(0) + sample(1) + ...) / N summed
+  // in that order in float, so the progressive renderer can accumulate them pass by pass and end bit-identical.
+  virtual int samplesPerPixel() const { return 1; }
+  virtual Color sample(int x, int y, int k, RayCounts& counts) const { return k == 0 ? pixel(x, y, counts) : Color(0.0f); }
 };
 
 // A parameter snapshot, the prepared geometry and the settings, kept alive together for as long as a render
@@ -27,6 +31,8 @@ class TracedImage final : public PixelSource {
   int width() const override { return parameters_->camera.width; }
   int height() const override { return parameters_->camera.height; }
   Color pixel(int x, int y, RayCounts& counts) const override { return tracer_.tracePixel(x, y, counts); }
+  int samplesPerPixel() const override { return tracer_.pixelSamples(); }
+  Color sample(int x, int y, int k, RayCounts& counts) const override { return tracer_.traceSample(x, y, k, counts); }
   const Tracer& tracer() const { return tracer_; }
 
  private:

@@ -9,6 +9,11 @@
 // per block (drawn enlarged with nearest filtering it is the blocky upscale, never a blur): a full-size copy
 // per pass cost about 250 ms at 6400x4000, copying it to the UI and uploading it more.
 //
+// With N anti-aliasing samples per pixel (RenderSettings::pixelSamples), those passes trace each pixel's first
+// sample; then N - 1 full-resolution passes each add one more to a running float sum per pixel and publish
+// the mean so far. The sums are added in the order Tracer::tracePixel adds them, so the last pass is still
+// `rayview render` bit for bit. The sums cost 12 bytes per pixel, only when N > 1.
+//
 // Cancellation by generation: restart() bumps the generation and returns at once; workers check it per
 // tile; a pass whose generation is stale is never published. The UI thread never renders and never waits.
 
@@ -29,11 +34,18 @@
 
 namespace rayview {
 
+// Anti-aliasing samples per pixel: traced so far (every pixel alike) of the setting's total.
+struct SampleCount {
+  int done = 1;
+  int total = 1;
+};
+
 struct ProgressiveFrame {
   std::uint64_t version = 0;     // increases with every published frame
   std::uint64_t generation = 0;  // the restart this frame belongs to
   int stride = 0;                // 1 = full resolution
-  bool final = false;            // all pixels computed
+  SampleCount samples;           // at stride 1, the passes after the first add one sample per pixel each
+  bool final = false;            // all pixels computed, with all their samples
   int width = 0, height = 0;     // the image's size
   // The pass's samples, one pixel per stride x stride block: ceil(width / stride) x ceil(height / stride); at
   // stride 1, the image. upscaleBlocks (rayview/grid_render.h) makes the full-size blocky image.
@@ -80,8 +92,9 @@ class ProgressiveRenderer {
  private:
   void controllerLoop();
   bool renderPass(const PixelSource& source, std::uint64_t generation, int stride, int previousStride,
-                  RayCounts& rays);
-  void publish(std::uint64_t generation, int stride, double passMs,
+                  bool firstSamples, RayCounts& rays);
+  bool accumulatePass(const PixelSource& source, std::uint64_t generation, int k, RayCounts& rays);
+  void publish(std::uint64_t generation, int stride, SampleCount samples, double passMs,
                const RayCounts& rays, std::chrono::steady_clock::time_point restartTime);
   void remember(const PassTime& pass);
 
@@ -100,6 +113,7 @@ class ProgressiveRenderer {
 
   // Written by the controller only while no pass of another generation can run.
   Image samples_;
+  std::vector<Color> sums_;  // per pixel, the running sum of its anti-aliasing samples (only when there are several)
   std::vector<PassTime> passTimes_;  // the newest passes, oldest first
   Image spareImage_;                 // the buffer of the frame published before the newest, reused
   ProgressiveFrame published_;  // guarded by mutex_

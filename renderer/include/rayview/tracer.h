@@ -53,6 +53,10 @@ class Tracer {
   // Radiance (0..255 units, unclamped) of pixel (column i, row j from the top): the mean of
   // RenderSettings::pixelSamples stratified camera rays, or the centre's ray for 1.
   Color tracePixel(int i, int j, RayCounts& counts) const;
+  // Sample k (0 <= k < pixelSamples()) of pixel (i, j): tracePixel is (traceSample(0) + traceSample(1) + ...) /
+  // pixelSamples(), summed in that order in float, so a running sum over passes ends bit-identical to it.
+  Color traceSample(int i, int j, int k, RayCounts& counts) const;
+  int pixelSamples() const;
 
   int maxDepth() const { return parameters_.maxRayDepth; }
 
