@@ -101,6 +101,7 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_D) shortcuts.toggleDifference = true;
+  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_V) shortcuts.toggleImageView = true;
   else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_0 || e.key == GLFW_KEY_KP_0)) shortcuts.imageFit = true;
   else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_1 || e.key == GLFW_KEY_KP_1)) shortcuts.imageOneToOne = true;
   else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_EQUAL || e.key == GLFW_KEY_KP_ADD)) shortcuts.imageZoomBy *= 2.0;

@@ -23,6 +23,7 @@ struct Shortcuts {
   bool undo = false;         // Ctrl+Z
   bool redo = false;         // Ctrl+Shift+Z, Ctrl+Y
   bool toggleDifference = false;  // D: the difference from the reference image
+  bool toggleImageView = false;   // V: the image view (the file's image) or the window view (the area's pixels)
   // The image view (image_placement.h): 0 fits, 1 shows 1:1, + and - zoom by 2 at the view's centre,
   // Ctrl+wheel zooms at the cursor, Ctrl+drag moves the image.
   bool imageFit = false;

@@ -90,6 +90,18 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   ImGui::Checkbox("On one line", &display.oneLineStats);
   if (ImGui::IsItemHovered())
     ImGui::SetTooltip("The stats on one line. In a window smaller than 1280x800 they always are.");
+  // The view (V): which pixels are rendered. Not a render setting of the scene: it is not in the knob table.
+  const Camera& file = session.committedEdits().camera;
+  if (ImGui::RadioButton("Window view", !display.imageView)) display.imageView = false;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Renders the image area's own pixels: the file's view, with the near plane extended to the "
+                      "area's shape (never cropped). Ctrl+S still saves the file's image. V switches.");
+  ImGui::SameLine();
+  const std::string imageLabel = "Image view (" + std::to_string(file.width) + "x" + std::to_string(file.height) + ")";
+  if (ImGui::RadioButton(imageLabel.c_str(), display.imageView)) display.imageView = true;
+  if (ImGui::IsItemHovered())
+    ImGui::SetTooltip("Renders the file's image, its resolution exactly: fit (0), 1:1 (1), zoom (+, -, Ctrl+wheel), "
+                      "pan (Ctrl+drag). V switches.");
   editDisplayMapping(display.mapping);
   ImGui::Separator();
   // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.

@@ -59,6 +59,9 @@ struct DisplayOptions {
   bool showStats = true;
   bool oneLineStats = false;  // the stats on one line even in a large window (a small one always has them so)
   bool hidePanels = false;    // F9: the image takes the whole window
+  // V: the image view (the file's image: fit, 1:1, zoom) instead of the window view (the image area's own
+  // pixels, the file's view extended to its aspect; rayview/view_camera.h).
+  bool imageView = false;
   DisplayMapping mapping;     // exposure and gamma of the render and the reference (the difference stays raw)
 };
 

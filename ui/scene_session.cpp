@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rayview/view_camera.h"
 #include "scene_framing.h"
 
 namespace rayview {
@@ -54,16 +55,40 @@ std::shared_ptr<const PixelSource> SceneSession::commit(std::string& problem) {
   history_.record(EditState{edits_, settings_}, gesture_);
   RenderSettings renderSettings = settings_;
   renderSettings.accel = committedSettings_.accel;  // the back-end is changed by replaceGeometry()
-  if (classifyEdit(committedEdits_, committedSettings_, edits_, renderSettings) != EditEffect::Restart) return nullptr;
-  committedEdits_ = edits_;
-  committedSettings_ = renderSettings;
-  committed_ = std::make_shared<const SceneParameters>(committedEdits_);
-  ++commits_;
+  const bool edited = classifyEdit(committedEdits_, committedSettings_, edits_, renderSettings) == EditEffect::Restart;
+  if (!edited && !viewportChanged_) return nullptr;
+  if (edited) {
+    committedEdits_ = edits_;
+    committedSettings_ = renderSettings;
+    committed_ = std::make_shared<const SceneParameters>(committedEdits_);
+    ++commits_;
+  }
   return currentSource();
 }
 
 std::shared_ptr<const PixelSource> SceneSession::currentSource() {
+  viewportChanged_ = false;
+  if (!viewport_) return fileSource();
+  // The same snapshot but for the camera: a few lights and materials copied, never the meshes.
+  auto shown = std::make_shared<SceneParameters>(*committed_);
+  shown->camera = renderedCamera();
+  return std::make_shared<TracedImage>(std::move(shown), parts_.geometry, committedSettings_);
+}
+
+std::shared_ptr<const PixelSource> SceneSession::fileSource() const {
   return std::make_shared<TracedImage>(committed_, parts_.geometry, committedSettings_);
+}
+
+void SceneSession::setViewport(std::optional<std::pair<int, int>> size) {
+  if (size) size = std::pair{std::clamp(size->first, 1, kMaxViewerImageSide), std::clamp(size->second, 1, kMaxViewerImageSide)};
+  if (size == viewport_) return;
+  viewport_ = size;
+  viewportChanged_ = true;
+}
+
+Camera SceneSession::renderedCamera() const {
+  if (!viewport_) return committedEdits_.camera;
+  return windowViewCamera(committedEdits_.camera, viewport_->first, viewport_->second);
 }
 
 void SceneSession::replaceGeometry(std::shared_ptr<const PreparedGeometry> geometry, AccelKind accel) {
@@ -94,7 +119,15 @@ bool SceneSession::redo() {
 }
 
 std::optional<PickResult> SceneSession::pick(int i, int j) {
-  selection_ = pickPixel(committedEdits_.camera, *parts_.geometry, i, j);
+  return select(pickPixel(committedEdits_.camera, *parts_.geometry, i, j));
+}
+
+std::optional<PickResult> SceneSession::pickRendered(int i, int j) {
+  return select(pickPixel(renderedCamera(), *parts_.geometry, i, j));
+}
+
+std::optional<PickResult> SceneSession::select(std::optional<PickResult> pick) {
+  selection_ = std::move(pick);
   revealMaterial_ = selection_.has_value();
   return selection_;
 }
@@ -105,6 +138,7 @@ Bounds SceneSession::framingBounds() const {
 }
 
 bool SceneSession::hasPendingEdits() const {
+  if (viewportChanged_) return true;  // not an edit, but the image on screen is not the one asked for
   RenderSettings renderSettings = settings_;
   renderSettings.accel = committedSettings_.accel;
   return classifyEdit(committedEdits_, committedSettings_, edits_, renderSettings) != EditEffect::None;

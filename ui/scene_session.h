@@ -59,6 +59,16 @@ class SceneSession {
   // The source for what is currently committed (first display, or after new geometry).
   std::shared_ptr<const PixelSource> currentSource();
 
+  // The window view (rayview/view_camera.h): while a size is set, the render shows the committed camera at that
+  // resolution (the image area's framebuffer pixels) with its near plane extended to the area's aspect; nullopt
+  // renders the file's resolution (the image view). A change restarts at the next commit(); it is no edit.
+  void setViewport(std::optional<std::pair<int, int>> size);
+  const std::optional<std::pair<int, int>>& viewport() const { return viewport_; }
+  // The camera of what the render shows: the committed one, or its window view.
+  Camera renderedCamera() const;
+  // The committed edits at the file's resolution, whatever the view: what Ctrl+S saves, `rayview render`'s image.
+  std::shared_ptr<const PixelSource> fileSource() const;
+
   // The traversal back-end the settings ask for differs from the one the geometry was built with.
   bool needsRebuild() const { return settings_.accel != parts_.accel; }
   void replaceGeometry(std::shared_ptr<const PreparedGeometry> geometry, AccelKind accel);
@@ -85,8 +95,10 @@ class SceneSession {
   bool redo();
   const EditHistory& history() const { return history_; }
 
-  // Picking on the image on screen (the committed camera): selects the mesh under pixel (i, j), or nothing.
+  // Picking: selects the mesh under pixel (i, j) of the file's image (the committed camera), or nothing.
   std::optional<PickResult> pick(int i, int j);
+  // The same by a pixel of the rendered image (renderedCamera(): the window view's, when it is on).
+  std::optional<PickResult> pickRendered(int i, int j);
   const std::optional<PickResult>& selection() const { return selection_; }
   // True once after a pick selected something: the Materials panel opens the picked material and scrolls to it.
   bool takeMaterialReveal() { return std::exchange(revealMaterial_, false); }
@@ -105,6 +117,9 @@ class SceneSession {
   SceneParameters committedEdits_;
   RenderSettings committedSettings_;
   std::shared_ptr<const SceneParameters> committed_;  // snapshot of committedEdits_ the render reads
+  std::optional<std::pair<int, int>> viewport_;
+  bool viewportChanged_ = false;
+  std::optional<PickResult> select(std::optional<PickResult> pick);
   std::uint64_t commits_ = 0;
   EditHistory history_;
   bool gesture_ = false;

@@ -74,12 +74,13 @@ bool ScriptRunner::waitIsOver(ScriptHost& host) {
         fail("the edits cannot be rendered: " + problem);
         return false;
       }
-      if (host.finalFrameShown() && !host.loading()) {
-        // save-frame saves the final pass, as Ctrl+S does: the image `rayview render` writes; save-frame-displayed
-        // the same pass with the exposure and gamma on screen applied.
-        if (wait_ == Wait::SaveFrame)
-          host.saveFrame(current_->args.empty() ? std::string() : current_->args[0],
-                         current_->name == "save-frame-displayed" ? FrameSave::Displayed : FrameSave::Raw);
+      if (wait_ == Wait::Final && host.finalFrameShown() && !host.loading()) return true;
+      // save-frame saves what Ctrl+S saves: the file's image as `rayview render` writes it (the final pass in the
+      // image view, rendered in the background in the window view); save-frame-displayed the same with the
+      // exposure and gamma on screen applied.
+      if (wait_ == Wait::SaveFrame && !host.loading() && host.fileImageReady()) {
+        host.saveFrame(current_->args.empty() ? std::string() : current_->args[0],
+                       current_->name == "save-frame-displayed" ? FrameSave::Displayed : FrameSave::Raw);
         return true;
       }
       if (late) fail("no final pass within " + std::to_string(current_->numbers.empty() ? kDefaultWaitFinalSeconds
@@ -193,6 +194,8 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     const std::optional<PickResult> pick = session->pick(static_cast<int>(c.numbers[0]), static_cast<int>(c.numbers[1]));
     std::printf("%s\n", pick ? describePick(*pick, session->loaded(), session->edits()).c_str() : "picked nothing");
     std::fflush(stdout);
+  } else if (name == "view") {
+    host.setImageView(c.args[0] == "image");
   } else if (name == "print-state") {
     std::printf("%s\n", host.stateLine().c_str());
     std::fflush(stdout);

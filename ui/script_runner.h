@@ -39,8 +39,15 @@ class ScriptHost {
   // The final pass of the current edits is on screen and nothing is pending.
   virtual bool finalFrameShown() const = 0;
   virtual std::string editProblem() const = 0;  // why the current edits are not rendered ("" when they are)
-  // The final pass, raw (as `rayview render` writes it) or as displayed. "" = numbered; throws on failure.
+  // The image a frame save writes (the file's resolution, `rayview render`'s image) is ready: in the image view
+  // the final pass on screen; in the window view a background render of the file's image, which this starts when
+  // the final pass is on screen and it has not yet been made for these edits.
+  virtual bool fileImageReady() = 0;
+  // That image, raw (as `rayview render` writes it) or as displayed. "" = numbered; throws on failure (also
+  // when it is not ready).
   virtual std::filesystem::path saveFrame(const std::string& path, FrameSave what) = 0;
+  // The window view (the image area's pixels, the file's view extended) or the image view (the file's image).
+  virtual void setImageView(bool imageView) = 0;
   virtual std::filesystem::path saveScene(const std::string& path) = 0;  // "" = numbered; throws on failure
   virtual void screenshot(const std::string& path) = 0;  // taken when this frame has been drawn
   // The image area as seen, without panels and overlays, when this frame has been drawn ("": numbered).

@@ -93,6 +93,11 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
   if (!std::exchange(knobsApplied_, true)) knobs = options_.knobs;
   session_ = std::make_unique<SceneSession>(std::move(outcome.parts), settings, knobs);
   if (keptCamera) session_->edits().camera = *keptCamera;
+  // The first render is already the window view's (or the image view's), never the other one first.
+  session_->setViewport(windowViewSize(layout()));
+  fileImageTask_.cancel();
+  awaitedFileImage_ = 0;
+  fileImage_.reset();
   if (outcome.request.path != scenePath_ || !awaitedIsReload_) {
     // Another scene: the save messages were about the previous one, and a frame save still waiting for its
     // final pass would save this scene's image under the old name.
@@ -137,14 +142,47 @@ bool ViewerApp::pollFileWatch(Clock::time_point now) {
   return true;
 }
 
+bool ViewerApp::fileImageReady() {
+  if (!finalFrameShown()) return false;
+  if (display_.imageView) return true;  // the final pass on screen is the file's image
+  const FileImageKey key = fileImageKey();
+  if (fileImage_ && fileImageOf_ == key) return true;
+  if (awaitedFileImage_ == 0 || awaitedFileImageKey_ != key) {
+    awaitedFileImage_ = fileImageTask_.start(session_->fileSource());
+    awaitedFileImageKey_ = key;
+  }
+  return false;
+}
+
+ViewerApp::FileImageKey ViewerApp::fileImageKey() const {
+  return {sceneSerial_, session_ ? session_->commitCount() : 0, session_ ? &session_->geometry() : nullptr};
+}
+
+bool ViewerApp::pollFileImage() {
+  std::optional<FileImageResult> result = fileImageTask_.takeResult();
+  if (!result || result->id != awaitedFileImage_) return false;
+  awaitedFileImage_ = 0;
+  if (result->cancelled) return true;
+  fileImage_ = std::move(result->image);
+  fileImageOf_ = awaitedFileImageKey_;
+  std::printf("rendered the file's image %dx%d for saving in %.0f ms\n", fileImage_->width, fileImage_->height,
+              result->renderMs);
+  std::fflush(stdout);
+  return true;
+}
+
+const Image& ViewerApp::fileImage() const { return display_.imageView ? frame_.image : *fileImage_; }
+
 std::filesystem::path ViewerApp::saveFrame(const std::string& path, FrameSave what) {
   if (!haveFrame_) throw ImageIoError("no frame to save yet");
-  // Callers wait for the final pass; a coarse pass holds one sample per block, never an image to save.
-  if (!frame_.final || frame_.stride != 1) throw ImageIoError("the render is still refining");
-  // Raw: the pass itself, as `rayview render` writes it. Displayed: with the exposure and gamma on screen, which
-  // at their defaults is the same image.
-  const Image& image =
-      what == FrameSave::Displayed ? shownRender_.of(frame_.image, frame_.version, display_.mapping) : frame_.image;
+  // Callers wait for it: the final pass (image view) or the file's image rendered after it (window view); never a
+  // coarse pass, which holds one sample per block, nor the window's other resolution.
+  if (!fileImageReady()) throw ImageIoError("the file's image is not rendered yet");
+  // Raw: as `rayview render` writes it. Displayed: with the exposure and gamma on screen, which at their defaults
+  // is the same image.
+  Image mapped;
+  if (what == FrameSave::Displayed) mapped = mapForDisplay(fileImage(), display_.mapping);
+  const Image& image = what == FrameSave::Displayed ? mapped : fileImage();
   std::filesystem::path saved = path;
   if (path.empty()) saved = saveFrameNumbered(image, scenePath_, what);
   else writeImageFile(path, image);
@@ -180,9 +218,10 @@ void ViewerApp::reportSaveFailure(const std::exception& error) {
 }
 
 void ViewerApp::saveFrameReporting() {
-  // Ctrl+S saves the final pass, never a coarse one: identical to `rayview render`. While refining, the render
-  // goes on and the save happens when the final pass is on screen (afterSwap).
-  if (!finalFrameShown()) {
+  // Ctrl+S saves the file's image, identical to `rayview render`, never a coarse pass. While refining, the render
+  // goes on and the save happens when the final pass is on screen (afterSwap); in the window view the file's
+  // image is then rendered in the background, its progress in the Save panel.
+  if (!fileImageReady()) {
     if (!filePanel_.frameSavePending) {
       filePanel_.frameSavePending = true;
       filePanel_.lastSaveFailed = false;
@@ -215,7 +254,9 @@ std::string ViewerApp::stateLine() const {
                      " stride=" + std::to_string(haveFrame_ ? frame_.stride : 0) +
                      " samples=" + std::to_string(haveFrame_ ? frame_.samples.done : 0) + "/" +
                      std::to_string(haveFrame_ ? frame_.samples.total : 0) +
-                     " final=" + (finalFrameShown() ? "1" : "0");
+                     " final=" + (finalFrameShown() ? "1" : "0") + " view=" + (display_.imageView ? "image" : "window") +
+                     " shown=" + std::to_string(haveFrame_ ? frame_.width : 0) + "x" +
+                     std::to_string(haveFrame_ ? frame_.height : 0);
   if (session_) {
     const Camera& c = session_->edits().camera;
     line += " position=" + vector(c.position) + " gaze=" + vector(c.gaze) + " up=" + vector(c.up) +

@@ -22,12 +22,14 @@ ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
       recent_(RecentFiles::defaultStorage()),
       tradeoff_(options.threads),
       pendingReference_(options.comparePath),
+      fileImageTask_(options.threads),
       printReadout_(std::getenv("RAYVIEW_PRINT_READOUT") != nullptr) {
   if (script) script_.emplace(std::move(*script));
   stats_.threads = renderer_.threads();
   // Wake the UI loop when a pass is published, so it can sleep while passes render.
   renderer_.setFrameListener([] { glfwPostEmptyEvent(); });
   tradeoff_.setFinishedListener([] { glfwPostEmptyEvent(); });
+  fileImageTask_.setFinishedListener([] { glfwPostEmptyEvent(); });
 }
 
 ViewerApp::~ViewerApp() {
@@ -54,12 +56,13 @@ int ViewerApp::run() {
     if (!pendingReference_.empty() && !loading()) loadReference(std::exchange(pendingReference_, {}));
     changed |= pollFileWatch(now);
     changed |= pollTradeoff();
+    changed |= pollFileImage();
     // Read before taking the frame: when the renderer was idle, its last pass is certainly taken below.
     const bool rendererIdle = renderer_.idle();
     changed |= takeNewFrame();
 
     const bool scriptActive = script_ && script_->running();
-    if (changed || framesToDraw_ > 0 || scriptActive || loading() || measuring() ||
+    if (changed || framesToDraw_ > 0 || scriptActive || loading() || measuring() || awaitedFileImage_ != 0 ||
         !pendingScreenshot_.empty() || pendingViewSave_) {
       drawFrame();
       framesToDraw_ = changed ? kSettleFrames : std::max(0, framesToDraw_ - 1);
@@ -79,6 +82,7 @@ double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) cons
   if (watch_.active() && filePanel_.reloadOnChange) wait = std::min(wait, watch_.secondsUntilNextLook(now) + 0.001);
   if (loading()) wait = std::min(wait, kLoadingPollSeconds);
   if (measuring()) wait = std::min(wait, kMeasuringPollSeconds);
+  if (awaitedFileImage_ != 0) wait = std::min(wait, kLoadingPollSeconds);  // its progress in the Save panel
   // A script condition to check: look again soon. A pass in flight wakes us when it is published.
   if (script_ && script_->running()) wait = std::min(wait, kRenderingPollSeconds);
   if (!rendererIdle) wait = std::min(wait, kRenderingFallbackSeconds);
@@ -138,11 +142,18 @@ ViewerApp::Layout ViewerApp::layout() const {
   l.viewWidth = std::max(io.DisplaySize.x - l.panelWidth, 1.0f);
   l.viewHeight = std::max(io.DisplaySize.y, 1.0f);
   l.framebufferScale = window_.framebufferScale();
-  if (haveFrame_ && frame_.width > 0 && frame_.height > 0) {
-    // Fitted (aspect kept, square pixels) unless the user zoomed (image_placement.h). The image's size, not the
-    // texture's: a coarse pass's texture holds one texel per block.
-    const ScreenRect placed = placement_.place({l.viewX, l.viewY, l.viewWidth, l.viewHeight}, frame_.width,
-                                               frame_.height, l.framebufferScale);
+  if (!display_.imageView) {
+    // The window view: the render is the image area's own pixels.
+    l.imageX = l.viewX;
+    l.imageY = l.viewY;
+    l.imageWidth = l.viewWidth;
+    l.imageHeight = l.viewHeight;
+  } else if (session_) {
+    // The image view: the file's image, fitted (aspect kept, square pixels) unless the user zoomed
+    // (image_placement.h). The image's size, not the texture's: a coarse pass's texture holds one texel per block.
+    const Camera& file = session_->committedEdits().camera;
+    const ScreenRect placed =
+        placement_.place({l.viewX, l.viewY, l.viewWidth, l.viewHeight}, file.width, file.height, l.framebufferScale);
     l.imageX = static_cast<float>(placed.x);
     l.imageY = static_cast<float>(placed.y);
     l.imageWidth = static_cast<float>(placed.width);
@@ -206,6 +217,7 @@ void ViewerApp::drawFrame() {
   }
   // One drag, or one value held or typed in a panel, is one undo step.
   if (session_) session_->setGesture(navigation_.dragging() || ImGui::IsAnyItemActive());
+  if (session_) session_->setViewport(windowViewSize(l));
   commitEdits();
   updateTitle();
   startRequestedTradeoff(l);
@@ -250,8 +262,9 @@ void ViewerApp::afterSwap() {
     std::printf("final pass generation %llu\n", static_cast<unsigned long long>(frame_.generation));
     std::fflush(stdout);
   }
-  // Ctrl+S pressed while refining saves now that the final pass is on screen.
-  if (filePanel_.frameSavePending && finalFrameShown()) saveFrameReporting();
+  // Ctrl+S pressed while refining saves once the file's image is ready (the final pass on screen in the image
+  // view; rendered in the background after it in the window view).
+  if (filePanel_.frameSavePending && fileImageReady()) saveFrameReporting();
 }
 
 bool ViewerApp::finalFrameShown() const {
@@ -279,6 +292,12 @@ void ViewerApp::drawPanels(const Layout& l, PanelActions& actions) {
     const SceneInfo info{scenePath_.empty() ? (session_ ? "default scene (embedded)" : "no scene yet") : scenePath_,
                          warnings_};
     drawScenePanel(filePanel_, recent_, info, loader_.progress(), actions);
+    if (filePanel_.frameSavePending && awaitedFileImage_ != 0 && session_) {
+      const Camera& file = session_->committedEdits().camera;
+      filePanel_.lastSaved = "rendering the file's " + std::to_string(file.width) + "x" + std::to_string(file.height) +
+                             " image to save: " +
+                             std::to_string(static_cast<int>(100.0 * fileImageTask_.progress())) + "%";
+    }
     drawSavePanel(filePanel_, haveFrame_, actions);
     if (session_) {
       drawCameraPanel(*session_, cameraPanel_, editProblem_, actions);
@@ -347,12 +366,13 @@ void ViewerApp::pickAt(double x, double y, bool doubleClick, const Layout& l) {
   if (!session_) return;
   // Only on the image area, and there on the image as placed (fitted or zoomed).
   if (x < l.viewX || x >= l.viewX + l.viewWidth || y < l.viewY || y >= l.viewY + l.viewHeight) return;
-  const Camera& camera = session_->committedEdits().camera;
+  // A pixel of the image the session renders (the window view's or the file's): the ray through it.
+  const Camera camera = session_->renderedCamera();
   const std::optional<ImagePixel> pixel =
       ImagePlacement::pixelAt({l.imageX, l.imageY, l.imageWidth, l.imageHeight}, camera.width, camera.height,
                               screenPixelCentre(x, l.framebufferScale), screenPixelCentre(y, l.framebufferScale));
   if (!pixel) return;
-  const std::optional<PickResult> pick = session_->pick(pixel->i, pixel->j);
+  const std::optional<PickResult> pick = session_->pickRendered(pixel->i, pixel->j);
   std::printf("%s\n", pick ? describePick(*pick, session_->loaded(), session_->edits()).c_str() : "picked nothing");
   std::fflush(stdout);
   if (pick && doubleClick) session_->navigate([&](OrbitCamera& o) { o.setPivot(pick->point); });

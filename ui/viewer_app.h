@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "file_image_task.h"
 #include "file_watch.h"
 #include "image_texture.h"
 #include "imgui_layer.h"
@@ -69,7 +70,9 @@ class ViewerApp final : public ScriptHost {
   std::uint64_t sceneSerial() const override { return sceneSerial_; }
   bool finalFrameShown() const override;
   std::string editProblem() const override { return editProblem_; }
+  bool fileImageReady() override;
   std::filesystem::path saveFrame(const std::string& path, FrameSave what) override;
+  void setImageView(bool imageView) override;
   std::filesystem::path saveScene(const std::string& path) override;
   void screenshot(const std::string& path) override { pendingScreenshot_ = path; }
   void saveView(const std::string& path) override { pendingViewSave_ = path; }
@@ -129,6 +132,14 @@ class ViewerApp final : public ScriptHost {
   // drawn where placement_ puts it, clipped to the image area, with a pixel grid at high zoom; the readout of
   // the pixel under the cursor.
   void applyImageView(const Shortcuts& shortcuts, const Layout& layout);
+  // The window view's resolution for this layout (the image area in framebuffer pixels), or nullopt in the image
+  // view; handed to the session before each commit.
+  std::optional<std::pair<int, int>> windowViewSize(const Layout& layout) const;
+  // The image shown is the one the session renders (not a pass of another view or size still on screen).
+  bool frameIsRendered() const;
+  // The file's image for saving in the window view (file_image_task.h): its result, once per request.
+  bool pollFileImage();
+  const Image& fileImage() const;
   void drawImage(const ImageTexture& shown, const Layout& layout);
   void drawPixelReadout(const Layout& layout);
 
@@ -218,6 +229,19 @@ class ViewerApp final : public ScriptHost {
   MappedImage shownReference_;
   ImageTexture differenceTexture_;
   ImageView shownView_ = ImageView::Render;
+
+  // The file's image rendered for saving while the window view is on: which edits it (or the running
+  // request) is of, so that it is made once per state and never saved for other edits.
+  struct FileImageKey {
+    std::uint64_t scene = 0, commit = 0;
+    const void* geometry = nullptr;
+    bool operator==(const FileImageKey&) const = default;
+  };
+  FileImageKey fileImageKey() const;
+  FileImageTask fileImageTask_;
+  std::uint64_t awaitedFileImage_ = 0;
+  FileImageKey awaitedFileImageKey_, fileImageOf_;
+  std::optional<Image> fileImage_;
 
   // The image view.
   ImagePlacement placement_;

@@ -19,6 +19,8 @@ std::string ViewerApp::loadReference(const std::string& path) {
   }
   std::printf("reference %s (%dx%d)\n", path.c_str(), comparison_.reference().width, comparison_.reference().height);
   std::fflush(stdout);
+  // A reference is of the file's image: compare, flip and difference in the image view, pixel for pixel.
+  setImageView(true);
   // A final pass already on screen is compared at once; otherwise the next final pass is.
   if (haveFrame_ && frame_.final) comparison_.compareFinal(frame_.image, frame_.version);
   return {};
@@ -31,6 +33,7 @@ std::optional<ImageError> ViewerApp::finalComparison() const {
 
 std::string ViewerApp::comparisonProblem() const {
   if (!comparison_.loaded()) return comparison_.loadError().empty() ? "no reference image" : comparison_.loadError();
+  if (!display_.imageView) return "the window view is not the file's image: V (or view image) shows the image view";
   // Only the final pass counts: a pass of the previous edits may still have another resolution.
   if (finalFrameShown()) return comparison_.sizeProblem(frame_.width, frame_.height);
   return {};

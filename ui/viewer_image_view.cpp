@@ -33,10 +33,38 @@ ImVec2 imageShareOfSamples(const ProgressiveFrame& frame) {
 
 }  // namespace
 
+std::optional<std::pair<int, int>> ViewerApp::windowViewSize(const Layout& l) const {
+  if (display_.imageView) return std::nullopt;
+  // Framebuffer pixels: on a high-DPI screen, as many as the screen shows.
+  return std::pair{std::max(1, static_cast<int>(std::lround(l.viewWidth * l.framebufferScale))),
+                   std::max(1, static_cast<int>(std::lround(l.viewHeight * l.framebufferScale)))};
+}
+
+void ViewerApp::setImageView(bool imageView) {
+  if (display_.imageView == imageView) return;
+  display_.imageView = imageView;
+  framesToDraw_ = kSettleFrames;
+  // The next commit restarts the render at the view's resolution; saves and compares follow the file's image.
+  std::printf("view %s\n", imageView ? "image" : "window");
+  std::fflush(stdout);
+}
+
+bool ViewerApp::frameIsRendered() const {
+  if (!haveFrame_ || !session_) return false;
+  const Camera camera = session_->renderedCamera();
+  return frame_.width == camera.width && frame_.height == camera.height;
+}
+
 void ViewerApp::applyImageView(const Shortcuts& shortcuts, const Layout& l) {
-  if (!haveFrame_ || frame_.width <= 0 || frame_.height <= 0) return;
+  if (shortcuts.toggleImageView) setImageView(!display_.imageView);
+  if (!session_) return;
+  const bool asked = shortcuts.imageFit || shortcuts.imageOneToOne || shortcuts.imageZoomBy != 1.0 ||
+                     shortcuts.imageWheelZoomBy != 1.0 || shortcuts.imagePanX != 0.0 || shortcuts.imagePanY != 0.0;
+  // Fit, 1:1, zoom and pan are of the file's image: from the window view they go to the image view.
+  if (asked && !display_.imageView) setImageView(true);
+  if (!display_.imageView) return;
   const ScreenRect view{l.viewX, l.viewY, l.viewWidth, l.viewHeight};
-  const int w = frame_.width, h = frame_.height;  // the image's pixels, whatever the pass
+  const int w = session_->committedEdits().camera.width, h = session_->committedEdits().camera.height;
   const double scale = l.framebufferScale;
   // Another image size (another scene or resolution) starts fitted again.
   if (w != placedWidth_ || h != placedHeight_) {
@@ -107,7 +135,7 @@ void ViewerApp::drawPixelReadout(const Layout& l) {
   std::optional<ImagePixel> pixel;
   const bool onView = io.MousePos.x >= l.viewX && io.MousePos.x < l.viewX + l.viewWidth && io.MousePos.y >= l.viewY &&
                       io.MousePos.y < l.viewY + l.viewHeight;
-  if (haveFrame_ && onView && !io.WantCaptureMouse)
+  if (frameIsRendered() && onView && !io.WantCaptureMouse)
     pixel = ImagePlacement::pixelAt({l.imageX, l.imageY, l.imageWidth, l.imageHeight}, frame_.width,
                                     frame_.height, screenPixelCentre(io.MousePos.x, l.framebufferScale),
                                     screenPixelCentre(io.MousePos.y, l.framebufferScale));

@@ -91,7 +91,8 @@ def case_display(args, work):
              for name in ("before", "brighter", "raw", "displayed", "held", "difference", "gamma")}
     script = os.path.join(work, "display.rvs")
     with open(script, "w") as f:
-        f.write(f"""wait-final
+        f.write(f"""view image
+wait-final
 print-state
 screenshot {files['before']}
 set exposure 1

@@ -43,6 +43,7 @@ inline LoadedSceneParts loadParts() {
 class FakeHost : public ScriptHost {
  public:
   explicit FakeHost(SceneSession* session) : session_(session) {}
+  bool imageView = false;
   SceneSession* session() override { return session_; }
   void open(const std::string& path) override {
     opened = path;
@@ -55,6 +56,8 @@ class FakeHost : public ScriptHost {
   std::uint64_t sceneSerial() const override { return serial; }
   bool finalFrameShown() const override { return final; }
   std::string editProblem() const override { return {}; }
+  bool fileImageReady() override { return final; }
+  void setImageView(bool on) override { imageView = on; }
   std::filesystem::path saveFrame(const std::string& path, FrameSave what) override {
     savedKind = what;
     return savedFrame = path;

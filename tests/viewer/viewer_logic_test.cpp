@@ -18,6 +18,7 @@
 #include "recent_files.h"
 #include "rayview/scene_loader.h"
 #include "scene_edits.h"
+#include "rayview/view_camera.h"
 #include "scene_session.h"
 #include "script_runner.h"
 #include "support/image_compare.h"
@@ -279,6 +280,39 @@ TEST(SceneEdits, RefusesWhatCannotBeRendered) {
   e = good;
   e.materials[0].diffuse.x = std::numeric_limits<float>::infinity();
   EXPECT_NE(editProblem(e, RenderSettings{}).find("material floor"), std::string::npos);
+}
+
+// The window view: the area's size restarts the render at that resolution; it is no edit (no undo step, nothing
+// unsaved), saves still get the file's image, and a click picks through the window view's own pixels.
+TEST(SceneSession, TheWindowViewRendersTheAreaAndSavesTheFile) {
+  SceneSession session(loadParts(), RenderSettings{});
+  std::string problem;
+  const Camera file = session.committedEdits().camera;  // 480x300
+  session.setViewport(std::pair{880, 800});
+  EXPECT_TRUE(session.hasPendingEdits()) << "the image on screen is not the one asked for yet";
+  auto source = session.commit(problem);
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(source->width(), 880);
+  EXPECT_EQ(source->height(), 800);
+  EXPECT_EQ(session.commitCount(), 0u) << "not an edit";
+  EXPECT_EQ(session.history().undoSteps(), 0u);
+  EXPECT_FALSE(session.unsaved());
+  EXPECT_EQ(session.commit(problem), nullptr) << "the same size again: nothing to restart";
+  EXPECT_EQ(session.fileSource()->width(), file.width);
+  EXPECT_EQ(session.fileSource()->height(), file.height);
+  EXPECT_EQ(session.renderedCamera(), windowViewCamera(file, 880, 800));
+
+  // The centre of the window view is the centre of the file's view: the same thing is picked.
+  const auto byFile = session.pick(file.width / 2, file.height / 2);
+  const auto byWindow = session.pickRendered(440, 400);
+  ASSERT_EQ(byFile.has_value(), byWindow.has_value());
+  if (byFile) EXPECT_EQ(byFile->mesh, byWindow->mesh);
+
+  session.setViewport(std::nullopt);  // the image view
+  source = session.commit(problem);
+  ASSERT_NE(source, nullptr);
+  EXPECT_EQ(source->width(), file.width);
+  EXPECT_EQ(source->height(), file.height);
 }
 
 TEST(SceneSession, CommitRestartsOnlyOnChangeAndKeepsMeshesOutOfSnapshots) {

@@ -47,6 +47,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from viewer_compare_case import case_compare  # noqa: E402
 from viewer_image_view_case import case_image_view  # noqa: E402
 from viewer_display_case import case_display  # noqa: E402
+from viewer_window_view_case import case_window_view  # noqa: E402
 from viewer_harness import (  # noqa: E402
     last_generation,
     title_of,
@@ -588,7 +589,7 @@ CASES = {"interaction": case_interaction, "script": case_script, "reload": case_
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
          "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
-         "image-view": case_image_view, "anti-aliasing": case_anti_aliasing}
+         "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view}
 
 
 def main():
