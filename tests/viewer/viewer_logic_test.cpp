@@ -306,7 +306,9 @@ TEST(SceneSession, TheWindowViewRendersTheAreaAndSavesTheFile) {
   const auto byFile = session.pick(file.width / 2, file.height / 2);
   const auto byWindow = session.pickRendered(440, 400);
   ASSERT_EQ(byFile.has_value(), byWindow.has_value());
-  if (byFile) EXPECT_EQ(byFile->mesh, byWindow->mesh);
+  if (byFile) {
+    EXPECT_EQ(byFile->mesh, byWindow->mesh);
+  }
 
   session.setViewport(std::nullopt);  // the image view
   source = session.commit(problem);
