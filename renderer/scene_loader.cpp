@@ -21,7 +21,7 @@ void refuseWhatIsNotText(const std::string& file, std::string_view text) {
                     "the file contains NUL bytes: a binary file, not a scene file");
 }
 
-LoadedScene Loader::load(std::string_view text) {
+LoadedScene Loader::load(std::string_view text, std::string* owned) {
   refuseWhatIsNotText(file_, text);
   detail::RepairedXml repaired = detail::repairXml(text, file_, options_.strict);
   for (Diagnostic& d : repaired.repairs) warnings_.add(std::move(d));
@@ -29,6 +29,11 @@ LoadedScene Loader::load(std::string_view text) {
 
   tinyxml2::XMLDocument doc(true, tinyxml2::PRESERVE_WHITESPACE);
   if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) xmlError(doc, text);
+  // tinyxml2 parsed a copy of its own: the texts are not read again (messages take their lines from the DOM).
+  std::string().swap(repaired.text);
+  if (owned) std::string().swap(*owned);
+  text = {};
+  xml = {};
 
   const XMLElement* root = doc.RootElement();
   if (!root) fail(0, "no <scene> element: the file has no elements");
@@ -54,15 +59,25 @@ namespace fs = std::filesystem;
 using scene_loading::Loader;
 using scene_loading::kMaxFileBytes;
 
-LoadedScene loadSceneText(std::string_view xml, const std::string& displayName, const fs::path& baseDirectory,
-                          const LoadOptions& options) {
+namespace {
+
+// A scene too large for memory is a located message too, never a crash.
+LoadedScene loadReportingMemory(std::string_view xml, std::string* owned, const std::string& displayName,
+                                const fs::path& baseDirectory, const LoadOptions& options) {
   try {
-    return Loader(displayName, baseDirectory, options).load(xml);
+    return Loader(displayName, baseDirectory, options).load(xml, owned);
   } catch (const SceneError&) {
     throw;
   } catch (const std::bad_alloc&) {
     throwSceneError({displayName, 0}, "out of memory while reading the scene");
   }
+}
+
+}  // namespace
+
+LoadedScene loadSceneText(std::string_view xml, const std::string& displayName, const fs::path& baseDirectory,
+                          const LoadOptions& options) {
+  return loadReportingMemory(xml, nullptr, displayName, baseDirectory, options);
 }
 
 LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
@@ -76,7 +91,9 @@ LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
     throwSceneError({display, 0}, "cannot open the scene file: " + file.problem.substr(file.problem.find(": ") + 2));
   if (!file.problem.empty()) throwSceneError({display, 0}, "the scene file " + file.problem);
   fs::path directory = path.parent_path();
-  LoadedScene loaded = loadSceneText(file.bytes, display, directory.empty() ? fs::path(".") : directory, options);
+  // The file's text is handed over, to be released as soon as it is parsed.
+  LoadedScene loaded = loadReportingMemory(file.bytes, &file.bytes, display,
+                                           directory.empty() ? fs::path(".") : directory, options);
   loaded.scene.sourcePath = path;
   return loaded;
 }

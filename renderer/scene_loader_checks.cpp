@@ -87,8 +87,9 @@ void Loader::resolveIndices(int rootLine) {
                              " skipped (zero area or a repeated vertex)");
     scene.meshes.push_back(Mesh{pending.id, material, first, static_cast<std::uint32_t>(kept - first)});
   }
+  // No shrink_to_fit: the capacity readFaces reserved from the text's size and never wrote is address space, not
+  // memory, while a shrinking copy would hold every triangle twice at the load's peak (44 B per triangle).
   triangles.resize(kept);
-  triangles.shrink_to_fit();
   warnAboutDuplicatedFaces();
 }
 

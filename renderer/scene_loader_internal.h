@@ -152,7 +152,9 @@ class Loader {
   Loader(const std::string& file, fs::path baseDirectory, const LoadOptions& options)
       : file_(file), baseDirectory_(std::move(baseDirectory)), options_(options) {}
 
-  LoadedScene load(std::string_view text);
+  // `owned`, when given, is the string `text` views: it is released once tinyxml2 has parsed its own copy, so the
+  // file's text is not held through the walk (at 1e6 triangles, ~100 MB less at the load's peak).
+  LoadedScene load(std::string_view text, std::string* owned = nullptr);
 
  private:
   // ---------------------------------------------------------------- messages
