@@ -35,20 +35,7 @@ std::uint32_t seedOfPixel(int i, int j) {
 
 }  // namespace
 
-ShadingGeometry prepareShadingGeometry(const SceneGeometry& scene, const glm::dvec3& origin) {
-  ShadingGeometry g;
-  g.vertices.reserve(scene.vertices.size());
-  for (const glm::dvec3& v : scene.vertices) g.vertices.push_back(v - origin);
-  g.faceNormals.reserve(scene.triangles.size());
-  for (const Triangle& t : scene.triangles) {
-    // Normal from the world positions: exact whatever the origin.
-    const glm::dvec3& a = scene.vertices[t.vertex[0]];
-    const glm::dvec3 n = glm::cross(scene.vertices[t.vertex[1]] - a, scene.vertices[t.vertex[2]] - a);
-    const double length = glm::length(n);
-    g.faceNormals.push_back(length > 0.0 ? n / length : glm::dvec3(0.0, 0.0, 1.0));
-  }
-  return g;
-}
+ShadingGeometry prepareShadingGeometry(const SceneGeometry&, const glm::dvec3& origin) { return {origin}; }
 
 std::uint8_t quantizeChannel(float value) {
   if (!(value > 0.0f)) return 0;  // also NaN
@@ -154,11 +141,16 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
   const Material& material = parameters_.materials[triangle.material];
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
-  const glm::dvec3& a = shading_.vertices[triangle.vertex[0]];
+  const glm::dvec3& w0 = meshes_.vertices[triangle.vertex[0]];
+  const glm::dvec3& w1 = meshes_.vertices[triangle.vertex[1]];
+  const glm::dvec3& w2 = meshes_.vertices[triangle.vertex[2]];
+  const glm::dvec3 a = w0 - shading_.origin;
   // In double from the barycentrics: on the triangle's plane to double rounding, whatever the ray was.
-  const glm::dvec3 pExact = a + hit.b1 * (shading_.vertices[triangle.vertex[1]] - a) +
-                            hit.b2 * (shading_.vertices[triangle.vertex[2]] - a);
-  const glm::dvec3& ngExact = shading_.faceNormals[hit.triangle];
+  const glm::dvec3 pExact = a + hit.b1 * ((w1 - shading_.origin) - a) + hit.b2 * ((w2 - shading_.origin) - a);
+  // The face normal from the world positions: exact whatever the origin.
+  const glm::dvec3 cross = glm::cross(w1 - w0, w2 - w0);
+  const double crossLength = glm::length(cross);
+  const glm::dvec3 ngExact = crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
   const glm::vec3 ng = toFloat(ngExact);
   glm::vec3 n = ng;
   if (triangle.hasNormals()) {
