@@ -68,18 +68,31 @@ bool relayProgress(void* ptr, double fraction) {
 // Triangles as user primitives: Embree's BVH and traversal, the watertight test of watertight_triangle.h
 // in double on the camera-relative double vertices (Embree 3's own robust test misses some rays through
 // shared vertices; see docs/numerics.md).
+// The scene's own arrays, borrowed (the scene outlives the accel: buildAccel's contract): no copy of the vertices
+// or the indices, 24-84 B per triangle less (docs/PERFORMANCE.md). A triangle's corners relative to the origin are
+// computed per test, in double, exactly as a stored relative copy held them.
 struct TriangleData {
-  std::vector<glm::dvec3> vertices;  // relative to the origin, in double
-  std::vector<std::array<std::uint32_t, 3>> triangles;
+  const std::vector<glm::dvec3>* vertices = nullptr;  // world positions
+  const std::vector<Triangle>* triangles = nullptr;
+  glm::dvec3 origin{0.0};
+
+  struct Corners {
+    glm::dvec3 a, b, c;
+  };
+  Corners corners(std::uint32_t triangle) const {
+    const auto& v = (*triangles)[triangle].vertex;
+    return {(*vertices)[v[0]] - origin, (*vertices)[v[1]] - origin, (*vertices)[v[2]] - origin};
+  }
+  std::uint32_t size() const { return triangles ? static_cast<std::uint32_t>(triangles->size()) : 0; }
 };
 
 void triangleBounds(const RTCBoundsFunctionArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
-  const auto& t = data.triangles[args->primID];
+  const TriangleData::Corners t = data.corners(args->primID);
   glm::vec3 lower(INFINITY), upper(-INFINITY);
-  for (int k = 0; k < 3; ++k) {
-    lower = glm::min(lower, glm::vec3(data.vertices[t[k]]));
-    upper = glm::max(upper, glm::vec3(data.vertices[t[k]]));
+  for (const glm::dvec3* corner : {&t.a, &t.b, &t.c}) {
+    lower = glm::min(lower, glm::vec3(*corner));
+    upper = glm::max(upper, glm::vec3(*corner));
   }
   // Embree's traversal of user geometry is not conservative at box corners; a margin keeps every ray
   // through a vertex.
@@ -95,9 +108,8 @@ bool testTriangle(const Args* args, TriangleHit& hit) {
   const auto* query = reinterpret_cast<const QueryContext*>(args->context);
   if (args->primID == query->ray->excludedTriangle) return false;
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
-  const auto& t = data.triangles[args->primID];
-  return intersectWatertight(query->prepared, data.vertices[t[0]], data.vertices[t[1]], data.vertices[t[2]],
-                             query->ray->tNear, query->tFar, hit);
+  const TriangleData::Corners t = data.corners(args->primID);
+  return intersectWatertight(query->prepared, t.a, t.b, t.c, query->ray->tNear, query->tFar, hit);
 }
 
 void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
@@ -137,11 +149,8 @@ class EmbreeAccel final : public Accel {
     ProgressRelay relay{progress, progressUser};
     if (progress) rtcSetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
 
+    data_ = {&scene.vertices, &scene.triangles, origin};
     if (!scene.triangles.empty()) {
-      data_.vertices.reserve(scene.vertices.size());
-      for (const glm::dvec3& v : scene.vertices) data_.vertices.push_back(v - origin);
-      data_.triangles.reserve(scene.triangles.size());
-      for (const Triangle& t : scene.triangles) data_.triangles.push_back({t.vertex[0], t.vertex[1], t.vertex[2]});
       RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
       rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(scene.triangles.size()));
       rtcSetGeometryUserData(geometry, &data_);
@@ -205,14 +214,12 @@ class EmbreeAccel final : public Accel {
   std::optional<Hit> closestHitWithoutEmbree(const Ray& ray) const {
     const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
     std::optional<Hit> best;
-    for (std::uint32_t i = 0; i < data_.triangles.size(); ++i) {
+    for (std::uint32_t i = 0; i < data_.size(); ++i) {
       if (i == ray.excludedTriangle) continue;
-      const auto& t = data_.triangles[i];
+      const TriangleData::Corners t = data_.corners(i);
       TriangleHit hit;
       const double tFar = best ? std::min(ray.tFar, tieSearchLimit(best->t)) : ray.tFar;
-      if (!intersectWatertight(prepared, data_.vertices[t[0]], data_.vertices[t[1]], data_.vertices[t[2]], ray.tNear,
-                               tFar, hit))
-        continue;
+      if (!intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, tFar, hit)) continue;
       if (best && !replacesClosestHit(hit.t, i, best->t, best->triangle)) continue;
       best = Hit{hit.t, i, hit.b1, hit.b2};
     }
@@ -221,13 +228,11 @@ class EmbreeAccel final : public Accel {
 
   bool occludedWithoutEmbree(const Ray& ray) const {
     const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
-    for (std::uint32_t i = 0; i < data_.triangles.size(); ++i) {
+    for (std::uint32_t i = 0; i < data_.size(); ++i) {
       if (i == ray.excludedTriangle) continue;
-      const auto& t = data_.triangles[i];
+      const TriangleData::Corners t = data_.corners(i);
       TriangleHit hit;
-      if (intersectWatertight(prepared, data_.vertices[t[0]], data_.vertices[t[1]], data_.vertices[t[2]], ray.tNear,
-                              ray.tFar, hit))
-        return true;
+      if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit)) return true;
     }
     return false;
   }

@@ -67,6 +67,8 @@ std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeo
                                const glm::dvec3& origin);
 
 // The Embree back-end when asked for and the geometry is within Embree's range, else the reference BVH.
+// The accel may read `scene`'s arrays while tracing (the Embree back-end does, rather than copy them): the scene
+// must outlive it and not change.
 std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                   BuildProgress progress = nullptr, void* progressUser = nullptr);
 
