@@ -126,7 +126,10 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneL
       {"Speed", formatted("%.2f Mrays/s", s.megaRaysPerSecond)},
       {"Edit to first pass", millisecondsOrPending(s.editToFirstPassMs)},
       {"Edit to final pass", millisecondsOrPending(s.editToFinalPassMs)},
-      {"Image", std::to_string(s.width) + " x " + std::to_string(s.height)},
+      {"Image", std::to_string(s.width) + " x " + std::to_string(s.height) +
+                    (s.windowView ? " (window; file " + std::to_string(s.fileWidth) + " x " +
+                                        std::to_string(s.fileHeight) + ")"
+                                  : "")},
       {"Triangles", std::to_string(s.triangles)},
       {"Read", formatted("%.1f ms", s.readMs)},
       {"BVH build", formatted("%.1f ms", s.bvhBuildMs)},

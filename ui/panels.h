@@ -114,6 +114,8 @@ struct ViewerStats {
   double editToFinalPassMs = -1.0;
   std::uint64_t generation = 0;
   int width = 0, height = 0;
+  bool windowView = false;             // the image is the window view's, not the file's
+  int fileWidth = 0, fileHeight = 0;   // the file's resolution (what Ctrl+S saves)
   std::size_t triangles = 0;
   double readMs = 0.0;
   double bvhBuildMs = 0.0;

@@ -106,6 +106,11 @@ bool ViewerApp::takeNewFrame() {
   stats_.megaRaysPerSecond = frame_.megaRaysPerSecond;
   stats_.width = frame_.width;
   stats_.height = frame_.height;
+  stats_.windowView = !display_.imageView;
+  if (session_) {
+    stats_.fileWidth = session_->committedEdits().camera.width;
+    stats_.fileHeight = session_->committedEdits().camera.height;
+  }
   // The figures against a reference follow each final pass, never a coarse one.
   if (frame_.final) comparison_.compareFinal(frame_.image, frame_.version);
   return true;

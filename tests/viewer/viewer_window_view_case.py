@@ -89,7 +89,7 @@ def case_window_view(args, work):
     checked = 0
     for j in range(1, height, 13):
         for i in range(1, width, 17):
-            if (i >= width - 340 and j >= height - 240) or j >= height - 45:
+            if (i >= width - 440 and j >= height - 240) or j >= height - 45:
                 continue  # the stats box, and the pixel readout's line at the bottom (the pointer may be on the image)
             a = (((y0 + j) * shot_width) + x0 + i) * 3
             b = (j * ref_width + i) * 3
