@@ -171,6 +171,10 @@ int Loader::lineIn(const Piece& piece, const char* p) {
 
 // Reads every number of an element into `out` (appending). `asFloat` also refuses values beyond float.
 void Loader::readNumbers(const XMLElement* e, std::vector<double>& out, bool asFloat) {
+  readNumbers(e, asFloat, [&](double v) { out.push_back(v); });
+}
+
+void Loader::readNumbers(const XMLElement* e, bool asFloat, const std::function<void(double)>& sink) {
   const std::vector<Piece> pieces = textOf(e);
   for (const Piece& piece : pieces) {
     detail::TokenScanner scanner(piece.text);
@@ -192,7 +196,7 @@ void Loader::readNumbers(const XMLElement* e, std::vector<double>& out, bool asF
                           quoted(std::string_view(token.data(), static_cast<std::size_t>(tokenEnd - token.data()))) +
                           " (read as separate numbers)");
       }
-      out.push_back(value);
+      sink(value);
     }
   }
 }

@@ -207,49 +207,46 @@ void Loader::readMaterials(const XMLElement* materials) {
   });
 }
 
-// Numbers of a big block straight into `out`, `stride` per item.
-void Loader::readBlock(const XMLElement* e, std::size_t stride, const char* itemName, std::vector<double>& numbers,
-               bool asFloat) {
-  numbers.clear();
+std::size_t Loader::blockTextSize(const XMLElement* e) {
   std::size_t textSize = 0;
   for (const XMLNode* node = e->FirstChild(); node; node = node->NextSibling())
     if (node->ToText()) textSize += std::strlen(node->Value());
-  numbers.reserve(textSize / 8 + 16);
-  readNumbers(e, numbers, asFloat);
-  if (numbers.size() % stride != 0)
+  return textSize;
+}
+
+void Loader::checkBlockCount(const XMLElement* e, std::size_t stride, const char* itemName, std::size_t count) {
+  if (count % stride != 0)
     fail(e->GetLineNum(), elementName(e) + ": expected " + std::to_string(stride) + " numbers per " + itemName +
-                              ", found " + std::to_string(numbers.size()) + " numbers (not a multiple of " +
+                              ", found " + std::to_string(count) + " numbers (not a multiple of " +
                               std::to_string(stride) + ")");
-  if (numbers.size() / stride > static_cast<std::size_t>(INT32_MAX))
+  if (count / stride > static_cast<std::size_t>(INT32_MAX))
     fail(e->GetLineNum(), elementName(e) + ": too many " + itemName + "s");
 }
 
 void Loader::readVertices(const XMLElement* e) {
-  std::vector<double> numbers;
-  readBlock(e, 3, "vertex", numbers, false);
   auto& vertices = result_.scene.vertices;
-  vertices.resize(numbers.size() / 3);
-  for (std::size_t i = 0; i < vertices.size(); ++i)
-    vertices[i] = glm::dvec3(numbers[3 * i], numbers[3 * i + 1], numbers[3 * i + 2]);
+  vertices.clear();
+  readBlock<3>(
+      e, "vertex", false, [&](std::size_t n) { vertices.reserve(n); },
+      [&](const double* v) { vertices.emplace_back(v[0], v[1], v[2]); });
 }
 
 void Loader::readTexCoords(const XMLElement* e) {
-  std::vector<double> numbers;
-  readBlock(e, 2, "texture coordinate", numbers, true);
   auto& uvs = result_.scene.texCoords;
-  uvs.resize(numbers.size() / 2);
-  for (std::size_t i = 0; i < uvs.size(); ++i)
-    uvs[i] = glm::vec2(static_cast<float>(numbers[2 * i]), static_cast<float>(numbers[2 * i + 1]));
+  uvs.clear();
+  readBlock<2>(
+      e, "texture coordinate", true, [&](std::size_t n) { uvs.reserve(n); },
+      [&](const double* v) { uvs.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1])); });
 }
 
 void Loader::readNormals(const XMLElement* e) {
-  std::vector<double> numbers;
-  readBlock(e, 3, "normal", numbers, true);
   auto& normals = result_.scene.normals;
-  normals.resize(numbers.size() / 3);
-  for (std::size_t i = 0; i < normals.size(); ++i)
-    normals[i] = glm::vec3(static_cast<float>(numbers[3 * i]), static_cast<float>(numbers[3 * i + 1]),
-                           static_cast<float>(numbers[3 * i + 2]));
+  normals.clear();
+  readBlock<3>(
+      e, "normal", true, [&](std::size_t n) { normals.reserve(n); },
+      [&](const double* v) {
+        normals.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+      });
 }
 
 void Loader::readObjects(const XMLElement* objects) {
