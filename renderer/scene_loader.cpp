@@ -3,7 +3,11 @@
 // This file: the entry points. The loader's three jobs live in scene_loader_elements.cpp (element
 // readers), scene_loader_walk.cpp (the walk) and scene_loader_checks.cpp (checks after the walk).
 
+#include <sys/stat.h>
+
+#include <cstdio>
 #include <cstring>
+#include <memory>
 
 #include "rayview/file_read.h"
 #include "scene_loader_internal.h"
@@ -21,14 +25,44 @@ void refuseWhatIsNotText(const std::string& file, std::string_view text) {
                     "the file contains NUL bytes: a binary file, not a scene file");
 }
 
-LoadedScene Loader::load(std::string_view text, std::string* owned) {
+namespace {
+
+// Parses the file at `path` with tinyxml2 reading it into its own buffer, when it is still `expectedSize` bytes;
+// false (the document untouched) when it cannot be opened or its size changed since it was read.
+bool parseFileDirectly(tinyxml2::XMLDocument& doc, const fs::path& path, std::size_t expectedSize, std::string& text) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) return false;
+  struct stat status {};
+  if (::fstat(::fileno(file.get()), &status) != 0 || !S_ISREG(status.st_mode) ||
+      static_cast<std::size_t>(status.st_size) != expectedSize)
+    return false;
+  std::string().swap(text);  // the copy already read: tinyxml2 makes its own
+  doc.LoadFile(file.get());
+  return true;
+}
+
+}  // namespace
+
+LoadedScene Loader::load(std::string_view text, std::string* owned, const fs::path* source) {
   refuseWhatIsNotText(file_, text);
   detail::RepairedXml repaired = detail::repairXml(text, file_, options_.strict);
   for (Diagnostic& d : repaired.repairs) warnings_.add(std::move(d));
   std::string_view xml = repaired.changed ? std::string_view(repaired.text) : text;
 
   tinyxml2::XMLDocument doc(true, tinyxml2::PRESERVE_WHITESPACE);
-  if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) xmlError(doc, text);
+  const bool direct = !repaired.changed && owned && source && !text.empty() &&
+                      parseFileDirectly(doc, *source, text.size(), *owned);
+  if (direct && doc.Error()) {
+    // Messages quote the text: read it again (errors are rare; their memory does not matter).
+    detail::UserFileRead again = detail::readUserFile(*source, kMaxFileBytes);
+    if (!again.problem.empty()) fail(0, "the scene file " + again.problem);
+    *owned = std::move(again.bytes);
+    text = *owned;
+    xml = text;
+    if (doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) xmlError(doc, text);
+  } else if (!direct && doc.Parse(xml.data(), xml.size()) != tinyxml2::XML_SUCCESS) {
+    xmlError(doc, text);
+  }
   // tinyxml2 parsed a copy of its own: the texts are not read again (messages take their lines from the DOM).
   std::string().swap(repaired.text);
   if (owned) std::string().swap(*owned);
@@ -62,10 +96,11 @@ using scene_loading::kMaxFileBytes;
 namespace {
 
 // A scene too large for memory is a located message too, never a crash.
-LoadedScene loadReportingMemory(std::string_view xml, std::string* owned, const std::string& displayName,
-                                const fs::path& baseDirectory, const LoadOptions& options) {
+LoadedScene loadReportingMemory(std::string_view xml, std::string* owned, const fs::path* source,
+                                const std::string& displayName, const fs::path& baseDirectory,
+                                const LoadOptions& options) {
   try {
-    return Loader(displayName, baseDirectory, options).load(xml, owned);
+    return Loader(displayName, baseDirectory, options).load(xml, owned, source);
   } catch (const SceneError&) {
     throw;
   } catch (const std::bad_alloc&) {
@@ -77,7 +112,7 @@ LoadedScene loadReportingMemory(std::string_view xml, std::string* owned, const 
 
 LoadedScene loadSceneText(std::string_view xml, const std::string& displayName, const fs::path& baseDirectory,
                           const LoadOptions& options) {
-  return loadReportingMemory(xml, nullptr, displayName, baseDirectory, options);
+  return loadReportingMemory(xml, nullptr, nullptr, displayName, baseDirectory, options);
 }
 
 LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
@@ -92,7 +127,7 @@ LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   if (!file.problem.empty()) throwSceneError({display, 0}, "the scene file " + file.problem);
   fs::path directory = path.parent_path();
   // The file's text is handed over, to be released as soon as it is parsed.
-  LoadedScene loaded = loadReportingMemory(file.bytes, &file.bytes, display,
+  LoadedScene loaded = loadReportingMemory(file.bytes, &file.bytes, &path, display,
                                            directory.empty() ? fs::path(".") : directory, options);
   loaded.scene.sourcePath = path;
   return loaded;

@@ -154,8 +154,10 @@ class Loader {
       : file_(file), baseDirectory_(std::move(baseDirectory)), options_(options) {}
 
   // `owned`, when given, is the string `text` views: it is released once tinyxml2 has parsed its own copy, so the
-  // file's text is not held through the walk (at 1e6 triangles, ~100 MB less at the load's peak).
-  LoadedScene load(std::string_view text, std::string* owned = nullptr);
+  // file's text is not held through the walk (at 1e6 triangles, ~100 MB less at the load's peak). With `source`,
+  // the file `text` was read from, a text the repair pass leaves unchanged is released before parsing and
+  // tinyxml2 reads the file itself: one copy of the text at the parse instead of two (the load's peak).
+  LoadedScene load(std::string_view text, std::string* owned = nullptr, const fs::path* source = nullptr);
 
  private:
   // ---------------------------------------------------------------- messages

@@ -305,6 +305,40 @@ TEST_F(LoaderTexture, NotLoadedWhenAskedNotTo) {
   EXPECT_EQ(loaded.scene.textureImage, "nowhere.png");
 }
 
+// loadSceneFile lets tinyxml2 read a file the repair pass leaves unchanged itself (one copy of the text at the
+// parse, not two); whatever it reads, the scene, the warnings and every message are those of the same text loaded
+// from memory.
+TEST(LoaderFile, AFileLoadsAsItsTextDoesWithTheSameMessages) {
+  const fs::path path = fs::temp_directory_path() /
+                        ("rayview_loader_file_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + ".xml");
+  auto message = [](auto load) {
+    try {
+      const LoadedScene loaded = load();
+      std::string summary = "ok " + std::to_string(loaded.scene.triangles.size()) + " triangles";
+      for (const Diagnostic& d : loaded.warnings) summary += "; " + d.message;
+      return summary;
+    } catch (const SceneError& e) {
+      return std::string(e.what());
+    }
+  };
+  const std::vector<std::string> texts = {
+      kBase,                                             // loads
+      with("</objects>", "</objects><unknown/>"),        // a warning
+      with("<camera>", "<camera a=\"1\" a=\"2\">"),  // an XML error tinyxml2 finds
+      kBase + "<!-- never closed",                      // another
+      "<!-- nothing but a comment -->",                  // no element
+      "plain text, no markup at all\n",                 // not XML
+      "",                                                // empty
+  };
+  for (const std::string& text : texts) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << text;
+    const std::string fromFile = message([&] { return loadSceneFile(path); });
+    std::string fromText = message([&] { return loadSceneText(text, path.string(), path.parent_path()); });
+    EXPECT_EQ(fromFile, fromText) << text.substr(0, 60);
+  }
+  fs::remove(path);
+}
+
 TEST(LoaderFile, MissingFileIsAnErrorNamingIt) {
   try {
     loadSceneFile("/nonexistent/dir/scene.xml");
