@@ -12,6 +12,7 @@
 #include <imgui.h>
 
 #include "numbered_file.h"
+#include "rayview/view_camera.h"
 #include "panels.h"
 #include "viewer_app.h"
 #include "window_capture.h"
@@ -147,6 +148,15 @@ void ViewerApp::drawPixelReadout(const Layout& l) {
                      rgbText(frame_.image.pixel(pixel->i / std::max(frame_.stride, 1), pixel->j / std::max(frame_.stride, 1)));
   if (comparison_.comparable(frame_.width, frame_.height))
     text += ", reference " + rgbText(comparison_.reference().pixel(pixel->i, pixel->j));
+  // In the window view, where the cursor is in the file's image (the pixel a reference or `pick I J` names).
+  if (!display_.imageView) {
+    const Camera& file = session_->committedEdits().camera;
+    const ViewRect r = fileImageInWindowView(file, session_->renderedCamera());
+    const double fi = std::floor((pixel->i + 0.5 - r.x) * file.width / r.width);
+    const double fj = std::floor((pixel->j + 0.5 - r.y) * file.height / r.height);
+    if (fi >= 0.0 && fi < file.width && fj >= 0.0 && fj < file.height)
+      text += " (file pixel " + std::to_string(static_cast<int>(fi)) + ", " + std::to_string(static_cast<int>(fj)) + ")";
+  }
   if (!frame_.final) text += " (preview pass)";
   drawReadoutOverlay(text, l.viewX + ImGui::GetStyle().WindowPadding.x,
                      l.viewY + l.viewHeight - ImGui::GetStyle().WindowPadding.y);

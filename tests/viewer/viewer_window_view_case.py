@@ -5,7 +5,7 @@ In the initial 1280x800 window the image area is 880x800 (panels 400 wide). The 
 test scene's 480x300 view with its near plane extended about its centre to 880:800, never cropped. The screenshot's
 image area is exactly `rayview render` of the scene with that camera (computed here from the file's), at a grid of
 pixels away from the stats and the readout. A real Ctrl+S saves the 480x300 image `rayview render` writes, rendered in the
-background. V (a real key) switches to the image view (480x300 rendered, print-state says so) and back; a resize
+background. The readout names the file's pixel under the cursor too. V (a real key) switches to the image view (480x300 rendered, print-state says so) and back; a resize
 renders the new area's size.
 """
 import os
@@ -53,10 +53,18 @@ def case_window_view(args, work):
     with open(script, "w") as f:
         f.write(f"wait-final\nprint-state\nscreenshot {shot}\nsleep {3 * KEY_SECONDS}\nwait-final\nprint-state\n"
                 f"sleep {KEY_SECONDS}\nwait-final\nprint-state\nresize 1000 700\nwait-final\nprint-state\nquit\n")
+    os.environ["RAYVIEW_PRINT_READOUT"] = "1"
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
     try:
         viewer.wait_for(f"screenshot {shot}")
         window = viewer_window(viewer)
+        # The readout also names the file's pixel under the cursor: the 480x300 image spans the area's width,
+        # 550 pixels high from row 125, so area pixel (440, 400) is file pixel (240, 150).
+        xdotool("mousemove", "--window", window, x0 + 440, y0 + 400)
+        readout = viewer.wait_for("readout pixel 440, 400:", timeout=KEY_SECONDS)
+        if "(file pixel 240, 150)" not in readout:
+            raise Failure(f"the window view's readout should name file pixel 240, 150: {readout!r}")
+        print("  " + readout)
         # A real Ctrl+S: the file's image, rendered in the background, never the window's pixels.
         xdotool("key", "--window", window, "ctrl+s")
         saved = viewer.wait_for("saved ", timeout=2 * KEY_SECONDS).split(" ", 1)[1]
