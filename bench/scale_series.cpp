@@ -115,16 +115,13 @@ int breakdown(const std::string& path, int threads) {
   // What the arrays themselves take, from their sizes; the Embree part is the rest of the build step.
   const double sceneBytes = sceneArrayBytes(scene);
   const double copyBytes = sceneArrayBytes(*geometry->source);
-  const double shadingBytes = 0.0;  // ShadingGeometry holds the origin only: hit points and normals come per hit
-  const double accelDataBytes = 0.0;  // embree_accel.cpp's TriangleData borrows the scene's arrays since 2026-11-23
+  // Shading and the Embree back-end's TriangleData hold nothing per triangle: they read the scene's arrays.
   const double buildDelta = afterBuild.rss - afterLoad.rss;
-  const double embreeBytes = buildDelta - copyBytes - shadingBytes - accelDataBytes;
+  const double embreeBytes = buildDelta - copyBytes;
   std::printf("\n| where the bytes go (held during the render) | MB | B/triangle |\n|---|---:|---:|\n");
   auto part = [&](const char* what, double bytes) { std::printf("| %s | %.0f | %.0f |\n", what, bytes / 1e6, bytes / n); };
   part("Scene arrays (vertices dvec3 24 B, Triangle 44 B, normals, meshes)", sceneBytes);
   part("the same arrays again: prepareGeometry(const Scene&) copies the scene into PreparedGeometry::source", copyBytes);
-  part("ShadingGeometry (the origin only since 2026-11-23: nothing per triangle)", shadingBytes);
-  part("EmbreeAccel TriangleData (borrows the scene's arrays: nothing per triangle)", accelDataBytes);
   part("Embree BVH and the rest of the build step (measured: step's resident growth minus the above)", embreeBytes);
   part("image and the rest of the render step", afterRender.rss - afterBuild.rss);
   part("transient peak of the load above what it keeps (XML text, repaired copy, tinyxml2 DOM)", afterLoad.peak - afterLoad.rss);

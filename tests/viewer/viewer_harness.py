@@ -173,6 +173,19 @@ class Viewer:
             self.process.wait()
 
 
+def run_script(rayview, arguments, work, what="the script", timeout=120):
+    """Runs the viewer with `arguments` (a --script among them) until the script quits; fails naming `what` and
+    the exit code, with the viewer's output, unless it exits 0. Returns the finished Viewer (its stdout lines)."""
+    viewer = Viewer(rayview, arguments, work)
+    try:
+        code = viewer.finish(timeout=timeout)
+    finally:
+        viewer.kill()
+    if code != 0:
+        raise Failure(f"{what} failed ({code})\n" + viewer.output())
+    return viewer
+
+
 def run(command, **kwargs):
     print("  $ " + " ".join(command))
     result = subprocess.run(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, **kwargs)

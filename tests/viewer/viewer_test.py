@@ -49,6 +49,7 @@ from viewer_image_view_case import case_image_view  # noqa: E402
 from viewer_display_case import case_display  # noqa: E402
 from viewer_window_view_case import case_window_view  # noqa: E402
 from viewer_harness import (  # noqa: E402
+    run_script,
     last_generation,
     title_of,
     save_now,
@@ -144,13 +145,7 @@ open {other}
 print-state
 quit
 """)
-    viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
-    try:
-        code = viewer.finish(timeout=120)
-    finally:
-        viewer.kill()
-    if code != 0:
-        raise Failure(f"the script failed ({code})\n" + viewer.output())
+    viewer = run_script(args.rayview, [scene, "--threads", "2", "--script", script], work)
     print("  " + "\n  ".join(viewer.stdout))
     state = [line for line in viewer.stdout if line.startswith("state ")]
     if not state or "error=1" not in state[0] or not state[0].endswith("scene=" + scene):
@@ -385,12 +380,7 @@ def case_screenshot(args, work):
     with open(script, "w") as f:
         f.write(f"resize 1280 800\nwait-frames 3\nwait-final\nscreenshot {shot}\nquit\n")
     # The embedded default scene: what `rayview` alone shows.
-    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
-    try:
-        if viewer.finish(timeout=120) != 0:
-            raise Failure("the screenshot script failed\n" + viewer.output())
-    finally:
-        viewer.kill()
+    run_script(args.rayview, ["--threads", "2", "--script", script], work, "the screenshot script")
     width, height, pixels = read_png(shot)
     if (width, height) != (1280, 800):
         raise Failure(f"the screenshot is {width}x{height}, expected the 1280x800 window")
@@ -420,12 +410,7 @@ def case_small_window(args, work):
     script = os.path.join(work, "small.rvs")
     with open(script, "w") as f:
         f.write(f"resize 1000 640\nwait-frames 3\nwait-final\nscreenshot {shot}\nquit\n")
-    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
-    try:
-        if viewer.finish(timeout=120) != 0:
-            raise Failure("the small-window script failed\n" + viewer.output())
-    finally:
-        viewer.kill()
+    run_script(args.rayview, ["--threads", "2", "--script", script], work, "the small-window script")
     width, height, pixels = read_png(shot)
     if (width, height) != (1000, 640):
         raise Failure(f"the screenshot is {width}x{height}, expected 1000x640")
@@ -503,12 +488,7 @@ def case_hidpi(args, work):
     script = os.path.join(work, "hidpi.rvs")
     with open(script, "w") as f:
         f.write(f"wait-final\nscreenshot {shot}\nquit\n")
-    viewer = Viewer(args.rayview, ["--threads", "2", "--script", script], work)
-    try:
-        if viewer.finish(timeout=120) != 0:
-            raise Failure("the hidpi script failed\n" + viewer.output())
-    finally:
-        viewer.kill()
+    run_script(args.rayview, ["--threads", "2", "--script", script], work, "the hidpi script")
     width, height, pixels = read_png(shot)
     if (width, height) != (2560, 1600):
         raise Failure(f"at content scale 2 the 1280x800 window should open at 2560x1600, not {width}x{height}")
@@ -559,13 +539,7 @@ print-state
 save-frame {work}/one.png
 quit
 """)
-    viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
-    try:
-        code = viewer.finish(timeout=120)
-    finally:
-        viewer.kill()
-    if code != 0:
-        raise Failure(f"the script failed ({code})\n" + viewer.output())
+    viewer = run_script(args.rayview, [scene, "--threads", "2", "--script", script], work)
     state = [line for line in viewer.stdout if line.startswith("state ")]
     print("  " + "\n  ".join(state))
     if len(state) != 2 or " samples=6/6 final=1 " not in state[0] or " samples=1/1 final=1 " not in state[1]:
