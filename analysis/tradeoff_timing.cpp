@@ -21,8 +21,11 @@ double processCpuMs() {
 
 bool traceGrid(const Tracer& tracer, int stride, ThreadPool& pool, const std::atomic<bool>* cancel, Image& image,
                RayCounts& rays) {
-  return renderGrid([&](int x, int y, RayCounts& counts) { return tracer.tracePixel(x, y, counts); }, stride, 0, pool,
-                    image, rays, [cancel] { return cancel && cancel->load(std::memory_order_relaxed); });
+  return renderGrid(
+      [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
+        tracer.tracePixels(pixels, count, out, counts);
+      },
+      stride, 0, pool, image, rays, [cancel] { return cancel && cancel->load(std::memory_order_relaxed); });
 }
 
 }  // namespace

@@ -44,20 +44,26 @@ struct ProgressRelay {
 
 // The ray in double travels with the query: Embree traverses its float boxes with a float copy, and
 // every candidate triangle is tested against the double ray. The closest hit so far is kept here too.
-struct QueryContext {
-  RTCIntersectContext context;  // first member: Embree hands back a pointer to it
-  const Ray* ray;
+struct QueryLane {
+  const Ray* ray = nullptr;
   WatertightRay prepared;
-  double tFar;                  // the ray's tFar, then the closest hit so far plus the tie band
+  double tFar = 0.0;            // the ray's tFar, then the closest hit so far plus the tie band
   TriangleHit hit;
   unsigned triangle = RTC_INVALID_GEOMETRY_ID;
 };
 
-void initContext(QueryContext& c, const Ray& ray) {
-  rtcInitIntersectContext(&c.context);
-  c.ray = &ray;
-  c.prepared = prepareWatertightRay(ray.origin, ray.direction);
-  c.tFar = ray.tFar;
+// One lane per ray of the query (1, or up to kRayPacket for a packet). Each float ray's `id` is its lane: the
+// callbacks find their double ray by it, whatever packet size and order Embree calls them with.
+struct QueryContext {
+  RTCIntersectContext context;  // first member: Embree hands back a pointer to it
+  QueryLane* lanes;
+};
+
+void initLane(QueryLane& lane, const Ray& ray) {
+  lane.ray = &ray;
+  lane.prepared = prepareWatertightRay(ray.origin, ray.direction);
+  lane.tFar = ray.tFar;
+  lane.triangle = RTC_INVALID_GEOMETRY_ID;
 }
 
 bool relayProgress(void* ptr, double fraction) {
@@ -106,37 +112,43 @@ void triangleBounds(const RTCBoundsFunctionArguments* args) {
   *args->bounds_o = RTCBounds{lower.x, lower.y, lower.z, 0.0f, upper.x, upper.y, upper.z, 0.0f};
 }
 
-template <typename Args>
-bool testTriangle(const Args* args, TriangleHit& hit) {
-  const auto* query = reinterpret_cast<const QueryContext*>(args->context);
-  if (args->primID == query->ray->excludedTriangle) return false;
-  const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
-  const TriangleData::Corners t = data.corners(args->primID);
-  return intersectWatertight(query->prepared, t.a, t.b, t.c, query->ray->tNear, query->tFar, hit);
+bool testTriangle(const TriangleData& data, unsigned primID, const QueryLane& lane, TriangleHit& hit) {
+  if (primID == lane.ray->excludedTriangle) return false;
+  const TriangleData::Corners t = data.corners(primID);
+  return intersectWatertight(lane.prepared, t.a, t.b, t.c, lane.ray->tNear, lane.tFar, hit);
 }
 
 void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  auto* query = reinterpret_cast<QueryContext*>(args->context);
-  TriangleHit hit;
-  if (!testTriangle(args, hit)) return;
-  if (query->triangle != RTC_INVALID_GEOMETRY_ID &&
-      !replacesClosestHit(hit.t, args->primID, query->hit.t, query->triangle))
-    return;
-  query->hit = hit;
-  query->triangle = args->primID;
-  query->tFar = std::min(query->ray->tFar, tieSearchLimit(hit.t));
-  // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
-  auto* rayHit = reinterpret_cast<RTCRayHit*>(args->rayhit);
-  rayHit->ray.tfar = nextFloatUp(static_cast<float>(query->tFar));
-  rayHit->hit.primID = args->primID;
-  rayHit->hit.geomID = args->geomID;
+  const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
+  QueryLane* lanes = reinterpret_cast<QueryContext*>(args->context)->lanes;
+  RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
+  RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    QueryLane& lane = lanes[RTCRayN_id(rays, args->N, i)];
+    TriangleHit hit;
+    if (!testTriangle(data, args->primID, lane, hit)) continue;
+    if (lane.triangle != RTC_INVALID_GEOMETRY_ID && !replacesClosestHit(hit.t, args->primID, lane.hit.t, lane.triangle))
+      continue;
+    lane.hit = hit;
+    lane.triangle = args->primID;
+    lane.tFar = std::min(lane.ray->tFar, tieSearchLimit(hit.t));
+    // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
+    RTCRayN_tfar(rays, args->N, i) = nextFloatUp(static_cast<float>(lane.tFar));
+    RTCHitN_primID(hits, args->N, i) = args->primID;
+    RTCHitN_geomID(hits, args->N, i) = args->geomID;
+  }
 }
 
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
-  if (!args->valid[0]) return;
-  TriangleHit hit;
-  if (testTriangle(args, hit)) reinterpret_cast<RTCRay*>(args->ray)->tfar = -INFINITY;
+  const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
+  QueryLane* lanes = reinterpret_cast<QueryContext*>(args->context)->lanes;
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    TriangleHit hit;
+    if (testTriangle(data, args->primID, lanes[RTCRayN_id(args->ray, args->N, i)], hit))
+      RTCRayN_tfar(args->ray, args->N, i) = -INFINITY;
+  }
 }
 
 class EmbreeAccel final : public Accel {
@@ -184,21 +196,56 @@ class EmbreeAccel final : public Accel {
 
   std::optional<Hit> closestHit(const Ray& ray) const override {
     if (!representable(ray)) return closestHitWithoutEmbree(ray);
-    QueryContext query;
-    initContext(query, ray);
+    QueryLane lane;
+    initLane(lane, ray);
+    QueryContext query{{}, &lane};
+    rtcInitIntersectContext(&query.context);
     RTCRayHit rayHit;
     fill(rayHit.ray, ray);
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene_, &query.context, &rayHit);
-    if (query.triangle == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
-    return Hit{query.hit.t, query.triangle, query.hit.b1, query.hit.b2};
+    return hitOf(lane);
+  }
+
+  void closestHits(const Ray* rays, int count, std::optional<Hit>* hits) const override {
+    QueryLane lanes[kRayPacket];
+    alignas(64) RTCRayHit16 packet{};  // lanes left out stay zero
+    alignas(64) int valid[kRayPacket];
+    if (!fillPacket(rays, count, lanes, packet.ray, valid, [&](int k) { hits[k] = closestHitWithoutEmbree(rays[k]); }))
+      return;
+    for (int k = 0; k < kRayPacket; ++k) {
+      packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+      packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+    }
+    QueryContext query{{}, lanes};
+    rtcInitIntersectContext(&query.context);
+    query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcIntersect16(valid, scene_, &query.context, &packet);
+    for (int k = 0; k < count; ++k)
+      if (valid[k]) hits[k] = hitOf(lanes[k]);
+  }
+
+  void occludedMany(const Ray* rays, int count, bool* answers) const override {
+    QueryLane lanes[kRayPacket];
+    alignas(64) RTCRay16 packet{};
+    alignas(64) int valid[kRayPacket];
+    if (!fillPacket(rays, count, lanes, packet, valid, [&](int k) { answers[k] = occludedWithoutEmbree(rays[k]); }))
+      return;
+    QueryContext query{{}, lanes};
+    rtcInitIntersectContext(&query.context);
+    query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
+    rtcOccluded16(valid, scene_, &query.context, &packet);
+    for (int k = 0; k < count; ++k)
+      if (valid[k]) answers[k] = packet.tfar[k] < 0.0f;  // Embree sets tfar to -inf on a hit
   }
 
   bool occluded(const Ray& ray) const override {
     if (!representable(ray)) return occludedWithoutEmbree(ray);
-    QueryContext query;
-    initContext(query, ray);
+    QueryLane lane;
+    initLane(lane, ray);
+    QueryContext query{{}, &lane};
+    rtcInitIntersectContext(&query.context);
     RTCRay r;
     fill(r, ray);
     rtcOccluded1(scene_, &query.context, &r);
@@ -211,6 +258,11 @@ class EmbreeAccel final : public Accel {
   // buildAccel() only builds this back-end for scenes whose rays stay within kEmbreeCoordinateLimit, but a
   // caller may still trace a ray from elsewhere (the viewer's camera moved far from the build origin).
   // Embree asserts on such a ray: it is answered here by testing every triangle, in double.
+  static std::optional<Hit> hitOf(const QueryLane& lane) {
+    if (lane.triangle == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
+    return Hit{lane.hit.t, lane.triangle, lane.hit.b1, lane.hit.b2};
+  }
+
   static bool representable(const Ray& ray) {
     const double limit = kEmbreeCoordinateLimit;
     for (int k = 0; k < 3; ++k)
@@ -242,6 +294,39 @@ class EmbreeAccel final : public Accel {
       if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit)) return true;
     }
     return false;
+  }
+
+  // Lanes k < count of a packet, each ray's float copy with its lane as id; a ray Embree cannot take is answered
+  // by `without(k)` and left out (valid[k] = 0). Returns whether any lane is left for Embree.
+  template <class Without>
+  static bool fillPacket(const Ray* rays, int count, QueryLane* lanes, RTCRay16& packet, int* valid, Without&& without) {
+    bool any = false;
+    for (int k = 0; k < kRayPacket; ++k) {
+      valid[k] = 0;
+      if (k >= count) continue;
+      if (!representable(rays[k])) {
+        without(k);
+        continue;
+      }
+      initLane(lanes[k], rays[k]);
+      RTCRay one;
+      fill(one, rays[k]);
+      packet.org_x[k] = one.org_x;
+      packet.org_y[k] = one.org_y;
+      packet.org_z[k] = one.org_z;
+      packet.dir_x[k] = one.dir_x;
+      packet.dir_y[k] = one.dir_y;
+      packet.dir_z[k] = one.dir_z;
+      packet.tnear[k] = one.tnear;
+      packet.tfar[k] = one.tfar;
+      packet.time[k] = one.time;
+      packet.mask[k] = one.mask;
+      packet.id[k] = static_cast<unsigned>(k);  // its lane
+      packet.flags[k] = one.flags;
+      valid[k] = -1;
+      any = true;
+    }
+    return any;
   }
 
   // The float copy Embree traverses its boxes with; the interval rounded outward.

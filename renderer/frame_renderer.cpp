@@ -12,7 +12,10 @@ bool renderFrame(const Tracer& tracer, int width, int height, ThreadPool& pool, 
   if (image.width != width || image.height != height) image = Image(width, height);
   stats.rays = {};
   const bool complete = renderGrid(
-      [&](int x, int y, RayCounts& counts) { return tracer.tracePixel(x, y, counts); }, 1, 0, pool, image, stats.rays,
+      [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
+        tracer.tracePixels(pixels, count, out, counts);
+      },
+      1, 0, pool, image, stats.rays,
       [stop] { return stop && stop->load(std::memory_order_relaxed); });
   stats.renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return complete;

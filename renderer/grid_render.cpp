@@ -14,8 +14,10 @@ int ceilDiv(int a, int b) { return (a + b - 1) / b; }
 
 }  // namespace
 
-bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPool& pool, Image& image,
+bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, ThreadPool& pool, Image& image,
                 RayCounts& rays, const std::function<bool()>& stopped) {
+  constexpr int kBlock = 4;  // kBlock x kBlock = kPixelBatch
+  static_assert(kBlock * kBlock == kPixelBatch);
   const std::vector<Tile> tiles = makeTiles(ceilDiv(image.width, stride), ceilDiv(image.height, stride), pool.size());
   std::mutex raysMutex;
   std::atomic<bool> cancelled{false};
@@ -26,20 +28,39 @@ bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPo
     }
     const Tile& tile = tiles[index];
     RayCounts counts;
-    for (int gy = tile.y0; gy < tile.y1; ++gy)
-      for (int gx = tile.x0; gx < tile.x1; ++gx) {
-        const int x = gx * stride, y = gy * stride;
-        if (skipStride != 0 && x % skipStride == 0 && y % skipStride == 0) continue;
-        const Color c = pixel(x, y, counts);
-        std::uint8_t* out = image.pixel(x, y);
-        out[0] = quantizeChannel(c.x);
-        out[1] = quantizeChannel(c.y);
-        out[2] = quantizeChannel(c.z);
+    PixelXY batch[kPixelBatch];
+    Color colors[kPixelBatch];
+    for (int by = tile.y0; by < tile.y1; by += kBlock)
+      for (int bx = tile.x0; bx < tile.x1; bx += kBlock) {
+        int count = 0;
+        for (int gy = by; gy < std::min(by + kBlock, tile.y1); ++gy)
+          for (int gx = bx; gx < std::min(bx + kBlock, tile.x1); ++gx) {
+            const int x = gx * stride, y = gy * stride;
+            if (skipStride != 0 && x % skipStride == 0 && y % skipStride == 0) continue;
+            batch[count++] = {x, y};
+          }
+        if (count == 0) continue;
+        pixels(batch, count, colors, counts);
+        for (int n = 0; n < count; ++n) {
+          std::uint8_t* out = image.pixel(batch[n].x, batch[n].y);
+          out[0] = quantizeChannel(colors[n].x);
+          out[1] = quantizeChannel(colors[n].y);
+          out[2] = quantizeChannel(colors[n].z);
+        }
       }
     std::lock_guard lock(raysMutex);
     rays += counts;
   });
   return !cancelled.load();
+}
+
+bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPool& pool, Image& image,
+                RayCounts& rays, const std::function<bool()>& stopped) {
+  return renderGrid(
+      [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
+        for (int n = 0; n < count; ++n) out[n] = pixel(pixels[n].x, pixels[n].y, counts);
+      },
+      stride, skipStride, pool, image, rays, stopped);
 }
 
 void fillBlocks(Image& image, int stride) {

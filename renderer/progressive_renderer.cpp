@@ -146,13 +146,16 @@ bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t ge
   if (firstSamples) {
     // Each pixel is traced by one worker: its running sum is its own.
     renderGrid(
-        [&](int x, int y, RayCounts& counts) {
-          return sums_[static_cast<std::size_t>(y) * samples_.width + x] = source.sample(x, y, 0, counts);
+        [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
+          source.samples(pixels, count, 0, out, counts);
+          for (int n = 0; n < count; ++n)
+            sums_[static_cast<std::size_t>(pixels[n].y) * samples_.width + pixels[n].x] = out[n];
         },
         stride, previousStride, pool_, samples_, rays, stopped);
   } else {
-    renderGrid([&](int x, int y, RayCounts& counts) { return source.pixel(x, y, counts); }, stride, previousStride,
-               pool_, samples_, rays, stopped);
+    renderGrid([&](const PixelXY* pixels, int count, Color* out,
+                   RayCounts& counts) { source.pixels(pixels, count, out, counts); },
+               stride, previousStride, pool_, samples_, rays, stopped);
   }
   return generation_.load() == generation;
 }

@@ -56,6 +56,75 @@ struct Tracer::PathVertex {
   bool textured = false;
 };
 
+namespace {
+
+// The colour of a path from its vertices 0..last (vertexAt(k) gives vertex k), folded backward.
+template <class VertexAt>
+Color foldPath(int last, VertexAt&& vertexAt) {
+  Color next(0.0f);
+  for (int k = last; k >= 0; --k) {
+    const auto& v = vertexAt(k);
+    Color color = v.local;
+    if (v.continues) color += v.mirror * next;
+    if (v.textured) color = v.textureFactor * v.texel + (1.0f - v.textureFactor) * color;
+    next = color;
+  }
+  return next;
+}
+
+}  // namespace
+
+// A light direction's contribution counts unless its shadow ray (when it has one) is occluded.
+struct Tracer::ImmediateShadows {
+  const Accel& accel;
+  void light(const Ray* shadow, const Color& contribution, int /*sequence*/, Color& color) const {
+    if (!shadow || !accel.occluded(*shadow)) color += contribution;
+  }
+};
+
+// The same decisions, queued: resolve() casts the queued shadow rays in packets (the rays of one light
+// direction from the block's hits together, the most coherent) and adds the contributions that count in the
+// order each hit queued them, which is the order ImmediateShadows adds them in: the same colours, bit for bit.
+struct Tracer::QueuedShadows {
+  struct Entry {
+    Color contribution;
+    int lane;
+    int sequence;  // the light direction's place in its hit's shading
+    bool hasRay;
+    Ray ray;
+  };
+  std::vector<Entry> entries;
+  std::vector<int> order;
+  std::vector<char> occluded;
+  int lane = 0;
+
+  void light(const Ray* shadow, const Color& contribution, int sequence, Color&) {
+    entries.push_back({contribution, lane, sequence, shadow != nullptr, shadow ? *shadow : Ray{}});
+  }
+
+  // Adds each lane's contributions to colorOf(lane).
+  template <class ColorOf>
+  void resolve(const Accel& accel, ColorOf&& colorOf) {
+    order.clear();
+    for (int e = 0; e < static_cast<int>(entries.size()); ++e)
+      if (entries[e].hasRay) order.push_back(e);
+    std::stable_sort(order.begin(), order.end(),
+                     [&](int a, int b) { return entries[a].sequence < entries[b].sequence; });
+    occluded.assign(entries.size(), 0);
+    for (std::size_t first = 0; first < order.size(); first += kRayPacket) {
+      const int n = static_cast<int>(std::min<std::size_t>(kRayPacket, order.size() - first));
+      Ray rays[kRayPacket];
+      bool answers[kRayPacket];
+      for (int m = 0; m < n; ++m) rays[m] = entries[order[first + m]].ray;
+      accel.occludedMany(rays, n, answers);
+      for (int m = 0; m < n; ++m) occluded[order[first + m]] = answers[m];
+    }
+    for (std::size_t e = 0; e < entries.size(); ++e)
+      if (!occluded[e]) colorOf(entries[e].lane) += entries[e].contribution;
+    entries.clear();
+  }
+};
+
 Tracer::Tracer(const Scene& scene, const Accel& accel, const ShadingGeometry& shading, const RenderSettings& settings)
     : Tracer(scene.parameters(), scene.geometry(), accel, shading, settings) {}
 
@@ -91,9 +160,37 @@ Color Tracer::traceSample(int i, int j, int k, RayCounts& counts) const {
                         counts);
 }
 
-Color Tracer::traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const {
+void Tracer::tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const {
+  if (pixelSamples() == 1) return traceSamples(pixels, count, 0, out, counts);
+  for (int n = 0; n < count; ++n) out[n] = tracePixel(pixels[n].x, pixels[n].y, counts);
+}
+
+void Tracer::traceSamples(const PixelXY* pixels, int count, int k, Color* out, RayCounts& counts) const {
+  if (pixelSamples() != 1) {
+    for (int n = 0; n < count; ++n) out[n] = traceSample(pixels[n].x, pixels[n].y, k, counts);
+    return;
+  }
+  // traceCameraRay(i, j, seedOfPixel(i, j)) for each, with the closest hits found together.
+  for (int first = 0; first < count; first += kRayPacket) {
+    const int n = std::min(kRayPacket, count - first);
+    Ray rays[kRayPacket];
+    std::optional<Hit> hits[kRayPacket];
+    for (int m = 0; m < n; ++m) rays[m] = cameraRay(pixels[first + m].x, pixels[first + m].y);
+    counts.camera += static_cast<std::uint64_t>(n);
+    accel_.closestHits(rays, n, hits);
+    std::uint32_t seeds[kRayPacket];
+    for (int m = 0; m < n; ++m) seeds[m] = seedOfPixel(pixels[first + m].x, pixels[first + m].y);
+    tracePaths(rays, hits, seeds, n, out + first, counts);
+  }
+}
+
+Ray Tracer::cameraRay(double i, double j) const {
   const glm::dvec3 direction = glm::normalize(pixelDirection(parameters_.camera, basis_, i, j));
-  const Ray ray{eyeRelative_, direction, 0.0, kInfinity};
+  return Ray{eyeRelative_, direction, 0.0, kInfinity};
+}
+
+Color Tracer::traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const {
+  const Ray ray = cameraRay(i, j);
   ++counts.camera;
   if (std::optional<Hit> hit = accel_.closestHit(ray)) return tracePath(ray, *hit, seed, counts);
   return parameters_.background;
@@ -109,12 +206,13 @@ Color Tracer::tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t
     return spilled[k - kInline];
   };
 
+  ImmediateShadows shadows{accel_};
   Ray ray = cameraRay;
   Hit hit = firstHit;
   int last = 0;
   for (int depth = 0;; ++depth) {
     Ray next;
-    PathVertex& v = vertexAt(depth) = shadeHit(ray, hit, depth, pixelSeed, counts, next);
+    PathVertex& v = vertexAt(depth) = shadeHit(ray, hit, depth, pixelSeed, counts, shadows, next);
     last = depth;
     if (!v.continues) break;
     ++counts.reflection;
@@ -123,20 +221,69 @@ Color Tracer::tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t
     ray = next;
     hit = *nextHit;
   }
-
-  Color next(0.0f);
-  for (int k = last; k >= 0; --k) {
-    const PathVertex& v = vertexAt(k);
-    Color color = v.local;
-    if (v.continues) color += v.mirror * next;
-    if (v.textured) color = v.textureFactor * v.texel + (1.0f - v.textureFactor) * color;
-    next = color;
-  }
-  return next;
+  return foldPath(last, vertexAt);
 }
 
+void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits, const std::uint32_t* pixelSeeds,
+                        int count, Color* out, RayCounts& counts) const {
+  // tracePath for each lane with a hit, every lane's depth d before any lane's depth d + 1.
+  std::vector<PathVertex> vertices;  // vertex of depth d of lane m at d * kRayPacket + m
+  QueuedShadows shadows;
+  Ray rays[kRayPacket];
+  std::optional<Hit> hits[kRayPacket];
+  int last[kRayPacket];
+  int active[kRayPacket];
+  int activeCount = 0;
+  for (int m = 0; m < count; ++m) {
+    last[m] = -1;
+    if (!firstHits[m]) continue;
+    rays[m] = cameraRays[m];
+    hits[m] = firstHits[m];
+    active[activeCount++] = m;
+  }
+  Ray mirrors[kRayPacket];
+  for (int depth = 0; activeCount > 0; ++depth) {
+    vertices.resize(static_cast<std::size_t>(depth + 1) * kRayPacket);
+    PathVertex* row = &vertices[static_cast<std::size_t>(depth) * kRayPacket];
+    for (int a = 0; a < activeCount; ++a) {
+      const int m = active[a];
+      shadows.lane = m;
+      row[m] = shadeHit(rays[m], *hits[m], depth, pixelSeeds[m], counts, shadows, mirrors[m]);
+      last[m] = depth;
+    }
+    shadows.resolve(accel_, [&](int m) -> Color& { return row[m].local; });
+    // The lanes whose path goes on: their mirror rays as one packet.
+    Ray next[kRayPacket];
+    std::optional<Hit> nextHits[kRayPacket];
+    int going[kRayPacket];
+    int goingCount = 0;
+    for (int a = 0; a < activeCount; ++a) {
+      const int m = active[a];
+      if (!row[m].continues) continue;
+      next[goingCount] = mirrors[m];
+      going[goingCount++] = m;
+    }
+    counts.reflection += static_cast<std::uint64_t>(goingCount);
+    if (goingCount > 0) accel_.closestHits(next, goingCount, nextHits);
+    activeCount = 0;
+    for (int g = 0; g < goingCount; ++g) {
+      if (!nextHits[g]) continue;  // a reflected ray that hits nothing adds nothing (course reference)
+      const int m = going[g];
+      rays[m] = next[g];
+      hits[m] = nextHits[g];
+      active[activeCount++] = m;
+    }
+  }
+  for (int m = 0; m < count; ++m)
+    out[m] = last[m] < 0 ? parameters_.background
+                         : foldPath(last[m], [&](int k) -> const PathVertex& {
+                             return vertices[static_cast<std::size_t>(k) * kRayPacket + m];
+                           });
+}
+
+template <class Shadows>
 Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
-                                    RayCounts& counts, Ray& mirrorRay) const {
+                                    RayCounts& counts, Shadows& shadows, Ray& mirrorRay) const {
   const Triangle& triangle = meshes_.triangles[hit.triangle];
   const Material& material = parameters_.materials[triangle.material];
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
@@ -177,7 +324,9 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
 
   // One light direction: its Blinn-Phong terms, then (when they add anything) the shadow ray toward `target`
   // (stopping just before it), or along `l` without end.
+  int sequence = 0;
   auto addLight = [&](const glm::dvec3& l, const Color& irradiance, const glm::dvec3* target) {
+    const int place = sequence++;
     const glm::vec3 toLight = toFloat(l);
     const Color diffuse = material.diffuse * irradiance * std::max(0.0f, glm::dot(n, toLight));
     const glm::vec3 h = glm::normalize(toLight + toEye);
@@ -188,17 +337,12 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     if (target) {
       const glm::dvec3 toTarget = *target - shadow.origin;
       const double length = glm::length(toTarget);
-      if (length > 0.0) {
-        shadow.direction = toTarget / length;
-        shadow.tFar = justBefore(length);
-        ++counts.shadow;
-        if (accel_.occluded(shadow)) return;
-      }
-    } else {
-      ++counts.shadow;
-      if (accel_.occluded(shadow)) return;
+      if (!(length > 0.0)) return shadows.light(nullptr, contribution, place, color);
+      shadow.direction = toTarget / length;
+      shadow.tFar = justBefore(length);
     }
-    color += contribution;
+    ++counts.shadow;
+    shadows.light(&shadow, contribution, place, color);
   };
 
   std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);

@@ -35,10 +35,9 @@ FileImageResult FileImageTask::run(std::uint64_t id, const std::shared_ptr<const
   RayCounts rays;
   // The same pixels as `rayview render` (PixelSource::pixel is the headless render's tracePixel).
   const bool complete = renderGrid(
-      [&](int x, int y, RayCounts& counts) {
-        const Color c = source->pixel(x, y, counts);
-        pixelsDone_.fetch_add(1, std::memory_order_relaxed);
-        return c;
+      [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
+        source->pixels(pixels, count, out, counts);
+        pixelsDone_.fetch_add(count, std::memory_order_relaxed);
       },
       1, 0, *pool_, result.image, rays, [&] { return cancel.load(std::memory_order_relaxed); });
   result.cancelled = !complete;

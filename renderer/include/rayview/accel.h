@@ -18,6 +18,9 @@ namespace rayview {
 
 inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
 
+// The most rays closestHits() takes at once: a 16-wide packet (docs/PERFORMANCE.md, "Camera rays in packets").
+inline constexpr int kRayPacket = 16;
+
 // Rays are double end to end: both back-ends test triangles in double, so a ray's answer does not depend
 // on which point its coordinates are relative to (the viewer's camera moves away from the origin the
 // structure was built at; its final pass must still equal a headless render from the new camera).
@@ -40,6 +43,15 @@ class Accel {
   virtual ~Accel() = default;
   virtual std::optional<Hit> closestHit(const Ray& ray) const = 0;
   virtual bool occluded(const Ray& ray) const = 0;  // any hit with tNear <= t <= tFar
+  // hits[k] = closestHit(rays[k]) for k < count <= kRayPacket, exactly: a packet changes how fast the
+  // answers come, never which (coherent rays, such as a block of camera rays, traverse together).
+  virtual void closestHits(const Ray* rays, int count, std::optional<Hit>* hits) const {
+    for (int k = 0; k < count; ++k) hits[k] = closestHit(rays[k]);
+  }
+  // answers[k] = occluded(rays[k]) for k < count <= kRayPacket, exactly (shadow rays toward one light).
+  virtual void occludedMany(const Ray* rays, int count, bool* answers) const {
+    for (int k = 0; k < count; ++k) answers[k] = occluded(rays[k]);
+  }
   virtual AccelKind kind() const = 0;
 
   // The world point that ray coordinates are relative to.

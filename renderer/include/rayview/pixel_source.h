@@ -20,6 +20,13 @@ class PixelSource {
   // in that order in float, so the progressive renderer can accumulate them pass by pass and end bit-identical.
   virtual int samplesPerPixel() const { return 1; }
   virtual Color sample(int x, int y, int k, RayCounts& counts) const { return k == 0 ? pixel(x, y, counts) : Color(0.0f); }
+  // The same for `count` pixels at once (out[n] for pixels[n]), bit for bit: a source may trace them together.
+  virtual void pixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const {
+    for (int n = 0; n < count; ++n) out[n] = pixel(pixels[n].x, pixels[n].y, counts);
+  }
+  virtual void samples(const PixelXY* pixels, int count, int k, Color* out, RayCounts& counts) const {
+    for (int n = 0; n < count; ++n) out[n] = sample(pixels[n].x, pixels[n].y, k, counts);
+  }
 };
 
 // A parameter snapshot, the prepared geometry and the settings, kept alive together for as long as a render
@@ -33,6 +40,12 @@ class TracedImage final : public PixelSource {
   Color pixel(int x, int y, RayCounts& counts) const override { return tracer_.tracePixel(x, y, counts); }
   int samplesPerPixel() const override { return tracer_.pixelSamples(); }
   Color sample(int x, int y, int k, RayCounts& counts) const override { return tracer_.traceSample(x, y, k, counts); }
+  void pixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const override {
+    tracer_.tracePixels(pixels, count, out, counts);
+  }
+  void samples(const PixelXY* pixels, int count, int k, Color* out, RayCounts& counts) const override {
+    tracer_.traceSamples(pixels, count, k, out, counts);
+  }
   const Tracer& tracer() const { return tracer_; }
 
  private:

@@ -4,6 +4,7 @@
 // never changes them, so any number of threads may call tracePixel() at once.
 
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "rayview/accel.h"
@@ -26,6 +27,11 @@ struct RayCounts {
     reflection += o.reflection;
     return *this;
   }
+};
+
+// A pixel: column x, row y from the top.
+struct PixelXY {
+  int x = 0, y = 0;
 };
 
 // Geometry relative to the accelerator's origin, computed once per scene load.
@@ -60,20 +66,33 @@ class Tracer {
   // pixelSamples(), summed in that order in float, so a running sum over passes ends bit-identical to it.
   Color traceSample(int i, int j, int k, RayCounts& counts) const;
   int pixelSamples() const;
+  // out[n] = tracePixel(pixels[n]) (traceSample(pixels[n], k)) for n < count, bit for bit: the camera rays of
+  // up to kRayPacket pixels (best a 4x4 block) traverse the scene as one packet.
+  void tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const;
+  void traceSamples(const PixelXY* pixels, int count, int k, Color* out, RayCounts& counts) const;
 
   int maxDepth() const { return parameters_.maxRayDepth; }
 
  private:
   // What one surface hit along a mirror path adds: its own light, and how much of the next hit it passes on.
   struct PathVertex;
+  // Where shadeHit's shadow rays go: cast at once (one ray's path) or queued for packets (a block's paths).
+  struct ImmediateShadows;
+  struct QueuedShadows;
 
   Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, const Accel& accel,
          const ShadingGeometry& shading, const RenderSettings& settings);
   Color traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const;
+  Ray cameraRay(double i, double j) const;
   Color tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const;
+  // The paths of up to kRayPacket camera rays, depth by depth: each depth's shadow rays and mirror rays in packets.
+  void tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits, const std::uint32_t* pixelSeeds,
+                  int count, Color* out, RayCounts& counts) const;
   // The hit's own light (ambient, lights, shadows); sets `mirrorRay` and returns its weight when the path goes on.
+  // Each light direction that adds something goes to `shadows` with its shadow ray, which decides whether it counts.
+  template <class Shadows>
   PathVertex shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
-                      Ray& mirrorRay) const;
+                      Shadows& shadows, Ray& mirrorRay) const;
   Color sampleTexture(const Triangle& triangle, const Hit& hit) const;
 
   const SceneParameters& parameters_;  // camera, lights, materials, depth

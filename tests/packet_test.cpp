@@ -1,0 +1,147 @@
+// Packets change how fast answers come, never which: on every conformance scene,
+// - Embree's 16-wide closestHits / occludedMany give each ray exactly (bit for bit) what closestHit / occluded
+//   give it alone, for coherent packets (neighbouring camera rays), incoherent ones (random segments), partial
+//   packets and packets holding a ray Embree cannot take;
+// - Tracer::tracePixels (a block's camera, shadow and mirror rays in packets) gives each pixel exactly the
+//   colour and the ray counts of Tracer::tracePixel, on the scene's camera at a reduced resolution.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <optional>
+#include <vector>
+
+#include <glm/geometric.hpp>
+
+#include "rayview/accel.h"
+#include "rayview/prepared_scene.h"
+#include "rayview/scene_loader.h"
+#include "rayview/tracer.h"
+#include "support/conformance_scenes.h"
+
+namespace rayview {
+namespace {
+
+// Deterministic uniform numbers in [0, 1).
+struct Random {
+  std::uint64_t state;
+  double uniform() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) * 0x1p-53;
+  }
+};
+
+bool sameHit(const std::optional<Hit>& a, const std::optional<Hit>& b) {
+  if (!a || !b) return !a && !b;
+  return a->triangle == b->triangle && std::memcmp(&a->t, &b->t, sizeof a->t) == 0 &&
+         std::memcmp(&a->b1, &b->b1, sizeof a->b1) == 0 && std::memcmp(&a->b2, &b->b2, sizeof a->b2) == 0;
+}
+
+class Packets : public ::testing::TestWithParam<std::filesystem::path> {};
+
+TEST_P(Packets, AnswerEachRayAsItsOwnQueryDoes) {
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
+  const Scene scene = loadSceneFile(GetParam()).scene;
+  const glm::dvec3 origin = scene.camera.position;
+  const std::unique_ptr<Accel> accel = buildAccel(scene, AccelKind::Embree, origin);
+  ASSERT_TRUE(accel);
+  glm::dvec3 lower(INFINITY), upper(-INFINITY);
+  for (const glm::dvec3& v : scene.vertices) {
+    lower = glm::min(lower, v - origin);
+    upper = glm::max(upper, v - origin);
+  }
+  if (scene.vertices.empty()) lower = upper = glm::dvec3(0.0);
+  Random random{0x9E3779B97F4A7C15ULL};
+  auto pointInBox = [&] {
+    return lower + glm::dvec3(random.uniform(), random.uniform(), random.uniform()) * (upper - lower);
+  };
+
+  int hits = 0, occludedCount = 0, compared = 0;
+  for (int p = 0; p < 400; ++p) {
+    const int count = p % 7 == 0 ? 1 + p % kRayPacket : kRayPacket;  // some partial packets
+    const bool coherent = p % 2 == 0;
+    Ray rays[kRayPacket];
+    // Coherent packets aim at a vertex of the scene, so that they hit something.
+    const glm::dvec3 centre =
+        scene.vertices.empty()
+            ? pointInBox()
+            : scene.vertices[static_cast<std::size_t>(random.uniform() * scene.vertices.size())] - origin;
+    const glm::dvec3 spread = glm::dvec3(glm::length(centre) * 1e-3);
+    for (int k = 0; k < count; ++k) {
+      // Coherent: from the camera toward a 4x4 patch of points around it; incoherent: between two points of the box.
+      const glm::dvec3 a = coherent ? glm::dvec3(0.0) : pointInBox();
+      const glm::dvec3 b = coherent ? centre + glm::dvec3(k % 4, k / 4, 0.5 * (k % 3)) * spread : pointInBox();
+      const double length = glm::length(b - a);
+      rays[k] = Ray{a, length > 0.0 ? (b - a) / length : glm::dvec3(0, 0, -1), 0.0, coherent ? INFINITY : length};
+    }
+    if (p % 5 == 1) rays[count / 2].origin.x = 1e30;  // beyond what Embree takes: answered without it
+    if (p % 11 == 3) rays[0].excludedTriangle = 0;
+
+    std::optional<Hit> together[kRayPacket];
+    bool blocked[kRayPacket];
+    accel->closestHits(rays, count, together);
+    accel->occludedMany(rays, count, blocked);
+    for (int k = 0; k < count; ++k) {
+      const std::optional<Hit> alone = accel->closestHit(rays[k]);
+      EXPECT_TRUE(sameHit(together[k], alone)) << "packet " << p << " lane " << k << " of " << count;
+      EXPECT_EQ(blocked[k], accel->occluded(rays[k])) << "packet " << p << " lane " << k << " of " << count;
+      hits += alone.has_value();
+      occludedCount += blocked[k];
+      ++compared;
+    }
+  }
+  // The rays must exercise both answers, or the comparison says little.
+  if (!scene.triangles.empty()) {
+    EXPECT_GT(hits, compared / 10);
+    EXPECT_GT(occludedCount, compared / 10);
+  }
+}
+
+TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) {
+  Scene scene = loadSceneFile(GetParam()).scene;
+  // A reduced resolution keeps the test short; the scene's lights, mirrors and depth are its own.
+  scene.camera.width = std::max(1, scene.camera.width / 6);
+  scene.camera.height = std::max(1, scene.camera.height / 6);
+  const auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
+  const int width = scene.camera.width, height = scene.camera.height;
+
+  RayCounts single, blocks;
+  int differing = 0;
+  std::uint64_t nonBackground = 0;
+  for (int by = 0; by < height; by += 4)
+    for (int bx = 0; bx < width; bx += 4) {
+      PixelXY pixels[kRayPacket];
+      int count = 0;
+      for (int y = by; y < std::min(by + 4, height); ++y)
+        for (int x = bx; x < std::min(bx + 4, width); ++x) pixels[count++] = {x, y};
+      Color together[kRayPacket];
+      tracer.tracePixels(pixels, count, together, blocks);
+      for (int n = 0; n < count; ++n) {
+        const Color alone = tracer.tracePixel(pixels[n].x, pixels[n].y, single);
+        if (std::memcmp(&alone, &together[n], sizeof alone) != 0 && ++differing <= 5)
+          ADD_FAILURE() << "pixel (" << pixels[n].x << ", " << pixels[n].y << "): alone " << alone.x << " " << alone.y
+                        << " " << alone.z << ", in a block " << together[n].x << " " << together[n].y << " "
+                        << together[n].z;
+        nonBackground += alone != scene.background;
+      }
+    }
+  EXPECT_EQ(differing, 0);
+  EXPECT_EQ(blocks.camera, single.camera);
+  EXPECT_EQ(blocks.shadow, single.shadow);
+  EXPECT_EQ(blocks.reflection, single.reflection);
+  if (!scene.triangles.empty()) EXPECT_GT(nonBackground, 0u);
+}
+
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Packets);
+INSTANTIATE_TEST_SUITE_P(Conformance, Packets, ::testing::ValuesIn(testing::conformanceScenePaths()),
+                         [](const ::testing::TestParamInfo<std::filesystem::path>& info) {
+                           std::string name = info.param.stem().string();
+                           for (char& c : name)
+                             if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                           return name;
+                         });
+
+}  // namespace
+}  // namespace rayview
