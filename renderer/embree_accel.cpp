@@ -112,9 +112,8 @@ void triangleBounds(const RTCBoundsFunctionArguments* args) {
   *args->bounds_o = RTCBounds{lower.x, lower.y, lower.z, 0.0f, upper.x, upper.y, upper.z, 0.0f};
 }
 
-bool testTriangle(const TriangleData& data, unsigned primID, const QueryLane& lane, TriangleHit& hit) {
+bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryLane& lane, TriangleHit& hit) {
   if (primID == lane.ray->excludedTriangle) return false;
-  const TriangleData::Corners t = data.corners(primID);
   return intersectWatertight(lane.prepared, t.a, t.b, t.c, lane.ray->tNear, lane.tFar, hit);
 }
 
@@ -123,11 +122,12 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   QueryLane* lanes = reinterpret_cast<QueryContext*>(args->context)->lanes;
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
+  const TriangleData::Corners corners = data.corners(args->primID);  // once for every lane
   for (unsigned i = 0; i < args->N; ++i) {
     if (!args->valid[i]) continue;
     QueryLane& lane = lanes[RTCRayN_id(rays, args->N, i)];
     TriangleHit hit;
-    if (!testTriangle(data, args->primID, lane, hit)) continue;
+    if (!testTriangle(corners, args->primID, lane, hit)) continue;
     if (lane.triangle != RTC_INVALID_GEOMETRY_ID && !replacesClosestHit(hit.t, args->primID, lane.hit.t, lane.triangle))
       continue;
     lane.hit = hit;
@@ -143,10 +143,11 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   QueryLane* lanes = reinterpret_cast<QueryContext*>(args->context)->lanes;
+  const TriangleData::Corners corners = data.corners(args->primID);
   for (unsigned i = 0; i < args->N; ++i) {
     if (!args->valid[i]) continue;
     TriangleHit hit;
-    if (testTriangle(data, args->primID, lanes[RTCRayN_id(args->ray, args->N, i)], hit))
+    if (testTriangle(corners, args->primID, lanes[RTCRayN_id(args->ray, args->N, i)], hit))
       RTCRayN_tfar(args->ray, args->N, i) = -INFINITY;
   }
 }

@@ -163,10 +163,13 @@ bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t ge
 bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_t generation, int k, RayCounts& rays) {
   const float count = static_cast<float>(k + 1);
   renderGrid(
-      [&](int x, int y, RayCounts& counts) {
-        Color& sum = sums_[static_cast<std::size_t>(y) * samples_.width + x];
-        sum += source.sample(x, y, k, counts);
-        return sum / count;  // after the last sample, the expression Tracer::tracePixel ends with
+      [&](const PixelXY* pixels, int n, Color* out, RayCounts& counts) {
+        source.samples(pixels, n, k, out, counts);
+        for (int m = 0; m < n; ++m) {
+          Color& sum = sums_[static_cast<std::size_t>(pixels[m].y) * samples_.width + pixels[m].x];
+          sum += out[m];
+          out[m] = sum / count;  // after the last sample, the expression Tracer::tracePixel ends with
+        }
       },
       1, 0, pool_, samples_, rays, [&] { return generation_.load(std::memory_order_relaxed) != generation; });
   return generation_.load() == generation;

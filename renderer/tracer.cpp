@@ -151,37 +151,59 @@ Color Tracer::tracePixel(int i, int j, RayCounts& counts) const {
 }
 
 Color Tracer::traceSample(int i, int j, int k, RayCounts& counts) const {
-  const std::uint32_t seed = seedOfPixel(i, j);
+  std::uint32_t seed = 0;
+  const Ray ray = sampleRay(i, j, k, seed);
+  return traceCameraRay(ray, seed, counts);
+}
+
+Ray Tracer::sampleRay(int i, int j, int k, std::uint32_t& seed) const {
+  const std::uint32_t pixelSeed = seedOfPixel(i, j);
   const int samples = pixelSamples();
-  if (samples == 1) return traceCameraRay(i, j, seed, counts);
-  const glm::vec2 offset = pixelSampleOffset(k, samples, seed);
+  if (samples == 1) {
+    seed = pixelSeed;
+    return cameraRay(i, j);
+  }
+  const glm::vec2 offset = pixelSampleOffset(k, samples, pixelSeed);
   // pixelDirection aims at i + 0.5: shift by the offset from the centre. Light samples vary per camera ray.
-  return traceCameraRay(i + (offset.x - 0.5), j + (offset.y - 0.5), hash32(seed + static_cast<std::uint32_t>(k)),
-                        counts);
+  seed = hash32(pixelSeed + static_cast<std::uint32_t>(k));
+  return cameraRay(i + (offset.x - 0.5), j + (offset.y - 0.5));
 }
 
 void Tracer::tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const {
-  if (pixelSamples() == 1) return traceSamples(pixels, count, 0, out, counts);
-  for (int n = 0; n < count; ++n) out[n] = tracePixel(pixels[n].x, pixels[n].y, counts);
+  const int samples = pixelSamples();
+  if (samples == 1) return traceSamples(pixels, count, 0, out, counts);
+  // Each pixel's samples together (as coherent as rays get), summed in tracePixel's order.
+  for (int n = 0; n < count; ++n) {
+    Color sum(0.0f);
+    for (int first = 0; first < samples; first += kRayPacket) {
+      const int m = std::min(kRayPacket, samples - first);
+      Ray rays[kRayPacket];
+      std::uint32_t seeds[kRayPacket];
+      Color colors[kRayPacket];
+      for (int k = 0; k < m; ++k) rays[k] = sampleRay(pixels[n].x, pixels[n].y, first + k, seeds[k]);
+      traceCameraRays(rays, seeds, m, colors, counts);
+      for (int k = 0; k < m; ++k) sum += colors[k];
+    }
+    out[n] = sum / static_cast<float>(samples);
+  }
 }
 
 void Tracer::traceSamples(const PixelXY* pixels, int count, int k, Color* out, RayCounts& counts) const {
-  if (pixelSamples() != 1) {
-    for (int n = 0; n < count; ++n) out[n] = traceSample(pixels[n].x, pixels[n].y, k, counts);
-    return;
-  }
-  // traceCameraRay(i, j, seedOfPixel(i, j)) for each, with the closest hits found together.
   for (int first = 0; first < count; first += kRayPacket) {
     const int n = std::min(kRayPacket, count - first);
     Ray rays[kRayPacket];
-    std::optional<Hit> hits[kRayPacket];
-    for (int m = 0; m < n; ++m) rays[m] = cameraRay(pixels[first + m].x, pixels[first + m].y);
-    counts.camera += static_cast<std::uint64_t>(n);
-    accel_.closestHits(rays, n, hits);
     std::uint32_t seeds[kRayPacket];
-    for (int m = 0; m < n; ++m) seeds[m] = seedOfPixel(pixels[first + m].x, pixels[first + m].y);
-    tracePaths(rays, hits, seeds, n, out + first, counts);
+    for (int m = 0; m < n; ++m) rays[m] = sampleRay(pixels[first + m].x, pixels[first + m].y, k, seeds[m]);
+    traceCameraRays(rays, seeds, n, out + first, counts);
   }
+}
+
+void Tracer::traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int count, Color* out,
+                             RayCounts& counts) const {
+  std::optional<Hit> hits[kRayPacket];
+  counts.camera += static_cast<std::uint64_t>(count);
+  accel_.closestHits(rays, count, hits);
+  tracePaths(rays, hits, seeds, count, out, counts);
 }
 
 Ray Tracer::cameraRay(double i, double j) const {
@@ -189,8 +211,7 @@ Ray Tracer::cameraRay(double i, double j) const {
   return Ray{eyeRelative_, direction, 0.0, kInfinity};
 }
 
-Color Tracer::traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const {
-  const Ray ray = cameraRay(i, j);
+Color Tracer::traceCameraRay(const Ray& ray, std::uint32_t seed, RayCounts& counts) const {
   ++counts.camera;
   if (std::optional<Hit> hit = accel_.closestHit(ray)) return tracePath(ray, *hit, seed, counts);
   return parameters_.background;

@@ -98,18 +98,29 @@ TEST_P(Packets, AnswerEachRayAsItsOwnQueryDoes) {
   }
 }
 
-TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) {
-  Scene scene = loadSceneFile(GetParam()).scene;
+// Every pixel of a block traced together equals the pixel traced alone (tracePixels against tracePixel, and
+// traceSamples against traceSample for one sample of an anti-aliased pixel), colour and ray counts.
+void expectBlocksTraceAsSinglePixels(const std::filesystem::path& path, int pixelSamples, int divisor) {
+  Scene scene = loadSceneFile(path).scene;
   // A reduced resolution keeps the test short; the scene's lights, mirrors and depth are its own.
-  scene.camera.width = std::max(1, scene.camera.width / 6);
-  scene.camera.height = std::max(1, scene.camera.height / 6);
+  scene.camera.width = std::max(1, scene.camera.width / divisor);
+  scene.camera.height = std::max(1, scene.camera.height / divisor);
   const auto geometry = prepareGeometry(scene, AccelKind::Embree);
-  const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
+  RenderSettings settings;
+  settings.pixelSamples = pixelSamples;
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
+  ASSERT_EQ(tracer.pixelSamples(), pixelSamples);
   const int width = scene.camera.width, height = scene.camera.height;
 
   RayCounts single, blocks;
   int differing = 0;
   std::uint64_t nonBackground = 0;
+  auto compare = [&](const PixelXY& p, const Color& alone, const Color& together, const char* what) {
+    if (std::memcmp(&alone, &together, sizeof alone) != 0 && ++differing <= 5)
+      ADD_FAILURE() << what << " (" << p.x << ", " << p.y << "): alone " << alone.x << " " << alone.y << " " << alone.z
+                    << ", in a block " << together.x << " " << together.y << " " << together.z;
+    nonBackground += alone != scene.background;
+  };
   for (int by = 0; by < height; by += 4)
     for (int bx = 0; bx < width; bx += 4) {
       PixelXY pixels[kRayPacket];
@@ -118,13 +129,13 @@ TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) {
         for (int x = bx; x < std::min(bx + 4, width); ++x) pixels[count++] = {x, y};
       Color together[kRayPacket];
       tracer.tracePixels(pixels, count, together, blocks);
-      for (int n = 0; n < count; ++n) {
-        const Color alone = tracer.tracePixel(pixels[n].x, pixels[n].y, single);
-        if (std::memcmp(&alone, &together[n], sizeof alone) != 0 && ++differing <= 5)
-          ADD_FAILURE() << "pixel (" << pixels[n].x << ", " << pixels[n].y << "): alone " << alone.x << " " << alone.y
-                        << " " << alone.z << ", in a block " << together[n].x << " " << together[n].y << " "
-                        << together[n].z;
-        nonBackground += alone != scene.background;
+      for (int n = 0; n < count; ++n)
+        compare(pixels[n], tracer.tracePixel(pixels[n].x, pixels[n].y, single), together[n], "pixel");
+      if (pixelSamples > 1) {
+        const int k = (bx + by) % pixelSamples;
+        tracer.traceSamples(pixels, count, k, together, blocks);
+        for (int n = 0; n < count; ++n)
+          compare(pixels[n], tracer.traceSample(pixels[n].x, pixels[n].y, k, single), together[n], "sample");
       }
     }
   EXPECT_EQ(differing, 0);
@@ -133,6 +144,11 @@ TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) {
   EXPECT_EQ(blocks.reflection, single.reflection);
   if (!scene.triangles.empty()) EXPECT_GT(nonBackground, 0u);
 }
+
+TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) { expectBlocksTraceAsSinglePixels(GetParam(), 1, 6); }
+
+// 20 samples: a pixel's samples take two packets (16 and 4).
+TEST_P(Packets, BlocksOfAntiAliasedPixelsTraceAsSinglePixels) { expectBlocksTraceAsSinglePixels(GetParam(), 20, 24); }
 
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Packets);
 INSTANTIATE_TEST_SUITE_P(Conformance, Packets, ::testing::ValuesIn(testing::conformanceScenePaths()),

@@ -82,8 +82,12 @@ class Tracer {
 
   Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, const Accel& accel,
          const ShadingGeometry& shading, const RenderSettings& settings);
-  Color traceCameraRay(double i, double j, std::uint32_t seed, RayCounts& counts) const;
+  Color traceCameraRay(const Ray& ray, std::uint32_t seed, RayCounts& counts) const;
   Ray cameraRay(double i, double j) const;
+  // The camera ray of sample k of pixel (i, j) and the seed of its light samples.
+  Ray sampleRay(int i, int j, int k, std::uint32_t& seed) const;
+  // The colours of `count` <= kRayPacket camera rays traced together.
+  void traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int count, Color* out, RayCounts& counts) const;
   Color tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const;
   // The paths of up to kRayPacket camera rays, depth by depth: each depth's shadow rays and mirror rays in packets.
   void tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits, const std::uint32_t* pixelSeeds,
