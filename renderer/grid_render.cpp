@@ -30,24 +30,30 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
     RayCounts counts;
     PixelXY batch[kPixelBatch];
     Color colors[kPixelBatch];
-    for (int by = tile.y0; by < tile.y1; by += kBlock)
-      for (int bx = tile.x0; bx < tile.x1; bx += kBlock) {
-        int count = 0;
-        for (int gy = by; gy < std::min(by + kBlock, tile.y1); ++gy)
-          for (int gx = bx; gx < std::min(bx + kBlock, tile.x1); ++gx) {
-            const int x = gx * stride, y = gy * stride;
-            if (skipStride != 0 && x % skipStride == 0 && y % skipStride == 0) continue;
-            batch[count++] = {x, y};
-          }
-        if (count == 0) continue;
-        pixels(batch, count, colors, counts);
-        for (int n = 0; n < count; ++n) {
-          std::uint8_t* out = image.pixel(batch[n].x, batch[n].y);
-          out[0] = quantizeChannel(colors[n].x);
-          out[1] = quantizeChannel(colors[n].y);
-          out[2] = quantizeChannel(colors[n].z);
-        }
+    int count = 0;
+    auto flush = [&] {
+      if (count == 0) return;
+      pixels(batch, count, colors, counts);
+      for (int n = 0; n < count; ++n) {
+        std::uint8_t* out = image.pixel(batch[n].x, batch[n].y);
+        out[0] = quantizeChannel(colors[n].x);
+        out[1] = quantizeChannel(colors[n].y);
+        out[2] = quantizeChannel(colors[n].z);
       }
+      count = 0;
+    };
+    // Bands of kBlock rows, column by column: a full batch is a 4x4 block, or, where a coarser pass's pixels
+    // are skipped (a quarter of them), the next columns' pixels fill it (about 4 x 5): packets stay full.
+    for (int by = tile.y0; by < tile.y1; by += kBlock) {
+      for (int gx = tile.x0; gx < tile.x1; ++gx)
+        for (int gy = by; gy < std::min(by + kBlock, tile.y1); ++gy) {
+          const int x = gx * stride, y = gy * stride;
+          if (skipStride != 0 && x % skipStride == 0 && y % skipStride == 0) continue;
+          batch[count++] = {x, y};
+          if (count == kPixelBatch) flush();
+        }
+      flush();
+    }
     std::lock_guard lock(raysMutex);
     rays += counts;
   });

@@ -32,4 +32,15 @@ int choosePreviewStride(std::span<const PassTime> recent, int width, int height,
   return kCoarsestStride;
 }
 
+int chooseEditStride(std::span<const PassTime> recent, int width, int height) {
+  if (choosePreviewStride(recent, width, height, kWholeFrameFirstPassMs) == 1) return 1;
+  return std::max(kFinestEditPreviewStride, choosePreviewStride(recent, width, height, kFirstPassBudgetMs));
+}
+
+int nextPassStride(int firstStride, int stride) {
+  if (stride <= 1) return 0;
+  if (firstStride >= kIntermediateAfter && stride > kIntermediateStride) return kIntermediateStride;
+  return 1;
+}
+
 }  // namespace rayview

@@ -92,8 +92,8 @@ void ProgressiveRenderer::controllerLoop() {
       if (!source || source->width() <= 0 || source->height() <= 0) return false;
       const int width = source->width(), height = source->height();
       if (samples_.width != width || samples_.height != height) samples_ = Image(width, height);
-      const int firstStride = choosePreviewStride(passTimes_, width, height,
-                                                  interactive_.load() ? kDragPassBudgetMs : kFirstPassBudgetMs);
+      const int firstStride = interactive_.load() ? choosePreviewStride(passTimes_, width, height, kDragPassBudgetMs)
+                                                  : chooseEditStride(passTimes_, width, height);
       firstStride_.store(firstStride);
       // Anti-aliasing: the coarse-to-fine passes trace each pixel's first sample, then one pass per further
       // sample adds it to the running sums, until the last makes the mean `rayview render` computes.
@@ -106,7 +106,7 @@ void ProgressiveRenderer::controllerLoop() {
         return generation_.load() == generation;
       };
       int previousStride = 0;
-      for (int stride = firstStride; stride >= 1; previousStride = stride, stride /= 2) {
+      for (int stride = firstStride; stride >= 1; previousStride = stride, stride = nextPassStride(firstStride, stride)) {
         const auto passStart = Clock::now();
         RayCounts rays;
         const bool complete = renderPass(*source, generation, stride, previousStride, pixelSamples > 1, rays);

@@ -99,6 +99,29 @@ TEST(PreviewLevel, GoingFinerNeedsRoomToSpareStayingDoesNot) {
   EXPECT_EQ(dragLevel({dragPass(512, 512, 1, 15.6)}, 512, 512), 1);
 }
 
+TEST(PreviewLevel, AWholeFrameWithin12MsIsAnEditsFirstPass) {
+  // Measured at full resolution: 11 ms goes first as it is; 13 ms starts with a preview, at 1/8 although 1/2
+  // would fit the 8 ms budget (a finer preview delays the final pass more than it shows).
+  EXPECT_EQ(chooseEditStride(std::vector<PassTime>{dragPass(512, 512, 1, 11.0)}, 512, 512), 1);
+  EXPECT_EQ(chooseEditStride(std::vector<PassTime>{dragPass(512, 512, 1, 13.0)}, 512, 512), kFinestEditPreviewStride);
+  // Predicted from a coarser pass, the margin of kRefineShare applies (12 * 0.75 = 9 ms).
+  EXPECT_EQ(chooseEditStride(std::vector<PassTime>{dragPass(512, 512, 2, 8.5 / 4)}, 512, 512), 1);
+  EXPECT_EQ(chooseEditStride(std::vector<PassTime>{dragPass(512, 512, 2, 10.0 / 4)}, 512, 512), 8);
+  // A heavy frame: the budget decides (1 s at full resolution: 1/16 takes ~4 ms, 1/8 ~16 ms).
+  EXPECT_EQ(chooseEditStride(std::vector<PassTime>{dragPass(512, 512, 1, 1000.0)}, 512, 512), 16);
+}
+
+TEST(PreviewLevel, AfterTheFirstPassComesFullResolutionWithOneLevelBetweenOnlyForVeryCoarseStarts) {
+  EXPECT_EQ(nextPassStride(2, 2), 1);
+  EXPECT_EQ(nextPassStride(8, 8), 1);
+  EXPECT_EQ(nextPassStride(16, 16), 4);
+  EXPECT_EQ(nextPassStride(16, 4), 1);
+  EXPECT_EQ(nextPassStride(64, 64), 4);
+  EXPECT_EQ(nextPassStride(64, 4), 1);
+  EXPECT_EQ(nextPassStride(4, 1), 0);
+  EXPECT_EQ(nextPassStride(1, 1), 0);
+}
+
 TEST(PreviewLevel, AnEditsFirstPassHasHalfTheBudgetOfADragMove) {
   // Full resolution takes 16 ms: a drag shows it; an edit starts at 1/2 (4 ms) and refines.
   const std::vector<PassTime> recent{dragPass(512, 512, 1, 16.0)};

@@ -71,10 +71,10 @@ ProgressiveFrame latest(const ProgressiveRenderer& renderer) {
   return frame;
 }
 
-// Passes from `stride` down to full resolution, halving: 16 -> 5.
+// Passes from a first pass at `stride` down to full resolution: 64 -> 3 (64, 4, 1), 8 -> 2.
 unsigned passesFrom(int stride) {
   unsigned passes = 1;
-  for (; stride > 1; stride /= 2) ++passes;
+  for (int s = stride; s > 1; s = nextPassStride(stride, s)) ++passes;
   return passes;
 }
 

@@ -35,10 +35,36 @@ struct PassTime {
 // blocks at the right and bottom edges may be partial).
 std::int64_t levelPixels(int width, int height, int stride);
 
+// An edit's whole frame predicted within this is traced first, with no preview level before it: the preview
+// would only delay it (half a 60 Hz frame's budget beyond kFirstPassBudgetMs, so the first pass still shows
+// within 16 ms).
+inline constexpr double kWholeFrameFirstPassMs = 12.0;
+// An edit's preview level is never finer than this (unless the whole frame goes first): a preview pass's
+// pixels cost 1.5 to 2.7 times what they cost in the full pass (see nextPassStride), so a preview at 1/4 (a
+// sixteenth of the pixels) delayed the final pass by up to 16 %, one at 1/8 by at most ~3 %. A preview that
+// fine only shows for the few milliseconds before the final pass anyway.
+inline constexpr int kFinestEditPreviewStride = 8;
+// The one level between a first pass at kIntermediateAfter or coarser and the full-resolution pass.
+inline constexpr int kIntermediateStride = 4;
+inline constexpr int kIntermediateAfter = 16;
+
 // The stride to start with: the finest level whose predicted time fits `budgetMs`, else kCoarsestStride.
 // `recent` is oldest first. The newest complete pass gives the cost per pixel; a pass cancelled after it
 // that had already run longer can only raise that cost. With no complete pass, never finer than
 // kUnmeasuredStride.
 int choosePreviewStride(std::span<const PassTime> recent, int width, int height, double budgetMs);
+
+// An edit's first stride: 1 when the whole frame is predicted within kWholeFrameFirstPassMs, else
+// choosePreviewStride with kFirstPassBudgetMs, and never finer than kFinestEditPreviewStride.
+int chooseEditStride(std::span<const PassTime> recent, int width, int height);
+
+// The stride of the pass after one at `stride` (0 after full resolution), in a restart whose first pass was at
+// `firstStride`. After the first pass comes the full-resolution one, with one level at kIntermediateStride
+// between them only when the first was at kIntermediateAfter or coarser (large images, heavy scenes: there
+// the final pass takes seconds). Each level between costs: a pixel of a sparse pass costs 1.5 to 2.7 times
+// what it costs in a full pass (incoherent packets, cold caches; measured on car and killeroo_2020 with
+// edit_latency_bench), and halving level by level made an edit's final pass come 12-40 % later than the
+// headless render of the same image (docs/PERFORMANCE.md, issue 8 item 5).
+int nextPassStride(int firstStride, int stride);
 
 }  // namespace rayview

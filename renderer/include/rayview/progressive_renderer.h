@@ -1,10 +1,11 @@
 #pragma once
 // Coarse-to-fine rendering in the background (the viewer's engine; no GL here).
 //
-// Passes halve the pixel stride down to 1. The first pass's stride (its preview level) is chosen at each
-// restart from the passes just measured (rayview/preview_level.h): the finest that fits kFirstPassBudgetMs,
-// or kDragPassBudgetMs while the user drags. Pass k computes only the pixels on its stride grid that no
-// earlier pass computed, so every pixel is computed exactly once and the final pass equals `rayview render`
+// A first pass at a coarse stride (its preview level), then full resolution, with one level between for very
+// coarse starts (nextPassStride). The first pass's stride is chosen at each restart from the passes just
+// measured (rayview/preview_level.h): the whole frame when it fits kWholeFrameFirstPassMs, else the finest
+// level that fits kFirstPassBudgetMs, or kDragPassBudgetMs while the user drags. Each stride divides the one
+// before, and a pass computes only the pixels on its stride grid that the previous pass's grid lacks, so every pixel is computed exactly once and the final pass equals `rayview render`
 // bit for bit, whatever the first level was. A coarse pass is published as its samples only, one pixel
 // per block (drawn enlarged with nearest filtering it is the blocky upscale, never a blur): a full-size copy
 // per pass cost about 250 ms at 6400x4000, copying it to the UI and uploading it more.
