@@ -97,6 +97,7 @@ struct Tracer::QueuedShadows {
   std::vector<int> order;
   std::vector<int> starts;
   std::vector<char> occluded;
+  Ray packet[kRayPacket];
   int lane = 0;
 
   void light(const Ray* shadow, const Color& contribution, int sequence, Color&) {
@@ -123,10 +124,9 @@ struct Tracer::QueuedShadows {
     occluded.assign(entries.size(), 0);
     for (std::size_t first = 0; first < order.size(); first += kRayPacket) {
       const int n = static_cast<int>(std::min<std::size_t>(kRayPacket, order.size() - first));
-      Ray rays[kRayPacket];
       bool answers[kRayPacket];
-      for (int m = 0; m < n; ++m) rays[m] = entries[order[first + m]].ray;
-      accel.occludedMany(rays, n, answers);
+      for (int m = 0; m < n; ++m) packet[m] = entries[order[first + m]].ray;
+      accel.occludedMany(packet, n, answers);
       for (int m = 0; m < n; ++m) occluded[order[first + m]] = answers[m];
     }
     for (std::size_t e = 0; e < entries.size(); ++e)
@@ -259,11 +259,20 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
                         int count, Color* out, RayCounts& counts) const {
   // tracePath for each lane with a hit, every lane's depth d before any lane's depth d + 1.
   // The buffers stay with the thread: no allocation per block once they have grown (~10 % of car's time).
+  // So do the lanes' rays and hits (on the stack, their initialisation was ~5 KB of zeroing per block).
   thread_local std::vector<PathVertex> vertices;  // vertex of depth d of lane m at d * kRayPacket + m
   thread_local QueuedShadows shadows;
+  struct Lanes {
+    Ray rays[kRayPacket], mirrors[kRayPacket], next[kRayPacket];
+    std::optional<Hit> hits[kRayPacket], nextHits[kRayPacket];
+  };
+  thread_local Lanes lanes;
+  Ray* rays = lanes.rays;
+  Ray* mirrors = lanes.mirrors;
+  Ray* next = lanes.next;
+  std::optional<Hit>* hits = lanes.hits;
+  std::optional<Hit>* nextHits = lanes.nextHits;
   shadows.entries.clear();
-  Ray rays[kRayPacket];
-  std::optional<Hit> hits[kRayPacket];
   int last[kRayPacket];
   int active[kRayPacket];
   int activeCount = 0;
@@ -274,7 +283,6 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
     hits[m] = firstHits[m];
     active[activeCount++] = m;
   }
-  Ray mirrors[kRayPacket];
   for (int depth = 0; activeCount > 0; ++depth) {
     vertices.resize(static_cast<std::size_t>(depth + 1) * kRayPacket);
     PathVertex* row = &vertices[static_cast<std::size_t>(depth) * kRayPacket];
@@ -286,8 +294,6 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
     }
     shadows.resolve(accel_, [&](int m) -> Color& { return row[m].local; });
     // The lanes whose path goes on: their mirror rays as one packet.
-    Ray next[kRayPacket];
-    std::optional<Hit> nextHits[kRayPacket];
     int going[kRayPacket];
     int goingCount = 0;
     for (int a = 0; a < activeCount; ++a) {

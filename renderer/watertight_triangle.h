@@ -70,29 +70,53 @@ inline double edgeFunction(const Projected& p, const Projected& q) {
 
 }  // namespace watertight_detail
 
-// Intersects the ray with triangle (v0, v1, v2); reports a hit with tNear <= t <= tFar. No back-face culling.
-inline bool intersectWatertight(const WatertightRay& ray, const glm::dvec3& v0, const glm::dvec3& v1,
-                                const glm::dvec3& v2, double tNear, double tFar, TriangleHit& hit) {
-  using watertight_detail::Projected;
-  const glm::dvec3 a = v0 - ray.origin, b = v1 - ray.origin, c = v2 - ray.origin;
-  const Projected pa{a[ray.kx] - ray.shearX * a[ray.kz], a[ray.ky] - ray.shearY * a[ray.kz]};
-  const Projected pb{b[ray.kx] - ray.shearX * b[ray.kz], b[ray.ky] - ray.shearY * b[ray.kz]};
-  const Projected pc{c[ray.kx] - ray.shearX * c[ray.kz], c[ray.ky] - ray.shearY * c[ray.kz]};
+namespace watertight_detail {
+
+// The test with the ray's axis permutation known at compile time (kx, ky, kz as in WatertightRay): the same
+// operations on the same numbers as indexing at run time, without a vertex's three differences going through
+// memory to be picked by index.
+template <int kx, int ky, int kz>
+inline bool intersectPermuted(const WatertightRay& ray, const glm::dvec3& v0, const glm::dvec3& v1,
+                              const glm::dvec3& v2, double tNear, double tFar, TriangleHit& hit) {
+  const double ax = v0[kx] - ray.origin[kx], ay = v0[ky] - ray.origin[ky], az = v0[kz] - ray.origin[kz];
+  const double bx = v1[kx] - ray.origin[kx], by = v1[ky] - ray.origin[ky], bz = v1[kz] - ray.origin[kz];
+  const double cx = v2[kx] - ray.origin[kx], cy = v2[ky] - ray.origin[ky], cz = v2[kz] - ray.origin[kz];
+  const Projected pa{ax - ray.shearX * az, ay - ray.shearY * az};
+  const Projected pb{bx - ray.shearX * bz, by - ray.shearY * bz};
+  const Projected pc{cx - ray.shearX * cz, cy - ray.shearY * cz};
 
   // u, v, w: the edge functions opposite vertex 0, 1, 2 (so, scaled, their barycentric weights).
-  const double u = watertight_detail::edgeFunction(pc, pb);
-  const double v = watertight_detail::edgeFunction(pa, pc);
-  const double w = watertight_detail::edgeFunction(pb, pa);
+  const double u = edgeFunction(pc, pb);
+  const double v = edgeFunction(pa, pc);
+  const double w = edgeFunction(pb, pa);
   if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
   const double det = u + v + w;
   if (det == 0.0) return false;  // the ray lies in the triangle's plane, or the triangle is degenerate
 
-  const double t = (u * (ray.shearZ * a[ray.kz]) + v * (ray.shearZ * b[ray.kz]) + w * (ray.shearZ * c[ray.kz])) / det;
+  const double t = (u * (ray.shearZ * az) + v * (ray.shearZ * bz) + w * (ray.shearZ * cz)) / det;
   if (!(t >= tNear && t <= tFar)) return false;  // also rejects NaN
   hit.t = t;
   hit.b1 = v / det;
   hit.b2 = w / det;
   return true;
+}
+
+}  // namespace watertight_detail
+
+// Intersects the ray with triangle (v0, v1, v2); reports a hit with tNear <= t <= tFar. No back-face culling.
+inline bool intersectWatertight(const WatertightRay& ray, const glm::dvec3& v0, const glm::dvec3& v1,
+                                const glm::dvec3& v2, double tNear, double tFar, TriangleHit& hit) {
+  using watertight_detail::intersectPermuted;
+  // (kx, ky) is (kz + 1, kz + 2) mod 3, or swapped for a direction along -kz (prepareWatertightRay).
+  const bool swapped = ray.kx != (ray.kz + 1) % 3;
+  switch (ray.kz * 2 + (swapped ? 1 : 0)) {
+    case 0: return intersectPermuted<1, 2, 0>(ray, v0, v1, v2, tNear, tFar, hit);
+    case 1: return intersectPermuted<2, 1, 0>(ray, v0, v1, v2, tNear, tFar, hit);
+    case 2: return intersectPermuted<2, 0, 1>(ray, v0, v1, v2, tNear, tFar, hit);
+    case 3: return intersectPermuted<0, 2, 1>(ray, v0, v1, v2, tNear, tFar, hit);
+    case 4: return intersectPermuted<0, 1, 2>(ray, v0, v1, v2, tNear, tFar, hit);
+    default: return intersectPermuted<1, 0, 2>(ray, v0, v1, v2, tNear, tFar, hit);
+  }
 }
 
 // The closest-hit rule both traversals share. Hits whose distances agree to kHitTieTolerance (relative)

@@ -18,7 +18,7 @@ namespace rayview {
 
 inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
 
-// The most rays closestHits() takes at once: a 16-wide packet (docs/PERFORMANCE.md, "Camera rays in packets").
+// The most rays closestHits() and occludedMany() take at once: a 16-wide packet (docs/PERFORMANCE.md, "Packets").
 inline constexpr int kRayPacket = 16;
 
 // Rays are double end to end: both back-ends test triangles in double, so a ray's answer does not depend
