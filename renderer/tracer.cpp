@@ -37,12 +37,6 @@ std::uint32_t seedOfPixel(int i, int j) {
 
 ShadingGeometry prepareShadingGeometry(const SceneGeometry&, const glm::dvec3& origin) { return {origin}; }
 
-std::uint8_t quantizeChannel(float value) {
-  if (!(value > 0.0f)) return 0;  // also NaN
-  if (value >= 255.0f) return 255;
-  return static_cast<std::uint8_t>(std::floor(value + 0.5f));
-}
-
 // A hit's colour is local + mirror * (colour of the next hit), then blended with the texture:
 //   c = tf * texel + (1 - tf) * (local + mirror * next).
 // The path is followed forward (no recursion, so no depth can exhaust the stack) and folded backward in
@@ -58,11 +52,15 @@ struct Tracer::PathVertex {
 
 namespace {
 
-// The colour of a path from its vertices 0..last (vertexAt(k) gives vertex k), folded backward.
+// Paths in a block are followed together to this depth; a lane still going on then finishes alone, so the
+// block's buffer stays small (16 lanes x this many vertices) whatever the scene's depth.
+constexpr int kBlockDepth = 16;
+
+// The colour at vertex `first` of a path from its vertices first..last (vertexAt(k) gives vertex k), folded
+// backward from `next`, the colour of the path beyond `last` (nothing: 0).
 template <class VertexAt>
-Color foldPath(int last, VertexAt&& vertexAt) {
-  Color next(0.0f);
-  for (int k = last; k >= 0; --k) {
+Color foldPath(int first, int last, VertexAt&& vertexAt, Color next = Color(0.0f)) {
+  for (int k = last; k >= first; --k) {
     const auto& v = vertexAt(k);
     Color color = v.local;
     if (v.continues) color += v.mirror * next;
@@ -228,9 +226,15 @@ Color Tracer::traceCameraRay(const Ray& ray, std::uint32_t seed, RayCounts& coun
 }
 
 Color Tracer::tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const {
+  return followPath(cameraRay, firstHit, 0, pixelSeed, counts);
+}
+
+Color Tracer::followPath(const Ray& firstRay, const Hit& firstHit, int firstDepth, std::uint32_t pixelSeed,
+                         RayCounts& counts) const {
   constexpr int kInline = 16;  // deeper paths (facing mirrors) spill to the heap
   PathVertex inlineVertices[kInline];
   std::vector<PathVertex> spilled;
+  // Vertex of depth firstDepth + k.
   auto vertexAt = [&](int k) -> PathVertex& {
     if (k < kInline) return inlineVertices[k];
     if (static_cast<std::size_t>(k - kInline) >= spilled.size()) spilled.resize(spilled.size() * 2 + kInline);
@@ -238,13 +242,13 @@ Color Tracer::tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t
   };
 
   ImmediateShadows shadows{accel_};
-  Ray ray = cameraRay;
+  Ray ray = firstRay;
   Hit hit = firstHit;
   int last = 0;
-  for (int depth = 0;; ++depth) {
+  for (int k = 0;; ++k) {
     Ray next;
-    PathVertex& v = vertexAt(depth) = shadeHit(ray, hit, depth, pixelSeed, counts, shadows, next);
-    last = depth;
+    PathVertex& v = vertexAt(k) = shadeHit(ray, hit, firstDepth + k, pixelSeed, counts, shadows, next);
+    last = k;
     if (!v.continues) break;
     ++counts.reflection;
     std::optional<Hit> nextHit = accel_.closestHit(next);
@@ -252,7 +256,7 @@ Color Tracer::tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t
     ray = next;
     hit = *nextHit;
   }
-  return foldPath(last, vertexAt);
+  return foldPath(0, last, vertexAt);
 }
 
 void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits, const std::uint32_t* pixelSeeds,
@@ -283,7 +287,8 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
     hits[m] = firstHits[m];
     active[activeCount++] = m;
   }
-  for (int depth = 0; activeCount > 0; ++depth) {
+  int depth = 0;
+  for (; activeCount > 0 && depth < kBlockDepth; ++depth) {
     vertices.resize(static_cast<std::size_t>(depth + 1) * kRayPacket);
     PathVertex* row = &vertices[static_cast<std::size_t>(depth) * kRayPacket];
     for (int a = 0; a < activeCount; ++a) {
@@ -313,11 +318,22 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
       active[activeCount++] = m;
     }
   }
+  // Lanes still going on at kBlockDepth: the rest of each path alone, from its next hit, then folded into the
+  // block's vertices (the same arithmetic, in the same order, as one path followed to its end).
+  Color beyond[kRayPacket];
+  for (int m = 0; m < count; ++m) beyond[m] = Color(0.0f);
+  for (int a = 0; a < activeCount; ++a) {
+    const int m = active[a];
+    beyond[m] = followPath(rays[m], *hits[m], depth, pixelSeeds[m], counts);
+  }
   for (int m = 0; m < count; ++m)
     out[m] = last[m] < 0 ? parameters_.background
-                         : foldPath(last[m], [&](int k) -> const PathVertex& {
-                             return vertices[static_cast<std::size_t>(k) * kRayPacket + m];
-                           });
+                         : foldPath(
+                               0, last[m],
+                               [&](int k) -> const PathVertex& {
+                                 return vertices[static_cast<std::size_t>(k) * kRayPacket + m];
+                               },
+                               beyond[m]);
 }
 
 template <class Shadows>

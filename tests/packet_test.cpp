@@ -19,6 +19,7 @@
 #include "rayview/scene_loader.h"
 #include "rayview/tracer.h"
 #include "support/conformance_scenes.h"
+#include "support/scene_builder.h"
 
 namespace rayview {
 namespace {
@@ -149,6 +150,40 @@ TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) { expectBlocksTraceAsSinglePi
 
 // 20 samples: a pixel's samples take two packets (16 and 4).
 TEST_P(Packets, BlocksOfAntiAliasedPixelsTraceAsSinglePixels) { expectBlocksTraceAsSinglePixels(GetParam(), 20, 24); }
+
+// Facing mirrors, 40 bounces: the block follows its paths together to a fixed depth, then each lane alone; the
+// pixels and ray counts are still the single pixels', and a depth of a million costs no more block memory.
+TEST(PacketsOfDeepPaths, FinishAloneAndEqualSinglePixels) {
+  Material mirror = testing::plainMaterial();
+  mirror.mirror = Color(0.5f);
+  Scene scene;
+  scene.camera = testing::frontCamera(8);
+  scene.materials.push_back(mirror);
+  scene.maxRayDepth = 40;
+  scene.ambientLight = Color(10.0f);
+  scene.lights.of<PointLight>().push_back(PointLight{"1", {0.5, 0.5, -1.0}, Color(100.0f)});
+  testing::addQuadFacingZ(scene, -10, -10, 10, 10, -2, 0);
+  testing::addTriangle(scene, {-10, -10, 2}, {0, 10, 2}, {10, -10, 2}, 0);  // faces -z, behind the camera
+  const auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
+  RayCounts single, blocks;
+  for (int by = 0; by < 8; by += 4)
+    for (int bx = 0; bx < 8; bx += 4) {
+      PixelXY pixels[kRayPacket];
+      int count = 0;
+      for (int y = by; y < by + 4; ++y)
+        for (int x = bx; x < bx + 4; ++x) pixels[count++] = {x, y};
+      Color together[kRayPacket];
+      tracer.tracePixels(pixels, count, together, blocks);
+      for (int n = 0; n < count; ++n) {
+        const Color alone = tracer.tracePixel(pixels[n].x, pixels[n].y, single);
+        EXPECT_EQ(std::memcmp(&alone, &together[n], sizeof alone), 0) << pixels[n].x << ", " << pixels[n].y;
+      }
+    }
+  EXPECT_EQ(blocks.reflection, single.reflection);
+  EXPECT_EQ(blocks.shadow, single.shadow);
+  EXPECT_GE(single.reflection, 2u * 40u);  // the central pixels bounce to the full depth, past the block's
+}
 
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(Packets);
 INSTANTIATE_TEST_SUITE_P(Conformance, Packets, ::testing::ValuesIn(testing::conformanceScenePaths()),

@@ -45,8 +45,12 @@ struct ShadingGeometry {
 
 ShadingGeometry prepareShadingGeometry(const SceneGeometry& scene, const glm::dvec3& origin);
 
-// Clamp to [0, 255] and round to nearest; NaN becomes 0.
-std::uint8_t quantizeChannel(float value);
+// Clamp to [0, 255] and round to nearest (halves up); NaN becomes 0. Inline: three per pixel.
+inline std::uint8_t quantizeChannel(float value) {
+  if (!(value > 0.0f)) return 0;  // also NaN
+  if (value >= 255.0f) return 255;
+  return static_cast<std::uint8_t>(static_cast<int>(value + 0.5f));  // truncation is floor: the sum is positive
+}
 
 struct PreparedGeometry;
 
@@ -89,6 +93,10 @@ class Tracer {
   // The colours of `count` <= kRayPacket camera rays traced together.
   void traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int count, Color* out, RayCounts& counts) const;
   Color tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const;
+  // The colour a path has at its vertex of depth `firstDepth`, hit by `firstRay` at `firstHit`: the path
+  // followed from there to its end, one ray at a time.
+  Color followPath(const Ray& firstRay, const Hit& firstHit, int firstDepth, std::uint32_t pixelSeed,
+                   RayCounts& counts) const;
   // The paths of up to kRayPacket camera rays, depth by depth: each depth's shadow rays and mirror rays in packets.
   void tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits, const std::uint32_t* pixelSeeds,
                   int count, Color* out, RayCounts& counts) const;
