@@ -154,7 +154,8 @@ void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
 
 // A packet query's lanes and Embree's packet, kept per thread: set up on the stack they cost ~3 KB of
 // zeroing per packet, a packet of shadow rays often holding only a few (callgrind: ~8 % of car's instructions).
-// Lanes beyond a query's count keep an earlier query's values; Embree reads only the valid ones.
+// Lanes beyond a query's count get an empty interval (fillPacket): with an earlier query's rays left in them,
+// Embree's packet traversal did ~3 % more work.
 struct PacketScratch {
   QueryLane lanes[kRayPacket];
   alignas(64) RTCRayHit16 rayHit{};
@@ -273,14 +274,14 @@ class EmbreeAccel final : public Accel {
   AccelKind kind() const override { return AccelKind::Embree; }
 
  private:
-  // buildAccel() only builds this back-end for scenes whose rays stay within kEmbreeCoordinateLimit, but a
-  // caller may still trace a ray from elsewhere (the viewer's camera moved far from the build origin).
-  // Embree asserts on such a ray: it is answered here by testing every triangle, in double.
   static std::optional<Hit> hitOf(const QueryLane& lane) {
     if (lane.triangle == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
     return Hit{lane.hit.t, lane.triangle, lane.hit.b1, lane.hit.b2};
   }
 
+  // buildAccel() only builds this back-end for scenes whose rays stay within kEmbreeCoordinateLimit, but a
+  // caller may still trace a ray from elsewhere (the viewer's camera moved far from the build origin).
+  // Embree asserts on such a ray: it is answered here by testing every triangle, in double.
   static bool representable(const Ray& ray) {
     const double limit = kEmbreeCoordinateLimit;
     for (int k = 0; k < 3; ++k)
