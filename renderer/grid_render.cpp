@@ -60,15 +60,6 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
   return !cancelled.load();
 }
 
-bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPool& pool, Image& image,
-                RayCounts& rays, const std::function<bool()>& stopped) {
-  return renderGrid(
-      [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
-        for (int n = 0; n < count; ++n) out[n] = pixel(pixels[n].x, pixels[n].y, counts);
-      },
-      stride, skipStride, pool, image, rays, stopped);
-}
-
 void fillBlocks(Image& image, int stride) {
   if (stride <= 1) return;
   // In place: a block's sample is read before anything in its row overwrites it; rows between grid rows

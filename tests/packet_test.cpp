@@ -100,12 +100,9 @@ TEST_P(Packets, AnswerEachRayAsItsOwnQueryDoes) {
 }
 
 // Every pixel of a block traced together equals the pixel traced alone (tracePixels against tracePixel, and
-// traceSamples against traceSample for one sample of an anti-aliased pixel), colour and ray counts.
-void expectBlocksTraceAsSinglePixels(const std::filesystem::path& path, int pixelSamples, int divisor) {
-  Scene scene = loadSceneFile(path).scene;
-  // A reduced resolution keeps the test short; the scene's lights, mirrors and depth are its own.
-  scene.camera.width = std::max(1, scene.camera.width / divisor);
-  scene.camera.height = std::max(1, scene.camera.height / divisor);
+// traceSamples against traceSample for one sample of an anti-aliased pixel), colour and ray counts. `single`
+// gets the single pixels' ray counts.
+void expectBlocksTraceAsSinglePixels(const Scene& scene, int pixelSamples, RayCounts& single) {
   const auto geometry = prepareGeometry(scene, AccelKind::Embree);
   RenderSettings settings;
   settings.pixelSamples = pixelSamples;
@@ -113,7 +110,7 @@ void expectBlocksTraceAsSinglePixels(const std::filesystem::path& path, int pixe
   ASSERT_EQ(tracer.pixelSamples(), pixelSamples);
   const int width = scene.camera.width, height = scene.camera.height;
 
-  RayCounts single, blocks;
+  RayCounts blocks;
   int differing = 0;
   std::uint64_t nonBackground = 0;
   auto compare = [&](const PixelXY& p, const Color& alone, const Color& together, const char* what) {
@@ -143,7 +140,19 @@ void expectBlocksTraceAsSinglePixels(const std::filesystem::path& path, int pixe
   EXPECT_EQ(blocks.camera, single.camera);
   EXPECT_EQ(blocks.shadow, single.shadow);
   EXPECT_EQ(blocks.reflection, single.reflection);
-  if (!scene.triangles.empty()) EXPECT_GT(nonBackground, 0u);
+  if (!scene.triangles.empty()) {
+    EXPECT_GT(nonBackground, 0u);
+  }
+}
+
+// The same on a conformance scene at 1/divisor of its resolution (keeps the test short; the scene's lights,
+// mirrors and depth are its own).
+void expectBlocksTraceAsSinglePixels(const std::filesystem::path& path, int pixelSamples, int divisor) {
+  Scene scene = loadSceneFile(path).scene;
+  scene.camera.width = std::max(1, scene.camera.width / divisor);
+  scene.camera.height = std::max(1, scene.camera.height / divisor);
+  RayCounts single;
+  expectBlocksTraceAsSinglePixels(scene, pixelSamples, single);
 }
 
 TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) { expectBlocksTraceAsSinglePixels(GetParam(), 1, 6); }
@@ -164,24 +173,8 @@ TEST(PacketsOfDeepPaths, FinishAloneAndEqualSinglePixels) {
   scene.lights.of<PointLight>().push_back(PointLight{"1", {0.5, 0.5, -1.0}, Color(100.0f)});
   testing::addQuadFacingZ(scene, -10, -10, 10, 10, -2, 0);
   testing::addTriangle(scene, {-10, -10, 2}, {0, 10, 2}, {10, -10, 2}, 0);  // faces -z, behind the camera
-  const auto geometry = prepareGeometry(scene, AccelKind::Embree);
-  const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
-  RayCounts single, blocks;
-  for (int by = 0; by < 8; by += 4)
-    for (int bx = 0; bx < 8; bx += 4) {
-      PixelXY pixels[kRayPacket];
-      int count = 0;
-      for (int y = by; y < by + 4; ++y)
-        for (int x = bx; x < bx + 4; ++x) pixels[count++] = {x, y};
-      Color together[kRayPacket];
-      tracer.tracePixels(pixels, count, together, blocks);
-      for (int n = 0; n < count; ++n) {
-        const Color alone = tracer.tracePixel(pixels[n].x, pixels[n].y, single);
-        EXPECT_EQ(std::memcmp(&alone, &together[n], sizeof alone), 0) << pixels[n].x << ", " << pixels[n].y;
-      }
-    }
-  EXPECT_EQ(blocks.reflection, single.reflection);
-  EXPECT_EQ(blocks.shadow, single.shadow);
+  RayCounts single;
+  expectBlocksTraceAsSinglePixels(scene, 1, single);
   EXPECT_GE(single.reflection, 2u * 40u);  // the central pixels bounce to the full depth, past the block's
 }
 

@@ -10,19 +10,16 @@
 
 namespace rayview {
 
-using PixelFunction = std::function<Color(int x, int y, RayCounts& counts)>;
 // The colours of `count` pixels at once (out[n] for pixels[n]; count <= kPixelBatch): what lets a tracer cast
-// their camera rays as one packet. renderGrid hands it the pixels of 4x4 blocks of the grid, the most coherent.
+// their camera rays as one packet. renderGrid hands it 4x4 blocks of the grid (the most coherent), filled from
+// the next columns where a coarser pass's pixels are skipped.
 using PixelBatchFunction = std::function<void(const PixelXY* pixels, int count, Color* out, RayCounts& counts)>;
-inline constexpr int kPixelBatch = 16;
+inline constexpr int kPixelBatch = kRayPacket;
 
 // Traces the pixels (gx * stride, gy * stride) of `image` (already width x height) that are not also on the
 // `skipStride` grid (0: skip none; a coarser pass computed those), quantizing into `image`. `stopped` is
 // checked before each tile. Returns false when it stopped early (the image is then partial).
 bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, ThreadPool& pool, Image& image,
-                RayCounts& rays, const std::function<bool()>& stopped);
-// The same, one pixel at a time.
-bool renderGrid(const PixelFunction& pixel, int stride, int skipStride, ThreadPool& pool, Image& image,
                 RayCounts& rays, const std::function<bool()>& stopped);
 
 // Gives every pixel the colour of the sample at the top-left corner of its stride x stride block: the
