@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 
@@ -327,6 +328,11 @@ std::string versionText() {
 #else
   text += " (reference BVH only: built without Embree)";
 #endif
+  // The launcher's malloc settings (app/launcher.cpp) change speed, not images: say whether they are in force.
+  const char* tunables = std::getenv("GLIBC_TUNABLES");
+  text += "\nallocator: ";
+  text += tunables && *tunables ? std::string("GLIBC_TUNABLES=") + tunables
+                                : std::string("glibc defaults (not started through the rayview launcher)");
   return text + "\n";
 }
 

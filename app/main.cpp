@@ -1,4 +1,6 @@
-// rayview: the viewer by default, `rayview render` headless, `rayview bench`, `rayview compare`.
+// rayview-cli and rayview-viewer (started by the launcher `rayview`, app/launcher.cpp): the viewer by default,
+// `rayview render` headless, `rayview bench`, `rayview compare`. rayview-cli has no viewer: it hands the viewer
+// command to rayview-viewer.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -6,6 +8,7 @@
 #include "bench_command.h"
 #include "command_line.h"
 #include "compare_command.h"
+#include "program_exec.h"
 #include "render_command.h"
 
 #ifdef RAYVIEW_HAVE_VIEWER
@@ -39,6 +42,7 @@ int main(int argc, char** argv) {
       return runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,
                                      command.scriptPath, command.comparePath});
 #else
+      execSiblingProgram("rayview-viewer", argv);
       // Built without the viewer: render the scene headless instead and say where the image went.
       command.kind = CommandKind::Render;
       command.outputPath = "rayview-default.png";

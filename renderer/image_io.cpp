@@ -22,6 +22,8 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
 // stb_image_write filters the rows and writes the PNG chunks; the deflate of the filtered rows is ours
 // (zlib, in parallel parts): stb's own deflate took 50-130 ms for a 1024x768 image, half a render.
 #define STBIW_ZLIB_COMPRESS rayview::png_detail::deflateForStb
+// zlib's CRC (table-sliced) for the chunks instead of stb's byte-at-a-time loop.
+#define STBIW_CRC32(buffer, length) static_cast<unsigned int>(crc32(0, buffer, static_cast<uInt>(length)))
 #define STB_IMAGE_WRITE_STATIC
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #define STBI_WRITE_NO_STDIO
@@ -34,6 +36,13 @@ namespace png_detail {
 namespace {
 
 thread_local const PngOptions* currentOptions = nullptr;
+
+// Rows unfiltered (PNG filter type 0). stb's default tries all five filters on every row and keeps the one
+// with the smallest sum of bytes, which cost 5-14 ms of a 1024x768 write; for rayview's images (flat shading,
+// hard edges) followed by zlib's fastest level, unfiltered rows also came out smallest: car 276 066 bytes
+// against 298 158, the anti-aliased textured scene 63 246 against 76 657 (docs/PERFORMANCE.md, "PNG writing").
+// Set once, before any thread can encode.
+[[maybe_unused]] const bool kRowsUnfiltered = (stbi_write_force_png_filter = 0, true);
 
 constexpr std::size_t kWindow = 32768;         // deflate's window: each part may refer this far back
 constexpr std::size_t kMinPartBytes = 1 << 18;  // smaller parts cost more in threads than they save

@@ -40,6 +40,12 @@ def main():
 
     r = run(["--version"], a.rayview)
     check(r.returncode == 0 and r.stdout.startswith("rayview "), "--version prints the version")
+    check("glibc.malloc.hugetlb=1" in r.stdout, "the launcher starts rayview-cli with its malloc tunables")
+    env = dict(os.environ, GLIBC_TUNABLES="glibc.malloc.hugetlb=0")
+    r = subprocess.run([a.rayview, "--version"], capture_output=True, text=True, timeout=60, env=env)
+    tunables = r.stdout.split("GLIBC_TUNABLES=")[-1].strip()
+    check(r.returncode == 0 and tunables.startswith("glibc.malloc.hugetlb=1") and tunables.endswith(":glibc.malloc.hugetlb=0"),
+          "a user's GLIBC_TUNABLES come after the launcher's, so they win")
     r = run(["--help"], a.rayview)
     check(r.returncode == 0 and "--light-samples" in r.stdout and "exit status" in r.stdout, "--help lists the options")
 
