@@ -11,6 +11,7 @@
 #include "rayview/light_types.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/ray_offset.h"
+#include "specular_power.h"
 
 namespace rayview {
 namespace {
@@ -385,7 +386,7 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     const glm::vec3 toLight = toFloat(l);
     const Color diffuse = material.diffuse * irradiance * std::max(0.0f, glm::dot(n, toLight));
     const glm::vec3 h = glm::normalize(toLight + toEye);
-    const float specular = std::pow(std::max(0.0f, glm::dot(n, h)), material.phongExponent);
+    const float specular = specularPower(std::max(0.0f, glm::dot(n, h)), material.phongExponent);
     const Color contribution = diffuse + material.specular * irradiance * specular;
     if (contribution == Color(0.0f)) return;  // no shadow ray for light that would add nothing
     Ray shadow = secondaryRay(l);
