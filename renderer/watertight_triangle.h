@@ -8,12 +8,16 @@
 // functions of the projected vertices about the origin. The transformation is the same for every triangle
 // a ray meets, so a vertex shared by two triangles lands on exactly the same sheared coordinates in both.
 //
-// Tie rule. An edge function is evaluated with its two vertices in a canonical (lexicographic) order and
-// negated when the triangle lists them the other way round. Two triangles sharing an edge therefore get
-// exactly opposite values for it, whatever the compiler does with the products (fused multiply-add or
-// not): a ray through the shared edge is inside exactly one of them, or exactly on the edge (value zero),
-// and zero counts as inside for both. Never neither. The paper's fallback (recompute in double when an
-// edge function is exactly zero in float) is not needed: everything here is already double.
+// Tie rule. Two triangles sharing an edge list its vertices in opposite orders, and edge(p, q) = p.x q.y -
+// p.y q.x is exactly -edge(q, p): the two products are the same roundings, and rounding to nearest is
+// symmetric under negation (only the sign of an exact zero can differ). So a ray through the shared edge is
+// inside exactly one of them, or exactly on the edge (value zero), and zero counts as inside for both.
+// Never neither. This needs each product rounded on its own: a fused multiply-add would round one product
+// and not the other. The build forbids contraction (-ffp-contract=off, CMakeLists.txt), and
+// WatertightEdge.IsAntisymmetricBitForBit checks it. (Until 2026-11 the vertices were put in a canonical
+// order first, which held under fusion too, but its three unpredictable branches per test cost 4-6 % of
+// a render.) The paper's fallback (recompute in double when an edge function is exactly zero in float) is
+// not needed: everything here is already double.
 
 #include <cstdint>
 
@@ -60,13 +64,9 @@ struct Projected {
   double x, y;
 };
 
-// Twice the signed area of (origin, p, q): p.x q.y - p.y q.x, evaluated in a canonical order of p and q
-// so that edge(p, q) == -edge(q, p) holds bit for bit.
-inline double edgeFunction(const Projected& p, const Projected& q) {
-  const bool ordered = p.x < q.x || (p.x == q.x && p.y < q.y);
-  if (ordered) return p.x * q.y - p.y * q.x;
-  return -(q.x * p.y - q.y * p.x);
-}
+// Twice the signed area of (origin, p, q). edge(p, q) == -edge(q, p) bit for bit, but for the sign of zero
+// (the tie rule above).
+inline double edgeFunction(const Projected& p, const Projected& q) { return p.x * q.y - p.y * q.x; }
 
 }  // namespace watertight_detail
 

@@ -15,10 +15,13 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <functional>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -26,6 +29,7 @@
 
 #include "rayview/accel.h"
 #include "support/test_meshes.h"
+#include "watertight_triangle.h"
 
 namespace rayview {
 namespace {
@@ -232,6 +236,27 @@ TEST(TestMeshes, ClosedMeshesAreClosedAndFaceOutward) {
       const glm::dvec3 &a = scene.vertices[t.vertex[0]], &b = scene.vertices[t.vertex[1]], &c = scene.vertices[t.vertex[2]];
       EXPECT_GT(glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0 - centre), 0.0) << mesh.name;
     }
+  }
+}
+
+// The tie rule's premise (watertight_triangle.h): a shared edge's function is exactly opposite in the two
+// triangles, which holds only if the build rounds every product on its own (no fused multiply-add).
+TEST(WatertightEdge, IsAntisymmetricBitForBit) {
+  using watertight_detail::edgeFunction;
+  using watertight_detail::Projected;
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> mantissa(-1.0, 1.0);
+  std::uniform_int_distribution<int> exponent(-40, 40);
+  auto value = [&] { return std::ldexp(mantissa(random), exponent(random)); };
+  for (int i = 0; i < 200000; ++i) {
+    const Projected p{value(), value()}, q{value(), value()};
+    const double forward = edgeFunction(p, q), backward = edgeFunction(q, p);
+    if (forward == 0.0) {
+      ASSERT_EQ(backward, 0.0);
+      continue;
+    }
+    ASSERT_EQ(std::bit_cast<std::uint64_t>(forward), std::bit_cast<std::uint64_t>(-backward))
+        << p.x << " " << p.y << " " << q.x << " " << q.y;
   }
 }
 
