@@ -89,7 +89,10 @@ inline bool intersectPermuted(const WatertightRay& ray, const glm::dvec3& v0, co
   const double u = edgeFunction(pc, pb);
   const double v = edgeFunction(pa, pc);
   const double w = edgeFunction(pb, pa);
-  if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
+  // Mixed signs: outside. Without short-circuits: one branch instead of up to six unpredictable ones.
+  const bool negative = (u < 0.0) | (v < 0.0) | (w < 0.0);
+  const bool positive = (u > 0.0) | (v > 0.0) | (w > 0.0);
+  if (negative & positive) return false;
   const double det = u + v + w;
   if (det == 0.0) return false;  // the ray lies in the triangle's plane, or the triangle is degenerate
 
