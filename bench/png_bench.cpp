@@ -148,7 +148,7 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "png_bench: level %d, %d threads: does not decode to the image\n", level, t);
           status = 1;
         }
-        row("rayview: best-of-5 filter (stb), zlib level " + std::to_string(level) + ", " + std::to_string(t) +
+        row("rayview: unfiltered rows (stb), zlib level " + std::to_string(level) + ", " + std::to_string(t) +
                 " thread" + (t == 1 ? "" : "s") + (level == kDefaultPngLevel && t == n ? " (default)" : ""),
             timeIt(repeat, [&] { return encodePng(image, options).size(); }));
       }
