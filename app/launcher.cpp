@@ -5,9 +5,10 @@
 // library is loaded, so the process that renders must be started with them. Measured on this project's
 // machines (docs/PERFORMANCE.md, "Page faults and start-up"; bench/page_fault_bench): a first touch of a
 // 4 KiB page costs ~12 us there, a few us or less per 4 KiB on a transparent huge page, and a render touches
-// thousands of pages (the scene file's text, the arrays, Embree's BVH, the image, the PNG's rows). With these settings every malloc arena is advised onto
-// huge pages (hugetlb=1), grows 16 MiB at a time (top_pad), keeps what is freed for reuse instead of giving
-// it back (trim_threshold, mmap_threshold): killeroo_2020's whole process ~250 -> ~155 ms.
+// thousands of pages (the scene file's text, the arrays, Embree's BVH, the image, the PNG's rows). With these
+// settings every malloc arena is advised onto huge pages (hugetlb=1), grows 16 MiB at a time (top_pad), and
+// keeps what is freed for reuse instead of giving it back (trim_threshold, mmap_threshold): killeroo_2020's
+// whole process ~220 -> ~150 ms.
 //
 // The launcher is a static executable with no libraries to load: it adds about a millisecond.
 #include <cerrno>
