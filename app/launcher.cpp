@@ -8,7 +8,7 @@
 // thousands of pages (the scene file's text, the arrays, Embree's BVH, the image, the PNG's rows). With these
 // settings every malloc arena is advised onto huge pages (hugetlb=1), grows 16 MiB at a time (top_pad), and
 // keeps what is freed for reuse instead of giving it back (trim_threshold, mmap_threshold): killeroo_2020's
-// whole process ~220 -> ~150 ms.
+// whole process ~195 -> ~133 ms (bench/stage_times.py).
 //
 // The launcher is a static executable with no libraries to load: it adds about a millisecond.
 #include <cerrno>

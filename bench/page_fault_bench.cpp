@@ -1,5 +1,5 @@
-// What a first touch of fresh memory costs on this machine (docs/PERFORMANCE.md, "Page faults"): the reason
-// the `rayview` launcher sets glibc's malloc tunables (app/launcher.cpp).
+// What a first touch of fresh memory costs on this machine (docs/PERFORMANCE.md, "Page faults and start-up"):
+// the reason the `rayview` launcher sets glibc's malloc tunables (app/launcher.cpp).
 //
 // For each way of getting memory, maps a fresh anonymous region of --megabytes (2 MiB-aligned), touches one
 // byte per 4 KiB page and reports the time per 4 KiB page (median of --repeat):
