@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 
+#include "process_start.h"
 #include "program_exec.h"
 
 namespace {
@@ -37,6 +38,10 @@ int main(int, char** argv) {
     std::snprintf(combined, sizeof combined, "%s:%s", kTunables, user);
     ::setenv("GLIBC_TUNABLES", combined, 1);
   }
+  // The process starts here: `rayview render` reports its start-up from this moment (process_start.h).
+  char stamp[32];
+  std::snprintf(stamp, sizeof stamp, "%lld", rayview::monotonicNanoseconds());
+  ::setenv(rayview::kLaunchStampVariable, stamp, 1);
   rayview::execSiblingProgram("rayview-cli", argv);
   std::fprintf(stderr, "rayview: error: cannot start rayview-cli beside this executable: %s\n", std::strerror(errno));
   return 126;  // as a shell reports a command it found but could not run

@@ -8,6 +8,7 @@
 #include "bench_command.h"
 #include "command_line.h"
 #include "compare_command.h"
+#include "process_start.h"
 #include "program_exec.h"
 #include "render_command.h"
 
@@ -17,6 +18,7 @@
 
 int main(int argc, char** argv) {
   using namespace rayview;
+  captureProcessStart();
   CommandLine command;
   try {
     command = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));

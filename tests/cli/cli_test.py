@@ -61,6 +61,14 @@ def main():
     check(r.returncode == 0, "a good scene renders (exit 0)")
     for word in ("load", "BVH build", "render", "camera", "shadow", "reflection", "Mrays/s", "wrote"):
         check(word in r.stdout, f"the summary mentions '{word}'")
+    check_startup_line(r.stdout, "process start", "through the launcher")
+    # rayview-cli started directly (and a stale stamp in the environment): start-up counts from main().
+    cli = os.path.join(os.path.dirname(a.rayview), "rayview-cli")
+    env = dict(os.environ, RAYVIEW_LAUNCH_NS="1")
+    r = subprocess.run([cli, "render", scene, "-o", out_png, "--threads", "2"], capture_output=True, text=True,
+                       timeout=300, env=env)
+    check(r.returncode == 0, "rayview-cli renders when started directly")
+    check_startup_line(r.stdout, "main()", "started directly, a stale stamp ignored")
     with open(out_png, "rb") as f:
         png = f.read()
     check(png.startswith(b"\x89PNG"), "the output is a PNG")
@@ -144,6 +152,17 @@ def main():
     check(r.returncode == 2, "compare with one image is a usage error (exit 2)")
     check_bench_words(a, scene)
     print("cli: all checks passed")
+
+
+def check_startup_line(stdout, origin, how):
+    """Issue 8: start-up (process start to the first ray, less load and build) is reported with each render,
+    and the write of the image is timed: the figures are there and are durations (their size is bench/'s)."""
+    times = next((line for line in stdout.splitlines() if line.startswith("time ")), "")
+    check(", write " in times and times.endswith(" ms"), f"the summary times the write ({how})")
+    line = next((line for line in stdout.splitlines() if line.startswith("start-up ")), "")
+    words = line.split()
+    ok = len(words) > 3 and words[2] == "ms:" and f"ms: {origin} to the first ray" in line
+    check(ok and float(words[1]) >= 0.0, f"the summary reports start-up from {origin} ({how})")
 
 
 def check_bench_words(a, scene):
