@@ -3,6 +3,11 @@
 
 #include "scene_loader_internal.h"
 
+#include <array>
+#include <cstdint>
+#include <utility>
+#include <vector>
+
 namespace rayview::scene_loading {
 
 void Loader::finish(const XMLElement* root) {
@@ -96,22 +101,41 @@ void Loader::resolveIndices(int rootLine) {
 // Faces listed twice (same three vertices, any order or winding) are coincident surfaces: which one a
 // ray sees is a tie, which rayview gives to the face listed first. Real files do this (a wall written once
 // as a mirror and once as a colour), and the picture then depends on that rule: say so.
+// A face repeats when an earlier face has its three vertices. The faces go in order into an open-addressed set of
+// face indices keyed by their sorted vertices: linear time and 4-8 bytes per face, where sorting 16-byte keys took
+// 6 ms of killeroo_2020's load (92 000 faces) and 16 bytes per face at the load's peak.
 void Loader::warnAboutDuplicatedFaces() {
   const std::vector<Triangle>& triangles = result_.scene.triangles;
-  std::vector<std::array<std::uint32_t, 4>> keys(triangles.size());  // sorted vertices, then the face index
-  for (std::uint32_t i = 0; i < triangles.size(); ++i) {
-    std::array<std::uint32_t, 4> key{triangles[i].vertex[0], triangles[i].vertex[1], triangles[i].vertex[2], i};
-    std::sort(key.begin(), key.begin() + 3);
-    keys[i] = key;
-  }
-  std::sort(keys.begin(), keys.end());
+  if (triangles.size() < 2) return;
+  using Key = std::array<std::uint32_t, 3>;
+  auto keyOf = [&](std::uint32_t face) {
+    Key k{triangles[face].vertex[0], triangles[face].vertex[1], triangles[face].vertex[2]};
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
+    if (k[1] > k[2]) std::swap(k[1], k[2]);
+    if (k[0] > k[1]) std::swap(k[0], k[1]);
+    return k;
+  };
+  int bits = 1;  // slots: a power of two, at most two thirds full
+  while ((std::size_t{1} << bits) < triangles.size() + triangles.size() / 2) ++bits;
+  std::vector<std::uint32_t> slots(std::size_t{1} << bits, 0);  // face index + 1; 0: empty
+  const std::size_t mask = slots.size() - 1;
   std::size_t repeats = 0;
-  std::uint32_t firstRepeat = 0;
-  for (std::size_t k = 1; k < keys.size(); ++k)
-    if (std::equal(keys[k].begin(), keys[k].begin() + 3, keys[k - 1].begin())) {
-      if (repeats == 0 || keys[k][3] < firstRepeat) firstRepeat = keys[k][3];
-      ++repeats;
+  std::uint32_t firstRepeat = 0;  // faces come in order: the first repeat found is the earliest
+  for (std::uint32_t face = 0; face < triangles.size(); ++face) {
+    const Key key = keyOf(face);
+    const std::uint64_t hash =
+        ((std::uint64_t{key[0]} * 0x9E3779B97F4A7C15ull + key[1]) * 0x9E3779B97F4A7C15ull + key[2]) * 0x9E3779B97F4A7C15ull;
+    for (std::size_t slot = static_cast<std::size_t>(hash >> (64 - bits));; slot = (slot + 1) & mask) {
+      if (slots[slot] == 0) {
+        slots[slot] = face + 1;
+        break;
+      }
+      if (keyOf(slots[slot] - 1) == key) {
+        if (repeats++ == 0) firstRepeat = face;
+        break;
+      }
     }
+  }
   if (repeats == 0) return;
   const PendingMesh& mesh = meshes_[triangles[firstRepeat].mesh];
   warn(mesh.line, plural(repeats, "face repeats", "faces repeat") +

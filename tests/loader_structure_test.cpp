@@ -1,10 +1,14 @@
 // The loader: faces and indices, materials, defaults and structure, the camera, textures, files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 #include "rayview/scene_loader.h"
 #include "support/loader_scenes.h"
@@ -111,6 +115,46 @@ TEST(Loader, RepeatedFacesAreKeptWithOneWarning) {
   EXPECT_TRUE(hasWarning(loaded, 35, "2 faces repeat the three vertices of an earlier face (the first in mesh \"quad\")"));
   EXPECT_EQ(loaded.scene.triangles.size(), 4u);  // kept: which one is seen is the renderer's tie rule
   EXPECT_TRUE(load(with("1 2 3\n1 3 4\n", "1 2 3\n1 3 4\n")).warnings.empty());
+}
+
+TEST(Loader, RepeatedFacesAreNamedByTheEarliestRepeat) {
+  // The first repeat is in mesh "b" (a rotation of quad's first face); mesh "c", after it, repeats quad's second.
+  const std::string more = "<mesh id=\"b\"><materialid>red</materialid><faces>3 1 2</faces></mesh>\n"
+                           "<mesh id=\"c\"><materialid>red</materialid><faces>4 3 1</faces></mesh>";
+  const LoadedScene loaded = load(with("</objects>", more + "</objects>"));
+  EXPECT_TRUE(hasWarning(loaded, 42, "2 faces repeat the three vertices of an earlier face (the first in mesh \"b\")"));
+}
+
+TEST(Loader, RepeatedFacesAreCountedExactlyInALargeMesh) {
+  // A 60 x 60 grid's 6 962 triangles, then earlier faces again in other windings and orders (some twice, some
+  // repeats of repeats): the count is the faces whose three vertices an earlier face has.
+  constexpr int kSide = 60;
+  std::string vertices;
+  for (int y = 0; y < kSide; ++y)
+    for (int x = 0; x < kSide; ++x) vertices += std::to_string(x) + " " + std::to_string(y) + " -2\n";
+  std::vector<std::array<int, 3>> faces;
+  for (int y = 0; y + 1 < kSide; ++y)
+    for (int x = 0; x + 1 < kSide; ++x) {
+      const int a = y * kSide + x + 1, b = a + 1, c = a + kSide, d = c + 1;
+      faces.push_back({a, b, d});
+      faces.push_back({a, d, c});
+    }
+  const std::size_t unique = faces.size();
+  std::uint32_t state = 12345;
+  auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  for (int k = 0; k < 500; ++k) {
+    std::array<int, 3> f = faces[next() % faces.size()];  // may pick a repeat: a repeat of a repeat
+    std::rotate(f.begin(), f.begin() + next() % 3, f.end());
+    if (next() % 2) std::swap(f[1], f[2]);
+    faces.push_back(f);
+  }
+  std::string text;
+  for (const auto& f : faces) text += std::to_string(f[0]) + " " + std::to_string(f[1]) + " " + std::to_string(f[2]) + "\n";
+  const LoadedScene loaded = load(with("1 2 3\n1 3 4\n", text, with("-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n", vertices)));
+  ASSERT_EQ(loaded.scene.triangles.size(), faces.size());
+  EXPECT_EQ(unique, 6962u);
+  EXPECT_TRUE(hasWarning(loaded, 35 + kSide * kSide - 4,
+                         "500 faces repeat the three vertices of an earlier face (the first in mesh \"quad\")"));
 }
 
 // ---------------------------------------------------------------- materials
