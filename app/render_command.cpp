@@ -74,16 +74,15 @@ int runRenderCommand(const CommandLine& command) {
   Scene& scene = loaded.scene;
   RenderSettings settings;
   applyKnobs(command.knobs, {&scene.parameters(), &settings});
-  if (availableAccel(settings.accel) == AccelKind::Embree)
-    if (const std::string problem = embreeRangeProblem(scene, scene, scene.camera.position); !problem.empty()) {
-      std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName(command).c_str(),
-                   problem.c_str());
-      settings.accel = AccelKind::Reference;
-    }
   // Shared, not copied: the geometry is the largest thing a big scene holds.
   const auto shared = std::make_shared<const Scene>(std::move(scene));
   const Scene& view = *shared;
   std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, settings.accel);
+  if (!geometry->accelFallback.empty()) {
+    std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName(command).c_str(),
+                 geometry->accelFallback.c_str());
+    settings.accel = AccelKind::Reference;
+  }
   ThreadPool pool(command.threads);
   const Tracer tracer(view.parameters(), *geometry, settings);
   Image image;

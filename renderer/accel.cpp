@@ -29,11 +29,20 @@ struct Reach {
 };
 
 // Non-finite vertices are left out: their triangles have no surface, and Embree skips invalid boxes.
+// One pass over the faces' corners, nothing but the distance kept in the loop (it is the whole cost: 92 000
+// triangles read 276 000 corners).
 Reach geometryReach(const SceneGeometry& geometry, const glm::dvec3& origin) {
-  Reach reach;
+  const glm::dvec3* vertices = geometry.vertices.data();
+  const std::size_t count = geometry.vertices.size();
+  double farthest = 0.0;
   for (const Triangle& t : geometry.triangles)
     for (std::uint32_t v : t.vertex)
-      if (v < geometry.vertices.size()) reach.consider(geometry.vertices[v], origin, "a vertex");
+      if (v < count) {
+        const double r = largestComponent(vertices[v] - origin);
+        if (std::isfinite(r) && r > farthest) farthest = r;
+      }
+  Reach reach;
+  if (farthest > 0.0) reach.distance = farthest, reach.what = "a vertex";
   return reach;
 }
 
@@ -72,9 +81,14 @@ std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeo
 
 std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                   BuildProgress progress, void* progressUser) {
+  if (kind == AccelKind::Embree && !beyond(geometryReach(scene, origin), 0.0).empty()) kind = AccelKind::Reference;
+  return buildCheckedAccel(scene, kind, origin, progress, progressUser);
+}
+
+std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
+                                         BuildProgress progress, void* progressUser) {
 #ifdef RAYVIEW_HAVE_EMBREE
-  if (kind == AccelKind::Embree && beyond(geometryReach(scene, origin), 0.0).empty())
-    return makeEmbreeAccel(scene, origin, progress, progressUser);
+  if (kind == AccelKind::Embree) return makeEmbreeAccel(scene, origin, progress, progressUser);
 #endif
   (void)kind;
   return makeReferenceAccel(scene, origin, progress, progressUser);

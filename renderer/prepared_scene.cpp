@@ -2,45 +2,66 @@
 
 #include <chrono>
 
+#include "accel_backends.h"
+
 namespace rayview {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Builds with `kind` as given: the caller has made Embree's range check (buildCheckedAccel). `buildMs` counts
+// from `start`, which includes that check.
+std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry, const glm::dvec3& origin,
+                                          AccelKind kind, BuildProgress progress, void* progressUser,
+                                          Clock::time_point start) {
+  auto prepared = std::make_shared<PreparedGeometry>();
+  prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser);
+  if (!prepared->accel) return nullptr;
+  prepared->shading = prepareShadingGeometry(*geometry, origin);
+  prepared->source = std::move(geometry);
+  prepared->buildMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+  return prepared;
+}
+
+// Embree for a scene whose rays all stay within its range (its lights and epsilon included), else the
+// reference BVH, with the reason: one range check (it reads every corner of every face).
+std::shared_ptr<const PreparedGeometry> prepareScene(std::shared_ptr<const SceneGeometry> geometry, const Scene& scene,
+                                                     AccelKind kind, BuildProgress progress, void* progressUser) {
+  const auto start = Clock::now();
+  kind = availableAccel(kind);
+  std::string problem;
+  if (kind == AccelKind::Embree) problem = embreeRangeProblem(scene, scene, scene.camera.position);
+  auto prepared = prepare(std::move(geometry), scene.camera.position, problem.empty() ? kind : AccelKind::Reference,
+                          progress, progressUser, start);
+  if (prepared) prepared->accelFallback = std::move(problem);
+  return prepared;
+}
+
+}  // namespace
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const SceneGeometry> geometry,
                                                         const glm::dvec3& origin, AccelKind kind,
                                                         BuildProgress progress, void* progressUser) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = Clock::now();
   auto prepared = std::make_shared<PreparedGeometry>();
   prepared->accel = buildAccel(*geometry, availableAccel(kind), origin, progress, progressUser);
   if (!prepared->accel) return nullptr;
   prepared->shading = prepareShadingGeometry(*geometry, origin);
   prepared->source = std::move(geometry);
-  prepared->buildMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  prepared->buildMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
   return prepared;
 }
 
-namespace {
-
-// Embree for a scene whose rays all stay within its range (its lights and epsilon included), else the
-// reference BVH.
-AccelKind accelFor(const Scene& scene, AccelKind kind) {
-  if (availableAccel(kind) == AccelKind::Embree && !embreeRangeProblem(scene, scene, scene.camera.position).empty())
-    return AccelKind::Reference;
-  return kind;
-}
-
-}  // namespace
-
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BuildProgress progress, void* progressUser) {
-  const glm::dvec3 origin = scene->camera.position;
-  kind = accelFor(*scene, kind);
-  return prepareGeometry(std::shared_ptr<const SceneGeometry>(scene, &scene->geometry()), origin, kind, progress,
-                         progressUser);
+  std::shared_ptr<const SceneGeometry> geometry(scene, &scene->geometry());
+  return prepareScene(std::move(geometry), *scene, kind, progress, progressUser);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind, BuildProgress progress,
                                                         void* progressUser) {
-  return prepareGeometry(std::make_shared<const SceneGeometry>(scene.geometry()), scene.camera.position,
-                         accelFor(scene, kind), progress, progressUser);
+  return prepareScene(std::make_shared<const SceneGeometry>(scene.geometry()), scene, kind, progress, progressUser);
 }
 
 }  // namespace rayview

@@ -84,8 +84,25 @@ TEST(EmbreeRange, LargeShadowRayEpsilonWithinTheLimitFallsBack) {
   scene.shadowRayEpsilon = 9.9e17;
   scene.lights.of<PointLight>().push_back(PointLight{"1", {0, 0, 1e17}, Color(1, 1, 1)});
   EXPECT_NE(embreeRangeProblem(scene, scene, scene.camera.position).find("<shadowrayepsilon>"), std::string::npos);
-  // The parameters (the epsilon) decide it: preparing the scene for Embree builds the reference BVH.
-  EXPECT_EQ(prepareGeometry(scene, availableAccel(AccelKind::Embree))->accel->kind(), AccelKind::Reference);
+  // The parameters (the epsilon) decide it: preparing the scene for Embree builds the reference BVH, and says why
+  // (`rayview render` prints it, the viewer lists it with the scene's warnings).
+  const auto prepared = prepareGeometry(scene, availableAccel(AccelKind::Embree));
+  EXPECT_EQ(prepared->accel->kind(), AccelKind::Reference);
+  if (haveEmbree()) {
+    EXPECT_NE(prepared->accelFallback.find("<shadowrayepsilon>"), std::string::npos);
+  }
+}
+
+TEST(EmbreeRange, PreparingAFarSceneSaysWhyItIsNotOnEmbree) {
+  if (!haveEmbree()) GTEST_SKIP() << "built without Embree";
+  const auto far = prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Embree);
+  EXPECT_EQ(far->accel->kind(), AccelKind::Reference);
+  EXPECT_NE(far->accelFallback.find("a vertex is 1e+19 from the camera"), std::string::npos) << far->accelFallback;
+  const auto near = prepareGeometry(std::make_shared<const Scene>(quadAt(1e17, -1e17)), AccelKind::Embree);
+  EXPECT_EQ(near->accel->kind(), AccelKind::Embree);
+  EXPECT_EQ(near->accelFallback, "");
+  // The reference BVH asked for is no fallback.
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Reference)->accelFallback, "");
 }
 
 }  // namespace

@@ -65,6 +65,13 @@ LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request, c
     // The shared overload: the geometry keeps this scene (the tracer reads its meshes) without a copy.
     std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, accel, onProgress, &context);
     if (!geometry) return outcome;  // cancelled: a newer request took over
+    if (!geometry->accelFallback.empty()) {
+      Diagnostic fallback;
+      fallback.severity = Severity::Warning;
+      fallback.where.file = request.path.empty() ? std::string("default scene") : request.path;
+      fallback.message = geometry->accelFallback + "; rendering with the reference BVH instead";
+      outcome.warnings.push_back(std::move(fallback));
+    }
     outcome.buildMs = geometry->buildMs;
     outcome.parts.bounds = sceneBounds(*scene);
     outcome.parts.scene = std::move(scene);

@@ -151,7 +151,26 @@ def main():
     r = run(["compare", out_png], a.rayview)
     check(r.returncode == 2, "compare with one image is a usage error (exit 2)")
     check_bench_words(a, scene)
+    check_far_scene_falls_back(a)
     print("cli: all checks passed")
+
+
+def check_far_scene_falls_back(a):
+    """A vertex beyond what Embree can represent: one warning saying why, then the reference BVH renders it."""
+    far = os.path.join(a.scratch, "far.xml")
+    with open(far, "w") as f:
+        f.write("<scene><maxraytracedepth>0</maxraytracedepth><background>0 0 0</background>"
+                "<camera><position>0 0 0</position><gaze>0 0 -1</gaze><up>0 1 0</up><nearplane>-1 1 -1 1</nearplane>"
+                "<neardistance>1</neardistance><imageresolution>8 8</imageresolution></camera>"
+                "<lights><ambientlight>255 255 255</ambientlight></lights>"
+                "<materials><material id=\"1\"><ambient>1 1 1</ambient><diffuse>0 0 0</diffuse><specular>0 0 0</specular>"
+                "<phongexponent>1</phongexponent></material></materials>"
+                "<vertexdata>-1e19 -1e19 -1e19 1e19 -1e19 -1e19 0 1e19 -1e19</vertexdata>"
+                "<objects><mesh id=\"1\"><materialid>1</materialid><faces>1 2 3</faces></mesh></objects></scene>\n")
+    r = run(["render", far, "-o", os.path.join(a.scratch, "far.png")], a.rayview)
+    warnings = [line for line in r.stderr.splitlines() if "reference BVH instead" in line]
+    check(r.returncode == 0 and len(warnings) == 1 and "a vertex is 1e+19 from the camera" in warnings[0]
+          and "accel reference" in r.stdout, "a scene beyond Embree's range warns once and renders with the reference BVH")
 
 
 def check_startup_line(stdout, origin, how):

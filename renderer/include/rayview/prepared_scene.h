@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <memory>
+#include <string>
 
 #include "rayview/accel.h"
 #include "rayview/scene.h"
@@ -17,6 +18,9 @@ struct PreparedGeometry {
   std::unique_ptr<Accel> accel;
   ShadingGeometry shading;
   double buildMs = 0.0;
+  // Why the reference BVH was built where Embree was asked for (embreeRangeProblem), "" otherwise: set by the
+  // overloads that take a Scene.
+  std::string accelFallback;
 };
 
 // Builds the accelerator relative to `origin` (the camera's position: coordinates relative to the camera,
@@ -25,7 +29,8 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
                                                         const glm::dvec3& origin, AccelKind kind,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
 // The same for a loaded scene, relative to its camera; shares `scene` (no copy of its meshes). Embree is
-// used only when every ray of the scene stays in its range (embreeRangeProblem), else the reference BVH.
+// used only when every ray of the scene stays in its range (embreeRangeProblem), else the reference BVH and
+// `accelFallback` says why.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
 // Same, on a copy of the scene's geometry.
