@@ -1,10 +1,14 @@
 // Fuzz target "scene": the scene loader (tolerant or strict) on any text, then a tiny render of what it
-// accepted with each traversal back-end. Nothing may crash, hang or touch memory it does not own.
+// accepted with each traversal back-end. Nothing may crash, hang or touch memory it does not own, and the
+// loader's two readings (the big blocks as a stream, or all through tinyxml2's DOM) must agree exactly.
 //
 // Input: byte 0 chooses the options, the rest is the XML text.
 //   bit 0: strict mode; bits 1-2: light samples - 1 (1..4); bit 3: directional triangular lights;
 //   bit 4: secondary rays start at the hit point (exclude-hit). scripts/fuzz prefixes seeds with 0.
 #include <algorithm>
+#include <cstring>
+#include <string>
+#include <vector>
 
 #include "fuzz_input.h"
 #include "rayview/prepared_scene.h"
@@ -26,6 +30,51 @@ rayview::Texture tinyTexture() {
   return t;
 }
 
+// What a load gave: the error's text, or the warnings and the scene.
+struct Outcome {
+  std::string error;
+  std::vector<std::string> warnings;
+  rayview::LoadedScene loaded;
+};
+
+Outcome load(std::string_view text, rayview::LoadOptions options, bool stream) {
+  options.streamBlocks = stream;
+  Outcome out;
+  try {
+    out.loaded = rayview::loadSceneText(text, "fuzz.xml", {}, options);
+    for (const rayview::Diagnostic& d : out.loaded.warnings) out.warnings.push_back(d.format());
+  } catch (const rayview::SceneError& error) {
+    if (error.diagnostic().message.empty()) rayview::fuzz::fail("a SceneError without a message");
+    out.error = error.what();
+  }
+  return out;
+}
+
+template <class T>
+bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
+}
+
+void expectTheSame(const Outcome& streamed, const Outcome& dom) {
+  using rayview::fuzz::fail;
+  if (streamed.error != dom.error) fail("the stream and the DOM give different errors");
+  if (streamed.warnings != dom.warnings) fail("the stream and the DOM give different warnings");
+  const rayview::Scene& a = streamed.loaded.scene;
+  const rayview::Scene& b = dom.loaded.scene;
+  if (!(a.parameters() == b.parameters())) fail("the stream and the DOM give different parameters");
+  if (!sameBits(a.vertices, b.vertices) || !sameBits(a.texCoords, b.texCoords) || !sameBits(a.normals, b.normals))
+    fail("the stream and the DOM give different vertices, texture coordinates or normals");
+  if (a.triangles.size() != b.triangles.size() || a.meshes.size() != b.meshes.size())
+    fail("the stream and the DOM give different triangle or mesh counts");
+  for (std::size_t i = 0; i < a.triangles.size(); ++i)
+    if (std::memcmp(&a.triangles[i], &b.triangles[i], sizeof(rayview::Triangle)) != 0)
+      fail("the stream and the DOM give different triangles");
+  for (std::size_t i = 0; i < a.meshes.size(); ++i)
+    if (a.meshes[i].id != b.meshes[i].id || a.meshes[i].firstTriangle != b.meshes[i].firstTriangle ||
+        a.meshes[i].triangleCount != b.meshes[i].triangleCount || a.meshes[i].material != b.meshes[i].material)
+      fail("the stream and the DOM give different meshes");
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -36,13 +85,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.strict = (flags & 1) != 0;
   options.loadTexture = false;
 
-  LoadedScene loaded;
-  try {
-    loaded = loadSceneText(fuzz::asText(data + 1, size - 1), "fuzz.xml", {}, options);
-  } catch (const SceneError& error) {
-    if (error.diagnostic().message.empty()) fuzz::fail("a SceneError without a message");
-    return 0;
-  }
+  const std::string_view text = fuzz::asText(data + 1, size - 1);
+  Outcome streamed = load(text, options, true);
+  expectTheSame(streamed, load(text, options, false));
+  if (!streamed.error.empty()) return 0;
+  LoadedScene& loaded = streamed.loaded;
 
   Scene& scene = loaded.scene;
   scene.camera.width = std::clamp(scene.camera.width, 1, kMaxPixelsPerSide);

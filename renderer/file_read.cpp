@@ -12,14 +12,6 @@ namespace rayview::detail {
 
 namespace {
 
-// Closes the descriptor on every path out.
-struct Descriptor {
-  int fd = -1;
-  ~Descriptor() {
-    if (fd >= 0) ::close(fd);
-  }
-};
-
 std::string notAFile(const struct stat& st) {
   if (S_ISDIR(st.st_mode)) return "is a directory, not a file";
   if (S_ISFIFO(st.st_mode)) return "is a named pipe (FIFO), not a regular file";
@@ -42,6 +34,53 @@ std::string describeSize(std::uintmax_t bytes) {
   return buffer;
 }
 
+UserFile::UserFile(const std::filesystem::path& path, std::uintmax_t maxBytes) : problem_(open(path, maxBytes)) {}
+
+std::string UserFile::open(const std::filesystem::path& path, std::uintmax_t maxBytes) {
+  struct stat named {};
+  if (::stat(path.c_str(), &named) != 0) {
+    notFound_ = errno == ENOENT || errno == ENOTDIR;
+    return std::string("cannot be opened: ") + std::strerror(errno);
+  }
+  if (std::string problem = notAFile(named); !problem.empty()) return problem;
+  if (static_cast<std::uintmax_t>(named.st_size) > maxBytes)
+    return "is too large (" + describeSize(static_cast<std::uintmax_t>(named.st_size)) + "; the limit is " +
+           describeSize(maxBytes) + ")";
+
+  // O_NONBLOCK: should the path have become a FIFO since the stat, open() still returns at once.
+  fd_ = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd_ < 0) return std::string("cannot be opened: ") + std::strerror(errno);
+  struct stat opened {};
+  if (::fstat(fd_, &opened) != 0) return std::string("cannot be read: ") + std::strerror(errno);
+  if (std::string problem = notAFile(opened); !problem.empty()) return problem;
+  if (opened.st_dev != named.st_dev || opened.st_ino != named.st_ino)
+    return "changed while it was being opened; try again";
+  const int flags = ::fcntl(fd_, F_GETFL);
+  if (flags >= 0) ::fcntl(fd_, F_SETFL, flags & ~O_NONBLOCK);
+  size_ = static_cast<std::uintmax_t>(opened.st_size);
+  if (size_ > maxBytes)
+    return "is too large (" + describeSize(size_) + "; the limit is " + describeSize(maxBytes) + ")";
+  return {};
+}
+
+UserFile::~UserFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+long UserFile::read(std::uintmax_t offset, char* into, std::size_t count) const {
+  std::size_t done = 0;
+  while (done < count) {
+    const ssize_t got = ::pread(fd_, into + done, count - done, static_cast<off_t>(offset + done));
+    if (got < 0) {
+      if (errno == EINTR) continue;
+      return -1;
+    }
+    if (got == 0) break;
+    done += static_cast<std::size_t>(got);
+  }
+  return static_cast<long>(done);
+}
+
 UserFileRead readUserFile(const std::filesystem::path& path, std::uintmax_t maxBytes,
                           const std::function<std::string(std::string_view start)>& checkStart) {
   UserFileRead out;
@@ -50,39 +89,17 @@ UserFileRead readUserFile(const std::filesystem::path& path, std::uintmax_t maxB
     out.problem = std::move(problem);
     return std::move(out);
   };
-  struct stat named {};
-  if (::stat(path.c_str(), &named) != 0) {
-    out.notFound = errno == ENOENT || errno == ENOTDIR;
-    return fail(std::string("cannot be opened: ") + std::strerror(errno));
+  const UserFile file(path, maxBytes);
+  if (!file.problem().empty()) {
+    out.notFound = file.notFound();
+    return fail(file.problem());
   }
-  if (std::string problem = notAFile(named); !problem.empty()) return fail(problem);
-  if (static_cast<std::uintmax_t>(named.st_size) > maxBytes)
-    return fail("is too large (" + describeSize(static_cast<std::uintmax_t>(named.st_size)) + "; the limit is " +
-                describeSize(maxBytes) + ")");
-
-  // O_NONBLOCK: should the path have become a FIFO since the stat, open() still returns at once.
-  Descriptor file{::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY)};
-  if (file.fd < 0) return fail(std::string("cannot be opened: ") + std::strerror(errno));
-  struct stat opened {};
-  if (::fstat(file.fd, &opened) != 0) return fail(std::string("cannot be read: ") + std::strerror(errno));
-  if (std::string problem = notAFile(opened); !problem.empty()) return fail(problem);
-  if (opened.st_dev != named.st_dev || opened.st_ino != named.st_ino)
-    return fail("changed while it was being opened; try again");
-  const int flags = ::fcntl(file.fd, F_GETFL);
-  if (flags >= 0) ::fcntl(file.fd, F_SETFL, flags & ~O_NONBLOCK);
-
-  const std::uintmax_t size = static_cast<std::uintmax_t>(opened.st_size);
-  if (size > maxBytes)
-    return fail("is too large (" + describeSize(size) + "; the limit is " + describeSize(maxBytes) + ")");
-  out.bytes.reserve(static_cast<std::size_t>(size));
+  out.bytes.reserve(static_cast<std::size_t>(file.size()));
   bool checked = !checkStart;
   char buffer[kFileStartBytes];
   while (true) {
-    const ssize_t got = ::read(file.fd, buffer, sizeof buffer);
-    if (got < 0) {
-      if (errno == EINTR) continue;
-      return fail(std::string("cannot be read: ") + std::strerror(errno));
-    }
+    const long got = file.read(out.bytes.size(), buffer, sizeof buffer);
+    if (got < 0) return fail(std::string("cannot be read: ") + std::strerror(errno));
     if (got == 0) break;
     if (out.bytes.size() + static_cast<std::size_t>(got) > maxBytes)
       return fail("is too large (it grew past the limit of " + describeSize(maxBytes) + " while being read)");

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <cstring>
 #include <memory>
+#include <optional>
 
 #include "rayview/file_read.h"
 #include "scene_loader_internal.h"
@@ -68,7 +69,10 @@ LoadedScene Loader::load(std::string_view text, std::string* owned, const fs::pa
   if (owned) std::string().swap(*owned);
   text = {};
   xml = {};
+  return walk(doc);
+}
 
+LoadedScene Loader::walk(const tinyxml2::XMLDocument& doc) {
   const XMLElement* root = doc.RootElement();
   if (!root) fail(0, "no <scene> element: the file has no elements");
   detectCeng477(root);
@@ -82,6 +86,8 @@ LoadedScene Loader::load(std::string_view text, std::string* owned, const fs::pa
     if (const tinyxml2::XMLText* text = node->ToText()) strayText(text);
 
   readScene(root);
+  // Faces from the stream that no mesh took (a <faces> out of place) would shift every later mesh's.
+  if (streamed_ && claimedTriangles_ != streamed_->triangleCount) throw StreamAbandoned{};
   finish(root);
   result_.warnings = warnings_.take();
   return std::move(result_);
@@ -108,15 +114,54 @@ LoadedScene loadReportingMemory(std::string_view xml, std::string* owned, const 
   }
 }
 
+// The big blocks as a stream (scene_loader_internal.h); nothing when the ordinary reading must decide: it
+// then reads the file again, so every message and warning is its own.
+std::optional<LoadedScene> loadStreamed(const scene_loading::ReadAt& read, std::uint64_t size, const std::string& displayName,
+                                        const fs::path& baseDirectory, const LoadOptions& options) {
+  if (!options.streamBlocks) return std::nullopt;
+  try {
+    scene_loading::StreamedBlocks streamed = scene_loading::streamSkeleton(read, size);
+    Loader::parseStreamedBlocks(streamed, read);
+    return Loader(displayName, baseDirectory, options).loadStreamed(streamed);
+  } catch (const scene_loading::StreamAbandoned&) {
+  } catch (const SceneError&) {
+  } catch (const std::bad_alloc&) {
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 LoadedScene loadSceneText(std::string_view xml, const std::string& displayName, const fs::path& baseDirectory,
                           const LoadOptions& options) {
+  const auto read = [xml](std::uint64_t offset, char* into, std::size_t count) -> long {
+    if (offset >= xml.size()) return 0;
+    const std::size_t n = std::min<std::uint64_t>(count, xml.size() - offset);
+    std::memcpy(into, xml.data() + offset, n);
+    return static_cast<long>(n);
+  };
+  if (std::optional<LoadedScene> streamed = loadStreamed(read, xml.size(), displayName, baseDirectory, options))
+    return std::move(*streamed);
   return loadReportingMemory(xml, nullptr, nullptr, displayName, baseDirectory, options);
 }
 
 LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   const std::string display = path.string();
+  fs::path directory = path.parent_path();
+  if (directory.empty()) directory = ".";
+  {
+    // Opened with readUserFile's checks; any problem is reported by the ordinary reading below.
+    const detail::UserFile file(path, kMaxFileBytes);
+    if (file.problem().empty()) {
+      const auto read = [&file](std::uint64_t offset, char* into, std::size_t count) {
+        return file.read(offset, into, count);
+      };
+      if (std::optional<LoadedScene> streamed = loadStreamed(read, file.size(), display, directory, options)) {
+        streamed->scene.sourcePath = path;
+        return std::move(*streamed);
+      }
+    }
+  }
   // The start of the file is checked before the rest is read: a large binary file is refused at once.
   detail::UserFileRead file = detail::readUserFile(path, kMaxFileBytes, [&](std::string_view start) {
     scene_loading::refuseWhatIsNotText(display, start);
@@ -125,10 +170,8 @@ LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   if (file.notFound || file.problem.rfind("cannot be opened", 0) == 0)
     throwSceneError({display, 0}, "cannot open the scene file: " + file.problem.substr(file.problem.find(": ") + 2));
   if (!file.problem.empty()) throwSceneError({display, 0}, "the scene file " + file.problem);
-  fs::path directory = path.parent_path();
   // The file's text is handed over, to be released as soon as it is parsed.
-  LoadedScene loaded = loadReportingMemory(file.bytes, &file.bytes, &path, display,
-                                           directory.empty() ? fs::path(".") : directory, options);
+  LoadedScene loaded = loadReportingMemory(file.bytes, &file.bytes, &path, display, directory, options);
   loaded.scene.sourcePath = path;
   return loaded;
 }

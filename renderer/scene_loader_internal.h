@@ -1,9 +1,10 @@
 #pragma once
 // What the scene loader's files share (private to renderer/): the element names, the pieces of text and
-// pending meshes the walk collects, and the Loader class whose members are defined in three files:
+// pending meshes the walk collects, and the Loader class whose members are defined in four files:
 //   scene_loader_elements.cpp  tolerant element readers (messages, names, numbers, text)
 //   scene_loader_walk.cpp      the element walk that fills Scene
 //   scene_loader_checks.cpp    checks after the walk: materials, index base and ranges, the texture
+//   scene_loader_stream.cpp    the big blocks read as a stream, before tinyxml2 sees the rest
 
 #include "rayview/scene_loader.h"
 
@@ -125,7 +126,55 @@ struct IndexRange {
     max = std::max(max, i);
   }
   bool any() const { return max >= 0; }
+  // As if every index `later` saw had been added here after this range's own.
+  void merge(const IndexRange& later) {
+    if (later.min == 0 && min != 0) firstZeroLine = later.firstZeroLine;
+    min = std::min(min, later.min);
+    max = std::max(max, later.max);
+  }
 };
+
+// ---------------------------------------------------------------- the big blocks as a stream
+// The text of every <vertexdata>, <texturedata>, <normaldata> and <faces> is parsed straight from the file a
+// piece at a time (scene_loader_stream.cpp): tinyxml2 parses only the rest, the "skeleton", in which each
+// block's text is a marker followed by the block's newlines (every line number stays the file's). The whole
+// text is never held: at 1e7 triangles that was 105-150 bytes per triangle at the load's peak, and tinyxml2's
+// scan of it most of the load's time. The stream reads only what it can read exactly as the DOM walk would:
+// on anything else (a comment or child inside a block, a token that is not plainly a number or an index, an
+// error anywhere) it gives up (StreamAbandoned) and the file is read the ordinary way, which then says what
+// it says today. So the stream never has a message of its own, and every scene loads the same either way
+// (tests/scene_stream_test.cpp, the fuzz target "scene").
+struct StreamAbandoned {};
+
+inline constexpr std::string_view kStreamMarker = "@stream:";
+
+struct StreamedBlock {
+  Tag tag = Tag::Unknown;
+  std::uint64_t begin = 0, end = 0;  // the text's bytes in the file
+  int line = 0;                      // the line of its first byte
+  std::vector<glm::dvec3> vertices;  // <vertexdata>
+  std::vector<glm::vec2> texCoords;  // <texturedata>
+  std::vector<glm::vec3> normals;    // <normaldata>
+  std::uint32_t firstTriangle = 0, triangleCount = 0;  // <faces>: its range of StreamedBlocks::triangles
+  IndexRange vertexRange, textureRange, normalRange;   // <faces>: as readFaces collects them
+  bool claimed = false;                                // taken by the walk
+};
+
+// Reads `count` bytes at `offset` into `into`; returns how many (fewer only at the end), -1 on an error.
+using ReadAt = std::function<long(std::uint64_t offset, char* into, std::size_t count)>;
+
+struct StreamedBlocks {
+  std::string skeleton;
+  std::vector<StreamedBlock> blocks;  // in file order; the marker names the index
+  std::vector<Triangle> triangles;    // every <faces> block's, in file order, raw (file numbering)
+  std::uint64_t triangleCount = 0;
+};
+
+// The skeleton and where each block's text is (the first pass; the blocks are not parsed yet). Throws
+// StreamAbandoned for what only the ordinary reading can report: a binary file, NUL bytes, a comment, CDATA or
+// child element inside a block, the file ending inside one, a marker spelled out in the file.
+// `size` is the file's, a hint for the buffer.
+StreamedBlocks streamSkeleton(const ReadAt& read, std::uint64_t size);
 
 // The loader's warnings and how often each was met: one owner for both, so a warning can only be added
 // with its count (issue 9: repair messages once reached the list but not the counts, and a repeated
@@ -159,7 +208,21 @@ class Loader {
   // tinyxml2 reads the file itself: one copy of the text at the parse instead of two (the load's peak).
   LoadedScene load(std::string_view text, std::string* owned = nullptr, const fs::path* source = nullptr);
 
+  // The second pass: each block's numbers, read again from `read` and parsed as the walk's readers would.
+  // Throws StreamAbandoned where they would report or warn.
+  static void parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read);
+
+  // Loads from the skeleton, taking each block's numbers from `streamed`. Throws StreamAbandoned, or a
+  // SceneError, when the ordinary reading must decide (the caller then makes it with a new Loader).
+  LoadedScene loadStreamed(StreamedBlocks& streamed);
+
  private:
+  // The walk from the parsed document to the scene: common to both readings.
+  LoadedScene walk(const tinyxml2::XMLDocument& doc);
+
+  // The block whose marker is `e`'s text, claimed (nullptr when `e` holds no marker).
+  StreamedBlock* streamedBlock(const XMLElement* e, Tag tag);
+
   // ---------------------------------------------------------------- messages
   [[noreturn]] void fail(int line, const std::string& message) { throwSceneError({file_, line}, message); }
 
@@ -340,6 +403,9 @@ class Loader {
   std::unordered_map<std::string, std::uint32_t> materialIndex_;
   std::vector<PendingMesh> meshes_;
   IndexRange vertexRange_, textureRange_, normalRange_;
+  StreamedBlocks* streamed_ = nullptr;  // when loading from a skeleton
+  std::uint64_t claimedTriangles_ = 0;
+  bool streamedTrianglesTaken_ = false;
 };
 
 }  // namespace rayview::scene_loading

@@ -225,6 +225,10 @@ void Loader::checkBlockCount(const XMLElement* e, std::size_t stride, const char
 
 void Loader::readVertices(const XMLElement* e) {
   auto& vertices = result_.scene.vertices;
+  if (StreamedBlock* block = streamedBlock(e, Tag::VertexData)) {
+    vertices = std::move(block->vertices);
+    return;
+  }
   vertices.clear();
   readBlock<3>(
       e, "vertex", false, [&](std::size_t n) { vertices.reserve(n); },
@@ -233,6 +237,10 @@ void Loader::readVertices(const XMLElement* e) {
 
 void Loader::readTexCoords(const XMLElement* e) {
   auto& uvs = result_.scene.texCoords;
+  if (StreamedBlock* block = streamedBlock(e, Tag::TextureData)) {
+    uvs = std::move(block->texCoords);
+    return;
+  }
   uvs.clear();
   readBlock<2>(
       e, "texture coordinate", true, [&](std::size_t n) { uvs.reserve(n); },
@@ -241,6 +249,10 @@ void Loader::readTexCoords(const XMLElement* e) {
 
 void Loader::readNormals(const XMLElement* e) {
   auto& normals = result_.scene.normals;
+  if (StreamedBlock* block = streamedBlock(e, Tag::NormalData)) {
+    normals = std::move(block->normals);
+    return;
+  }
   normals.clear();
   readBlock<3>(
       e, "normal", true, [&](std::size_t n) { normals.reserve(n); },
@@ -282,6 +294,22 @@ std::string Loader::meshName(const PendingMesh& mesh) const { return "mesh \"" +
 void Loader::readFaces(PendingMesh& mesh) {
   const XMLElement* e = mesh.faces;
   std::vector<Triangle>& triangles = result_.scene.triangles;
+  if (StreamedBlock* block = streamedBlock(e, Tag::Faces)) {
+    // The stream's faces, in file order: the first block brings them all, each mesh takes its range in turn.
+    if (block->firstTriangle != claimedTriangles_) throw StreamAbandoned{};
+    if (!streamedTrianglesTaken_) {
+      if (!triangles.empty()) throw StreamAbandoned{};
+      triangles.swap(streamed_->triangles);
+      streamedTrianglesTaken_ = true;
+    }
+    claimedTriangles_ += block->triangleCount;
+    mesh.firstTriangle = block->firstTriangle;
+    mesh.triangleCount = block->triangleCount;
+    vertexRange_.merge(block->vertexRange);
+    textureRange_.merge(block->textureRange);
+    normalRange_.merge(block->normalRange);
+    return;
+  }
   if (triangles.size() > static_cast<std::size_t>(UINT32_MAX / 2))
     fail(e->GetLineNum(), "too many triangles");
   mesh.firstTriangle = static_cast<std::uint32_t>(triangles.size());

@@ -19,6 +19,32 @@ struct UserFileRead {
 // How many bytes `checkStart` sees before the rest of the file is read.
 inline constexpr std::size_t kFileStartBytes = 64 * 1024;
 
+// A file the user named, opened with readUserFile's checks but not read: for readers that take it in pieces
+// (the scene loader's block stream) rather than hold it whole.
+class UserFile {
+ public:
+  // Opens `path` as readUserFile does (regular files only, never a blocking open, at most `maxBytes`); on
+  // failure `problem()` says why, as readUserFile's `problem` would.
+  UserFile(const std::filesystem::path& path, std::uintmax_t maxBytes);
+  ~UserFile();
+  UserFile(const UserFile&) = delete;
+  UserFile& operator=(const UserFile&) = delete;
+
+  const std::string& problem() const { return problem_; }
+  bool notFound() const { return notFound_; }
+  std::uintmax_t size() const { return size_; }  // at the open
+  // Up to `count` bytes at `offset` (fewer only at the end of the file); -1 on a read error (errno set).
+  long read(std::uintmax_t offset, char* into, std::size_t count) const;
+
+ private:
+  std::string open(const std::filesystem::path& path, std::uintmax_t maxBytes);  // the problem, "" when open
+
+  int fd_ = -1;
+  std::uintmax_t size_ = 0;
+  bool notFound_ = false;
+  std::string problem_;  // after the members open() sets
+};
+
 // Reads `path` whole. Refuses, without opening it for a blocking read, anything but a regular file (a
 // directory, a FIFO, a device, a socket): stat first, open with O_NONBLOCK, fstat the open descriptor and
 // check it is the same regular file. Refuses a file larger than `maxBytes` from its size before reading,

@@ -14,6 +14,10 @@ namespace rayview {
 struct LoadOptions {
   bool strict = false;        // every repair and unknown element becomes an error
   bool loadTexture = true;    // read <textureimage> from disk
+  // Read the big blocks (vertices, faces, normals, texture coordinates) as a stream, never holding the whole
+  // text; false reads everything through tinyxml2's DOM. Both give the same scene, messages and warnings:
+  // false is for tests and the fuzz target that check so.
+  bool streamBlocks = true;
 };
 
 struct LoadedScene {

@@ -1,0 +1,280 @@
+// The big blocks read as a stream (renderer/scene_loader_internal.h): every scene loads the same with and
+// without it (scene, warnings, or the error), and the stream is really taken where it can read exactly.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "rayview/scene_loader.h"
+#include "scene_loader_internal.h"
+#include "support/loader_scenes.h"
+
+namespace rayview {
+namespace {
+
+namespace fs = std::filesystem;
+using loader_testing::kBase;
+
+struct Outcome {
+  bool ok = false;
+  std::string error;
+  std::vector<std::string> warnings;
+  Scene scene;
+};
+
+template <class Load>
+Outcome outcomeOf(Load&& load) {
+  Outcome out;
+  try {
+    LoadedScene loaded = load();
+    out.ok = true;
+    for (const Diagnostic& d : loaded.warnings) out.warnings.push_back(d.format());
+    out.scene = std::move(loaded.scene);
+  } catch (const SceneError& e) {
+    out.error = e.what();
+  }
+  return out;
+}
+
+Outcome loadText(const std::string& xml, bool stream, bool strict = false) {
+  LoadOptions options;
+  options.streamBlocks = stream;
+  options.strict = strict;
+  options.loadTexture = false;
+  return outcomeOf([&] { return loadSceneText(xml, "s.xml", ".", options); });
+}
+
+Outcome loadFile(const fs::path& path, bool stream) {
+  LoadOptions options;
+  options.streamBlocks = stream;
+  return outcomeOf([&] { return loadSceneFile(path, options); });
+}
+
+bool sameBits(const void* a, const void* b, std::size_t bytes) { return bytes == 0 || std::memcmp(a, b, bytes) == 0; }
+
+template <class T>
+bool sameArray(const std::vector<T>& a, const std::vector<T>& b) {
+  return a.size() == b.size() && sameBits(a.data(), b.data(), a.size() * sizeof(T));
+}
+
+void expectSame(const Outcome& streamed, const Outcome& dom, const std::string& what) {
+  SCOPED_TRACE(what);
+  ASSERT_EQ(streamed.ok, dom.ok) << streamed.error << " | " << dom.error;
+  EXPECT_EQ(streamed.error, dom.error);
+  EXPECT_EQ(streamed.warnings, dom.warnings);
+  if (!streamed.ok) return;
+  const Scene& a = streamed.scene;
+  const Scene& b = dom.scene;
+  EXPECT_TRUE(a.parameters() == b.parameters());
+  EXPECT_TRUE(sameArray(a.vertices, b.vertices));
+  EXPECT_TRUE(sameArray(a.texCoords, b.texCoords));
+  EXPECT_TRUE(sameArray(a.normals, b.normals));
+  ASSERT_EQ(a.triangles.size(), b.triangles.size());
+  for (std::size_t i = 0; i < a.triangles.size(); ++i) {
+    const Triangle& s = a.triangles[i];
+    const Triangle& d = b.triangles[i];
+    ASSERT_TRUE(sameBits(s.vertex, d.vertex, sizeof s.vertex) && sameBits(s.texCoord, d.texCoord, sizeof s.texCoord) &&
+                sameBits(s.normal, d.normal, sizeof s.normal) && s.material == d.material && s.mesh == d.mesh)
+        << "triangle " << i;
+  }
+  ASSERT_EQ(a.meshes.size(), b.meshes.size());
+  for (std::size_t i = 0; i < a.meshes.size(); ++i) {
+    EXPECT_EQ(a.meshes[i].id, b.meshes[i].id);
+    EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
+    EXPECT_EQ(a.meshes[i].firstTriangle, b.meshes[i].firstTriangle);
+    EXPECT_EQ(a.meshes[i].triangleCount, b.meshes[i].triangleCount);
+  }
+  EXPECT_EQ(a.textureImage, b.textureImage);
+  ASSERT_EQ(a.texture.has_value(), b.texture.has_value());
+  if (a.texture) {
+    EXPECT_EQ(a.texture->width, b.texture->width);
+    EXPECT_TRUE(a.texture->rgb == b.texture->rgb);
+  }
+}
+
+// Does the stream read this text by itself (no fallback to the ordinary reading)?
+bool streams(const std::string& xml, bool strict = false) {
+  using namespace scene_loading;
+  const ReadAt read = [&](std::uint64_t offset, char* into, std::size_t count) -> long {
+    if (offset >= xml.size()) return 0;
+    const std::size_t n = std::min<std::uint64_t>(count, xml.size() - offset);
+    std::memcpy(into, xml.data() + offset, n);
+    return static_cast<long>(n);
+  };
+  const std::string name = "s.xml";
+  LoadOptions options;
+  options.strict = strict;
+  options.loadTexture = false;
+  try {
+    StreamedBlocks streamed = streamSkeleton(read, xml.size());
+    Loader::parseStreamedBlocks(streamed, read);
+    Loader(name, ".", options).loadStreamed(streamed);
+    return true;
+  } catch (const StreamAbandoned&) {
+    return false;
+  } catch (const SceneError&) {
+    return false;
+  }
+}
+
+void expectSameText(const std::string& xml, bool expectStreamed, const std::string& what, bool strict = false) {
+  expectSame(loadText(xml, true, strict), loadText(xml, false, strict), what);
+  EXPECT_EQ(streams(xml, strict), expectStreamed) << what;
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const std::size_t at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+// ---------------------------------------------------------------- real files
+
+std::vector<fs::path> sceneFiles() {
+  std::vector<fs::path> files;
+  for (const fs::path& root : {fs::path(RAYVIEW_SHARED_DIR), fs::path(RAYVIEW_SOURCE_DIR) / "scenes"})
+    for (const auto& entry : fs::recursive_directory_iterator(root))
+      if (entry.is_regular_file() && entry.path().extension() == ".xml") files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(SceneStream, EveryRealFileLoadsTheSameEitherWay) {
+  const std::vector<fs::path> files = sceneFiles();
+  ASSERT_GE(files.size(), 60u);
+  for (const fs::path& file : files) expectSame(loadFile(file, true), loadFile(file, false), file.string());
+}
+
+TEST(SceneStream, TheConformanceScenesAreStreamed) {
+  // They are clean: the stream must read each by itself, or it buys nothing where it matters.
+  for (const auto& entry : fs::directory_iterator(fs::path(RAYVIEW_SHARED_DIR) / "conformance" / "ceng477")) {
+    const std::string name = entry.path().filename().string();
+    if (entry.path().extension() != ".xml" || name.find(".ceng477.") != std::string::npos) continue;  // the original format
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_TRUE(streams(text)) << entry.path();
+  }
+}
+
+// ---------------------------------------------------------------- what it reads itself
+
+TEST(SceneStream, TheBaseSceneIsStreamed) { expectSameText(kBase, true, "base"); }
+
+TEST(SceneStream, ZeroBasedIndicesWarnAtTheSameLine) {
+  // The warning names the line of the first face with a 0 index: the stream counts lines itself.
+  const std::string xml = replaced(replaced(kBase, "1 2 3\n", "0 1 2\n"), "1 3 4\n", "\n\n0 2 3\n");
+  const Outcome streamed = loadText(xml, true);
+  ASSERT_TRUE(streamed.ok) << streamed.error;
+  ASSERT_FALSE(streamed.warnings.empty());
+  EXPECT_NE(streamed.warnings[0].find("s.xml:38:"), std::string::npos) << streamed.warnings[0];
+  expectSameText(xml, true, "zero-based");
+}
+
+TEST(SceneStream, IndexFormsNormalsAndTextureCoordinates) {
+  std::string xml = replaced(kBase, "</vertexdata>\n", "</vertexdata>\n<texturedata>0 0 1 0 1 1 0 1</texturedata>"
+                                                       "<normaldata>0 0 1 0 0 1 0 0 1 0 0 1</normaldata>\n");
+  xml = replaced(replaced(xml, "1 2 3\n", "1/1/1 2/2/2 3/3/3\n"), "1 3 4\n", "1//1 3//3 4//4\n");
+  expectSameText(xml, true, "v/t/n and v//n");
+}
+
+TEST(SceneStream, ByteOrderMarkCarriageReturnsAndCaseAreStreamed) {
+  std::string xml = "\xEF\xBB\xBF" + replaced(replaced(kBase, "<vertexdata>", "<VertexData>"), "</vertexdata>", "</VertexData>");
+  std::string crlf;
+  for (char c : xml) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  expectSameText(crlf, true, "BOM, CRLF, VertexData");
+}
+
+TEST(SceneStream, SeveralMeshesTakeTheirOwnFaces) {
+  const std::string second = "<mesh id=\"b\">\n<materialid>red</materialid>\n<faces>2 3 4\n</faces>\n</mesh>\n";
+  const std::string empty = "<mesh id=\"c\">\n<materialid>red</materialid>\n<faces></faces>\n</mesh>\n";
+  expectSameText(replaced(kBase, "</objects>", second + empty + second + "</objects>"), true, "four meshes");
+}
+
+TEST(SceneStream, RepairedTagsAroundBlocksAreStreamed) {
+  // A misspelt closing tag after a block, and one left open before its parent closes: the repair pass
+  // sees the skeleton's tags as the file's.
+  expectSameText(replaced(kBase, "</vertexdata>", "</vertexdta>"), true, "misspelt closing tag");
+  expectSameText(replaced(kBase, "1 3 4\n</faces>\n", "1 3 4\n"), true, "<faces> left open");
+  expectSameText(replaced(kBase, "</vertexdata>", "</vertexdta>"), false, "strict: the repair is an error", true);
+}
+
+TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
+  // Past the 1 MiB pieces the file is read in, with numbers and lines that straddle them.
+  std::string vertices, faces;
+  const int n = 120000;
+  char number[96];
+  for (int i = 0; i < n; ++i) {
+    std::snprintf(number, sizeof number, "%.17g %.17g %.17g\n", i * 0.001 - 3.0, (i % 977) * 1e-3, -2.0 - i * 1e-6);
+    vertices += number;
+    if (i + 2 < n) {
+      std::snprintf(number, sizeof number, "%d %d %d%s", i + 1, i + 2, i + 3, i % 7 ? " " : "\n");
+      faces += number;
+    }
+  }
+  std::string xml = replaced(kBase, "-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n", vertices);
+  xml = replaced(xml, "1 2 3\n1 3 4\n", faces);
+  ASSERT_GT(xml.size(), 3u << 20);
+  expectSameText(xml, true, "long blocks");
+
+  const fs::path dir = fs::path(RAYVIEW_TEST_OUTPUT_DIR) / "scene_stream";
+  fs::create_directories(dir);
+  const fs::path file = dir / "long.xml";
+  std::ofstream(file, std::ios::binary) << xml;
+  const Outcome streamed = loadFile(file, true);
+  ASSERT_TRUE(streamed.ok) << streamed.error;
+  EXPECT_EQ(streamed.scene.vertices.size(), static_cast<std::size_t>(n));
+  EXPECT_GT(streamed.scene.triangles.size(), static_cast<std::size_t>(n / 2));  // less the degenerate ones
+  expectSame(streamed, loadFile(file, false), "long file");
+}
+
+// ---------------------------------------------------------------- what it leaves to the ordinary reading
+
+TEST(SceneStream, WhatOnlyTheDomCanReadIsReadTheSame) {
+  struct Case {
+    const char* what;
+    std::string from, to;
+  };
+  const Case cases[] = {
+      {"a comment inside <faces>", "1 3 4\n", "<!-- c -->1 3 4\n"},
+      {"CDATA inside <vertexdata>", "-1 1 -2\n", "<![CDATA[-1 1 -2]]>\n"},
+      {"numbers glued by a sign", "1 1 -2\n", "1 1-2\n"},
+      {"an entity", "1 1 -2\n", "1 1 -&#50;\n"},
+      {"a word among the numbers", "1 1 -2\n", "1 one -2\n"},
+      {"not a multiple of 3", "1 1 -2\n", "1 1\n"},
+      {"a value beyond double", "1 1 -2\n", "1 1 -2e400\n"},
+      {"a negative face index", "1 3 4\n", "1 -3 4\n"},
+      {"mixed index forms", "1 3 4\n", "1 3//1 4\n"},
+      {"faces not a multiple of 3", "1 3 4\n", "1 3\n"},
+      {"an index out of range", "1 3 4\n", "1 3 9\n"},
+      {"a child element inside <faces>", "1 3 4\n", "<x/>1 3 4\n"},
+      // The repair pass blanks the stray tag: the DOM reads one text, in which '-->4' is no index.
+      {"a stray closing tag inside <faces>", "1 2 3\n1 3 4\n", "\n</diffuse>1 2 3\n1 3 -->4\n"},
+      {"a stray closing tag between faces", "1 2 3\n1 3 4\n", "1 2 3\n</diffuse>1 3 4\n"},
+      {"the marker spelt out", "<materialid>red</materialid>", "<materialid>@stream:0</materialid>"},
+      {"the file ends inside <faces>", "1 3 4\n</faces>\n</mesh>\n</objects>\n</scene>\n", "1 3 4\n"},
+      {"two <vertexdata>", "<objects>", "<vertexdata>0 0 0</vertexdata>\n<objects>"},
+      {"<faces> outside a mesh", "<objects>", "<faces>1 2 3</faces>\n<objects>"},
+      {"a lone carriage return in a block", "1 1 -2\n", "1 1 -2\r"},
+      {"a NUL byte", "1 1 -2\n", std::string("1 1 -2\0\n", 8)},
+  };
+  for (const Case& c : cases) expectSameText(replaced(kBase, c.from, c.to), false, c.what);
+}
+
+TEST(SceneStream, ASelfClosingFacesIsReadFromTheDom) {
+  // <faces/> has no text for the stream to take: the walk reads it from the DOM, which is exact only while no
+  // streamed faces are in the scene.
+  const std::string empty = "<mesh id=\"e\">\n<materialid>red</materialid>\n<faces/>\n</mesh>\n";
+  expectSameText(replaced(kBase, "</objects>", empty + "</objects>"), false, "<faces/> after streamed faces");
+  const std::string alone = replaced(replaced(kBase, "<faces>\n1 2 3\n1 3 4\n</faces>", "<faces/>"), "</vertexdata>",
+                                     "</vertexdata>");
+  expectSameText(alone, true, "<faces/> alone");
+}
+
+}  // namespace
+}  // namespace rayview
