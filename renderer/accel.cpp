@@ -79,10 +79,14 @@ std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeo
   return beyond(reach, epsilon);
 }
 
+AccelKind accelWithinRange(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin) {
+  if (kind == AccelKind::Embree && !beyond(geometryReach(scene, origin), 0.0).empty()) return AccelKind::Reference;
+  return kind;
+}
+
 std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                   BuildProgress progress, void* progressUser) {
-  if (kind == AccelKind::Embree && !beyond(geometryReach(scene, origin), 0.0).empty()) kind = AccelKind::Reference;
-  return buildCheckedAccel(scene, kind, origin, progress, progressUser);
+  return buildCheckedAccel(scene, accelWithinRange(scene, kind, origin), origin, progress, progressUser);
 }
 
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,

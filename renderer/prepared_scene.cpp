@@ -44,13 +44,8 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
                                                         const glm::dvec3& origin, AccelKind kind,
                                                         BuildProgress progress, void* progressUser) {
   const auto start = Clock::now();
-  auto prepared = std::make_shared<PreparedGeometry>();
-  prepared->accel = buildAccel(*geometry, availableAccel(kind), origin, progress, progressUser);
-  if (!prepared->accel) return nullptr;
-  prepared->shading = prepareShadingGeometry(*geometry, origin);
-  prepared->source = std::move(geometry);
-  prepared->buildMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-  return prepared;
+  const AccelKind within = accelWithinRange(*geometry, availableAccel(kind), origin);
+  return prepare(std::move(geometry), origin, within, progress, progressUser, start);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,

@@ -13,12 +13,14 @@
 #include "rayview/scene_loader.h"
 #include "scene_loader_internal.h"
 #include "support/loader_scenes.h"
+#include "support/scene_compare.h"
 
 namespace rayview {
 namespace {
 
 namespace fs = std::filesystem;
 using loader_testing::kBase;
+using loader_testing::with;
 
 struct Outcome {
   bool ok = false;
@@ -55,46 +57,15 @@ Outcome loadFile(const fs::path& path, bool stream) {
   return outcomeOf([&] { return loadSceneFile(path, options); });
 }
 
-bool sameBits(const void* a, const void* b, std::size_t bytes) { return bytes == 0 || std::memcmp(a, b, bytes) == 0; }
-
-template <class T>
-bool sameArray(const std::vector<T>& a, const std::vector<T>& b) {
-  return a.size() == b.size() && sameBits(a.data(), b.data(), a.size() * sizeof(T));
-}
-
 void expectSame(const Outcome& streamed, const Outcome& dom, const std::string& what) {
   SCOPED_TRACE(what);
   ASSERT_EQ(streamed.ok, dom.ok) << streamed.error << " | " << dom.error;
   EXPECT_EQ(streamed.error, dom.error);
   EXPECT_EQ(streamed.warnings, dom.warnings);
   if (!streamed.ok) return;
-  const Scene& a = streamed.scene;
-  const Scene& b = dom.scene;
-  EXPECT_TRUE(a.parameters() == b.parameters());
-  EXPECT_TRUE(sameArray(a.vertices, b.vertices));
-  EXPECT_TRUE(sameArray(a.texCoords, b.texCoords));
-  EXPECT_TRUE(sameArray(a.normals, b.normals));
-  ASSERT_EQ(a.triangles.size(), b.triangles.size());
-  for (std::size_t i = 0; i < a.triangles.size(); ++i) {
-    const Triangle& s = a.triangles[i];
-    const Triangle& d = b.triangles[i];
-    ASSERT_TRUE(sameBits(s.vertex, d.vertex, sizeof s.vertex) && sameBits(s.texCoord, d.texCoord, sizeof s.texCoord) &&
-                sameBits(s.normal, d.normal, sizeof s.normal) && s.material == d.material && s.mesh == d.mesh)
-        << "triangle " << i;
-  }
-  ASSERT_EQ(a.meshes.size(), b.meshes.size());
-  for (std::size_t i = 0; i < a.meshes.size(); ++i) {
-    EXPECT_EQ(a.meshes[i].id, b.meshes[i].id);
-    EXPECT_EQ(a.meshes[i].material, b.meshes[i].material);
-    EXPECT_EQ(a.meshes[i].firstTriangle, b.meshes[i].firstTriangle);
-    EXPECT_EQ(a.meshes[i].triangleCount, b.meshes[i].triangleCount);
-  }
-  EXPECT_EQ(a.textureImage, b.textureImage);
-  ASSERT_EQ(a.texture.has_value(), b.texture.has_value());
-  if (a.texture) {
-    EXPECT_EQ(a.texture->width, b.texture->width);
-    EXPECT_TRUE(a.texture->rgb == b.texture->rgb);
-  }
+  EXPECT_TRUE(streamed.scene.parameters() == dom.scene.parameters());
+  EXPECT_EQ(streamed.scene.textureImage, dom.scene.textureImage);
+  testing::expectSameGeometry(streamed.scene, dom.scene);
 }
 
 // Does the stream read this text by itself (no fallback to the ordinary reading)?
@@ -125,13 +96,6 @@ bool streams(const std::string& xml, bool strict = false) {
 void expectSameText(const std::string& xml, bool expectStreamed, const std::string& what, bool strict = false) {
   expectSame(loadText(xml, true, strict), loadText(xml, false, strict), what);
   EXPECT_EQ(streams(xml, strict), expectStreamed) << what;
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const std::size_t at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  if (at != std::string::npos) text.replace(at, from.size(), to);
-  return text;
 }
 
 // ---------------------------------------------------------------- real files
@@ -168,7 +132,7 @@ TEST(SceneStream, TheBaseSceneIsStreamed) { expectSameText(kBase, true, "base");
 
 TEST(SceneStream, ZeroBasedIndicesWarnAtTheSameLine) {
   // The warning names the line of the first face with a 0 index: the stream counts lines itself.
-  const std::string xml = replaced(replaced(kBase, "1 2 3\n", "0 1 2\n"), "1 3 4\n", "\n\n0 2 3\n");
+  const std::string xml = with("1 3 4\n", "\n\n0 2 3\n", with("1 2 3\n", "0 1 2\n"));
   const Outcome streamed = loadText(xml, true);
   ASSERT_TRUE(streamed.ok) << streamed.error;
   ASSERT_FALSE(streamed.warnings.empty());
@@ -177,14 +141,14 @@ TEST(SceneStream, ZeroBasedIndicesWarnAtTheSameLine) {
 }
 
 TEST(SceneStream, IndexFormsNormalsAndTextureCoordinates) {
-  std::string xml = replaced(kBase, "</vertexdata>\n", "</vertexdata>\n<texturedata>0 0 1 0 1 1 0 1</texturedata>"
+  std::string xml = with("</vertexdata>\n", "</vertexdata>\n<texturedata>0 0 1 0 1 1 0 1</texturedata>"
                                                        "<normaldata>0 0 1 0 0 1 0 0 1 0 0 1</normaldata>\n");
-  xml = replaced(replaced(xml, "1 2 3\n", "1/1/1 2/2/2 3/3/3\n"), "1 3 4\n", "1//1 3//3 4//4\n");
+  xml = with("1 3 4\n", "1//1 3//3 4//4\n", with("1 2 3\n", "1/1/1 2/2/2 3/3/3\n", xml));
   expectSameText(xml, true, "v/t/n and v//n");
 }
 
 TEST(SceneStream, ByteOrderMarkCarriageReturnsAndCaseAreStreamed) {
-  std::string xml = "\xEF\xBB\xBF" + replaced(replaced(kBase, "<vertexdata>", "<VertexData>"), "</vertexdata>", "</VertexData>");
+  std::string xml = "\xEF\xBB\xBF" + with("</vertexdata>", "</VertexData>", with("<vertexdata>", "<VertexData>"));
   std::string crlf;
   for (char c : xml) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   expectSameText(crlf, true, "BOM, CRLF, VertexData");
@@ -193,15 +157,15 @@ TEST(SceneStream, ByteOrderMarkCarriageReturnsAndCaseAreStreamed) {
 TEST(SceneStream, SeveralMeshesTakeTheirOwnFaces) {
   const std::string second = "<mesh id=\"b\">\n<materialid>red</materialid>\n<faces>2 3 4\n</faces>\n</mesh>\n";
   const std::string empty = "<mesh id=\"c\">\n<materialid>red</materialid>\n<faces></faces>\n</mesh>\n";
-  expectSameText(replaced(kBase, "</objects>", second + empty + second + "</objects>"), true, "four meshes");
+  expectSameText(with("</objects>", second + empty + second + "</objects>"), true, "four meshes");
 }
 
 TEST(SceneStream, RepairedTagsAroundBlocksAreStreamed) {
   // A misspelt closing tag after a block, and one left open before its parent closes: the repair pass
   // sees the skeleton's tags as the file's.
-  expectSameText(replaced(kBase, "</vertexdata>", "</vertexdta>"), true, "misspelt closing tag");
-  expectSameText(replaced(kBase, "1 3 4\n</faces>\n", "1 3 4\n"), true, "<faces> left open");
-  expectSameText(replaced(kBase, "</vertexdata>", "</vertexdta>"), false, "strict: the repair is an error", true);
+  expectSameText(with("</vertexdata>", "</vertexdta>"), true, "misspelt closing tag");
+  expectSameText(with("1 3 4\n</faces>\n", "1 3 4\n"), true, "<faces> left open");
+  expectSameText(with("</vertexdata>", "</vertexdta>"), false, "strict: the repair is an error", true);
 }
 
 TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
@@ -217,8 +181,8 @@ TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
       faces += number;
     }
   }
-  std::string xml = replaced(kBase, "-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n", vertices);
-  xml = replaced(xml, "1 2 3\n1 3 4\n", faces);
+  std::string xml = with("-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n", vertices);
+  xml = with("1 2 3\n1 3 4\n", faces, xml);
   ASSERT_GT(xml.size(), 3u << 20);
   expectSameText(xml, true, "long blocks");
 
@@ -243,11 +207,11 @@ TEST(SceneStream, WhatOnlyTheDomCanReadIsReadTheSame) {
   const Case cases[] = {
       {"a comment inside <faces>", "1 3 4\n", "<!-- c -->1 3 4\n"},
       {"CDATA inside <vertexdata>", "-1 1 -2\n", "<![CDATA[-1 1 -2]]>\n"},
-      {"numbers glued by a sign", "1 1 -2\n", "1 1-2\n"},
-      {"an entity", "1 1 -2\n", "1 1 -&#50;\n"},
-      {"a word among the numbers", "1 1 -2\n", "1 one -2\n"},
-      {"not a multiple of 3", "1 1 -2\n", "1 1\n"},
-      {"a value beyond double", "1 1 -2\n", "1 1 -2e400\n"},
+      {"numbers glued by a sign", "\n1 1 -2\n", "\n1 1-2\n"},
+      {"an entity", "\n1 1 -2\n", "\n1 1 -&#50;\n"},
+      {"a word among the numbers", "\n1 1 -2\n", "\n1 one -2\n"},
+      {"not a multiple of 3", "\n1 1 -2\n", "\n1 1\n"},
+      {"a value beyond double", "\n1 1 -2\n", "\n1 1 -2e400\n"},
       {"a negative face index", "1 3 4\n", "1 -3 4\n"},
       {"mixed index forms", "1 3 4\n", "1 3//1 4\n"},
       {"faces not a multiple of 3", "1 3 4\n", "1 3\n"},
@@ -260,20 +224,18 @@ TEST(SceneStream, WhatOnlyTheDomCanReadIsReadTheSame) {
       {"the file ends inside <faces>", "1 3 4\n</faces>\n</mesh>\n</objects>\n</scene>\n", "1 3 4\n"},
       {"two <vertexdata>", "<objects>", "<vertexdata>0 0 0</vertexdata>\n<objects>"},
       {"<faces> outside a mesh", "<objects>", "<faces>1 2 3</faces>\n<objects>"},
-      {"a lone carriage return in a block", "1 1 -2\n", "1 1 -2\r"},
-      {"a NUL byte", "1 1 -2\n", std::string("1 1 -2\0\n", 8)},
+      {"a lone carriage return in a block", "\n1 1 -2\n", "\n1 1 -2\r"},
+      {"a NUL byte", "\n1 1 -2\n", std::string("\n1 1 -2\0\n", 9)},
   };
-  for (const Case& c : cases) expectSameText(replaced(kBase, c.from, c.to), false, c.what);
+  for (const Case& c : cases) expectSameText(with(c.from, c.to), false, c.what);
 }
 
 TEST(SceneStream, ASelfClosingFacesIsReadFromTheDom) {
   // <faces/> has no text for the stream to take: the walk reads it from the DOM, which is exact only while no
   // streamed faces are in the scene.
   const std::string empty = "<mesh id=\"e\">\n<materialid>red</materialid>\n<faces/>\n</mesh>\n";
-  expectSameText(replaced(kBase, "</objects>", empty + "</objects>"), false, "<faces/> after streamed faces");
-  const std::string alone = replaced(replaced(kBase, "<faces>\n1 2 3\n1 3 4\n</faces>", "<faces/>"), "</vertexdata>",
-                                     "</vertexdata>");
-  expectSameText(alone, true, "<faces/> alone");
+  expectSameText(with("</objects>", empty + "</objects>"), false, "<faces/> after streamed faces");
+  expectSameText(with("<faces>\n1 2 3\n1 3 4\n</faces>", "<faces/>"), true, "<faces/> alone");
 }
 
 }  // namespace
