@@ -180,18 +180,18 @@ class WhittedGenerator {
     glm::dvec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
     const double length = glm::length(ng);
     ng = length > 0.0 ? ng / length : glm::dvec3(0.0, 0.0, 1.0);
-    const Triangle& triangle = scene_.triangles[rh.hit.primID];
+    const FaceAttributes& face = scene_.attributesOf(rh.hit.primID);
     // Shading decisions with the file's normals when it has them (as rayview), which may even face the other
     // way than the winding; ray origins step off along the geometric normal.
     glm::dvec3 n = ng;
-    if (triangle.hasNormals()) {
+    if (face.hasNormals()) {
       const double b1 = rh.hit.u, b2 = rh.hit.v, b0 = 1.0 - b1 - b2;
-      const glm::dvec3 interpolated = b0 * glm::dvec3(scene_.normals[triangle.normal[0]]) +
-                                      b1 * glm::dvec3(scene_.normals[triangle.normal[1]]) +
-                                      b2 * glm::dvec3(scene_.normals[triangle.normal[2]]);
+      const glm::dvec3 interpolated = b0 * glm::dvec3(scene_.normals[face.normal[0]]) +
+                                      b1 * glm::dvec3(scene_.normals[face.normal[1]]) +
+                                      b2 * glm::dvec3(scene_.normals[face.normal[2]]);
       if (glm::length(interpolated) > 0.0) n = glm::normalize(interpolated);
     }
-    const Material& material = scene_.materials[triangle.material];
+    const Material& material = scene_.materials[scene_.materialOf(rh.hit.primID)];
     const double offset = (1.0 / 32768.0) * std::max({std::fabs(p.x), std::fabs(p.y), std::fabs(p.z), 1e-30});
     auto start = [&](const glm::dvec3& direction) { return glm::dot(ng, direction) >= 0.0 ? p + offset * ng : p - offset * ng; };
 

@@ -62,8 +62,6 @@ Scene heightfieldScene(int triangles, int width, int height) {
       b.vertex[0] = vertex(i, j);
       b.vertex[1] = vertex(i + 1, j + 1);
       b.vertex[2] = vertex(i + 1, j);
-      a.material = b.material = material;
-      a.mesh = b.mesh = material;
       std::vector<Triangle>& into = material == 1u ? lake : scene.triangles;
       into.push_back(a);
       into.push_back(b);
@@ -98,9 +96,9 @@ Scene sphereScene(int triangles, int width, int height) {
   auto add = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c) {
     Triangle t;
     t.vertex[0] = a, t.vertex[1] = b, t.vertex[2] = c;
-    for (int k = 0; k < 3; ++k) t.normal[k] = static_cast<std::int32_t>(t.vertex[k]);
-    t.material = 0;
-    scene.triangles.push_back(t);
+    FaceAttributes normals;
+    for (int k = 0; k < 3; ++k) normals.normal[k] = static_cast<std::int32_t>(t.vertex[k]);
+    scene.addFace(t, normals);
   };
   for (int r = 0; r < rings; ++r)
     for (int s = 0; s < segments; ++s) {
@@ -131,7 +129,6 @@ Scene soupScene(int triangles, int width, int height) {
       scene.vertices.push_back(centre + edge * glm::dvec3(unit(random), unit(random), unit(random)));
     }
     // The last seventh are mirrors, a mesh of their own (the file format gives materials per mesh).
-    t.material = t.mesh = (i >= mirrorsFrom) ? 1u : 0u;
     scene.triangles.push_back(t);
   }
   scene.meshes.push_back(Mesh{"soup", 0, 0, static_cast<std::uint32_t>(mirrorsFrom)});

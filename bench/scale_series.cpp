@@ -76,7 +76,8 @@ double bytesOf(const std::vector<T>& v) {
   return static_cast<double>(v.size() * sizeof(T));
 }
 double sceneArrayBytes(const SceneGeometry& s) {
-  return bytesOf(s.vertices) + bytesOf(s.texCoords) + bytesOf(s.normals) + bytesOf(s.meshes) + bytesOf(s.triangles);
+  return bytesOf(s.vertices) + bytesOf(s.texCoords) + bytesOf(s.normals) + bytesOf(s.meshes) + bytesOf(s.triangles) +
+         bytesOf(s.faceAttributes);
 }
 
 int breakdown(const std::string& path, int threads) {
@@ -123,7 +124,8 @@ int breakdown(const std::string& path, int threads) {
   const double embreeBytes = buildDelta - copyBytes;
   std::printf("\n| where the bytes go (held during the render) | MB | B/triangle |\n|---|---:|---:|\n");
   auto part = [&](const char* what, double bytes) { std::printf("| %s | %.0f | %.0f |\n", what, bytes / 1e6, bytes / n); };
-  part("Scene arrays (vertices dvec3 24 B, Triangle 44 B, normals, meshes)", sceneBytes);
+  part("Scene arrays (vertices dvec3 24 B, Triangle 12 B, face attributes 24 B when a face has them, normals, meshes)",
+       sceneBytes);
   part("the same arrays again: prepareGeometry(const Scene&) copies the scene into PreparedGeometry::source", copyBytes);
   part("Embree BVH and the rest of the build step (measured: step's resident growth minus the above)", embreeBytes);
   part("image and the rest of the render step", afterRender.rss - afterBuild.rss);

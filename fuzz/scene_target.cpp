@@ -66,13 +66,33 @@ void expectTheSame(const Outcome& streamed, const Outcome& dom) {
     fail("the stream and the DOM give different vertices, texture coordinates or normals");
   if (a.triangles.size() != b.triangles.size() || a.meshes.size() != b.meshes.size())
     fail("the stream and the DOM give different triangle or mesh counts");
-  for (std::size_t i = 0; i < a.triangles.size(); ++i)
-    if (std::memcmp(&a.triangles[i], &b.triangles[i], sizeof(rayview::Triangle)) != 0)
-      fail("the stream and the DOM give different triangles");
+  if (!sameBits(a.triangles, b.triangles)) fail("the stream and the DOM give different triangles");
+  if (a.faceAttributes != b.faceAttributes) fail("the stream and the DOM give different face attributes");
   for (std::size_t i = 0; i < a.meshes.size(); ++i)
     if (a.meshes[i].id != b.meshes[i].id || a.meshes[i].firstTriangle != b.meshes[i].firstTriangle ||
         a.meshes[i].triangleCount != b.meshes[i].triangleCount || a.meshes[i].material != b.meshes[i].material)
       fail("the stream and the DOM give different meshes");
+}
+
+// Whatever loads is whole: the meshes are ranges of the triangles in order and cover them all, face attributes are
+// none or one per triangle, every index is in range.
+void expectWhole(const rayview::Scene& s) {
+  using rayview::fuzz::fail;
+  std::uint64_t next = 0;
+  for (const rayview::Mesh& mesh : s.meshes) {
+    if (mesh.firstTriangle != next || mesh.material >= s.materials.size()) fail("a mesh out of order or its material");
+    next += mesh.triangleCount;
+  }
+  if (next != s.triangles.size()) fail("the meshes do not cover the triangles");
+  if (!s.faceAttributes.empty() && s.faceAttributes.size() != s.triangles.size()) fail("face attributes not one per triangle");
+  for (std::size_t i = 0; i < s.triangles.size(); ++i) {
+    const rayview::FaceAttributes& a = s.attributesOf(i);
+    for (int k = 0; k < 3; ++k)
+      if (s.triangles[i].vertex[k] >= s.vertices.size() ||
+          (a.hasTexCoords() && static_cast<std::size_t>(a.texCoord[k]) >= s.texCoords.size()) ||
+          (a.hasNormals() && static_cast<std::size_t>(a.normal[k]) >= s.normals.size()))
+        fail("an index out of range");
+  }
 }
 
 }  // namespace
@@ -90,6 +110,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   expectTheSame(streamed, load(text, options, false));
   if (!streamed.error.empty()) return 0;
   LoadedScene& loaded = streamed.loaded;
+  expectWhole(loaded.scene);
 
   Scene& scene = loaded.scene;
   scene.camera.width = std::clamp(scene.camera.width, 1, kMaxPixelsPerSide);

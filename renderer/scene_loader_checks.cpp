@@ -60,6 +60,8 @@ void Loader::resolveIndices(int rootLine) {
                   "read as 0-based, the format's indices start at 1");
 
   std::vector<Triangle>& triangles = scene.triangles;
+  std::vector<FaceAttributes>& attributes = scene.faceAttributes;  // empty, or one per triangle
+  const bool hasAttributes = !attributes.empty();
   std::size_t kept = 0;
   for (std::uint32_t m = 0; m < meshes_.size(); ++m) {
     PendingMesh& pending = meshes_[m];
@@ -68,23 +70,23 @@ void Loader::resolveIndices(int rootLine) {
     std::size_t degenerate = 0;
     for (std::uint32_t i = 0; i < pending.triangleCount; ++i) {
       Triangle t = triangles[pending.firstTriangle + i];
+      FaceAttributes a = hasAttributes ? attributes[pending.firstTriangle + i] : FaceAttributes{};
       for (int c = 0; c < 3; ++c) {
-        const std::int64_t raw[3] = {t.vertex[c], t.texCoord[c], t.normal[c]};
+        const std::int64_t raw[3] = {t.vertex[c], a.texCoord[c], a.normal[c]};
         for (int k = 0; k < 3; ++k) {
           if (k > 0 && raw[k] < 0) continue;
           const std::int64_t index = raw[k] - base[k];
           if (index < 0 || index >= counts[k]) indexOutOfRange(pending, i * 3 + c, kinds[k], raw[k], base[k], counts[k]);
         }
         t.vertex[c] = static_cast<std::uint32_t>(raw[0] - base[0]);
-        if (raw[1] >= 0) t.texCoord[c] = static_cast<std::int32_t>(raw[1] - base[1]);
-        if (raw[2] >= 0) t.normal[c] = static_cast<std::int32_t>(raw[2] - base[2]);
+        if (raw[1] >= 0) a.texCoord[c] = static_cast<std::int32_t>(raw[1] - base[1]);
+        if (raw[2] >= 0) a.normal[c] = static_cast<std::int32_t>(raw[2] - base[2]);
       }
       if (isDegenerate(t)) {
         ++degenerate;
         continue;
       }
-      t.material = material;
-      t.mesh = m;
+      if (hasAttributes) attributes[kept] = a;
       triangles[kept++] = t;
     }
     if (degenerate > 0)
@@ -93,8 +95,9 @@ void Loader::resolveIndices(int rootLine) {
     scene.meshes.push_back(Mesh{pending.id, material, first, static_cast<std::uint32_t>(kept - first)});
   }
   // No shrink_to_fit: the capacity readFaces reserved from the text's size and never wrote is address space, not
-  // memory, while a shrinking copy would hold every triangle twice at the load's peak (44 B per triangle).
+  // memory, while a shrinking copy would hold every triangle twice at the load's peak.
   triangles.resize(kept);
+  if (hasAttributes) attributes.resize(kept);
   warnAboutDuplicatedFaces();
 }
 
@@ -137,7 +140,7 @@ void Loader::warnAboutDuplicatedFaces() {
     }
   }
   if (repeats == 0) return;
-  const PendingMesh& mesh = meshes_[triangles[firstRepeat].mesh];
+  const PendingMesh& mesh = meshes_[result_.scene.meshOf(firstRepeat)];
   warn(mesh.line, plural(repeats, "face repeats", "faces repeat") +
                       " the three vertices of an earlier face (the first in " + meshName(mesh) +
                       "): coincident surfaces, where rayview shows the face listed first");

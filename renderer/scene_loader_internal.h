@@ -167,6 +167,7 @@ struct StreamedBlocks {
   std::string skeleton;
   std::vector<StreamedBlock> blocks;  // in file order; the marker names the index
   std::vector<Triangle> triangles;    // every <faces> block's, in file order, raw (file numbering)
+  std::vector<FaceAttributes> faceAttributes;  // theirs, as SceneGeometry::faceAttributes (raw)
   std::uint64_t triangleCount = 0;
 };
 

@@ -317,11 +317,12 @@ void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read) {
               (corners[0].n < 0) != (corners[1].n < 0) || (corners[0].n < 0) != (corners[2].n < 0))
             abandon();
           Triangle triangle;
+          FaceAttributes attributes;
           bool zero = false;
           for (int k = 0; k < 3; ++k) {
             triangle.vertex[k] = static_cast<std::uint32_t>(corners[k].v);
-            triangle.texCoord[k] = static_cast<std::int32_t>(corners[k].t);
-            triangle.normal[k] = static_cast<std::int32_t>(corners[k].n);
+            attributes.texCoord[k] = static_cast<std::int32_t>(corners[k].t);
+            attributes.normal[k] = static_cast<std::int32_t>(corners[k].n);
             zero = zero || corners[k].v == 0 || corners[k].t == 0 || corners[k].n == 0;
           }
           // The line of the face's last token, where readFaces asks for it.
@@ -331,7 +332,7 @@ void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read) {
             block.textureRange.add(corners[k].t, at);
             block.normalRange.add(corners[k].n, at);
           }
-          triangles.push_back(triangle);
+          appendFace(triangles, streamed.faceAttributes, triangle, attributes);
         });
         if (cornerCount != 0) abandon();
         block.triangleCount = static_cast<std::uint32_t>(triangles.size() - block.firstTriangle);

@@ -300,6 +300,7 @@ void Loader::readFaces(PendingMesh& mesh) {
     if (!streamedTrianglesTaken_) {
       if (!triangles.empty()) throw StreamAbandoned{};
       triangles.swap(streamed_->triangles);
+      result_.scene.faceAttributes.swap(streamed_->faceAttributes);
       streamedTrianglesTaken_ = true;
     }
     claimedTriangles_ += block->triangleCount;
@@ -340,10 +341,11 @@ void Loader::readFaces(PendingMesh& mesh) {
         fail(lineIn(piece, token.data()), meshName(mesh) + ": a face mixes index forms (v, v/t, v//n, v/t/n) in " +
                                               "its three corners; the last one is " + quoted(token));
       Triangle triangle;
+      FaceAttributes attributes;
       for (int k = 0; k < 3; ++k) {
         triangle.vertex[k] = static_cast<std::uint32_t>(corners[k].v);
-        triangle.texCoord[k] = static_cast<std::int32_t>(corners[k].t);
-        triangle.normal[k] = static_cast<std::int32_t>(corners[k].n);
+        attributes.texCoord[k] = static_cast<std::int32_t>(corners[k].t);
+        attributes.normal[k] = static_cast<std::int32_t>(corners[k].n);
       }
       const bool needLine = corners[0].v == 0 || corners[1].v == 0 || corners[2].v == 0 || corners[0].t == 0 ||
                             corners[1].t == 0 || corners[2].t == 0 || corners[0].n == 0 ||
@@ -354,7 +356,7 @@ void Loader::readFaces(PendingMesh& mesh) {
         textureRange_.add(corners[k].t, line);
         normalRange_.add(corners[k].n, line);
       }
-      triangles.push_back(triangle);
+      result_.scene.addFace(triangle, attributes);
     }
   }
   if (cornerCount != 0)

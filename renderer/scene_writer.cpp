@@ -103,16 +103,16 @@ void appendIndex(std::string& out, std::int64_t zeroBased) {
   out.append(buffer, result.ptr);
 }
 
-void appendFace(std::string& out, const Triangle& t) {
+void writeFace(std::string& out, const Triangle& t, const FaceAttributes& a) {
   for (int k = 0; k < 3; ++k) {
     if (k) out += ' ';
     appendIndex(out, t.vertex[k]);
-    if (t.texCoord[k] == kNoIndex && t.normal[k] == kNoIndex) continue;
+    if (a.texCoord[k] == kNoIndex && a.normal[k] == kNoIndex) continue;
     out += '/';
-    if (t.texCoord[k] != kNoIndex) appendIndex(out, t.texCoord[k]);
-    if (t.normal[k] != kNoIndex) {
+    if (a.texCoord[k] != kNoIndex) appendIndex(out, a.texCoord[k]);
+    if (a.normal[k] != kNoIndex) {
       out += '/';
-      appendIndex(out, t.normal[k]);
+      appendIndex(out, a.normal[k]);
     }
   }
 }
@@ -229,7 +229,7 @@ std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& g
                                                   static_cast<std::size_t>(mesh.firstTriangle) + mesh.triangleCount);
     for (std::size_t i = mesh.firstTriangle; i < end; ++i) {
       xml.indent(4);
-      appendFace(out, geometry.triangles[i]);
+      writeFace(out, geometry.triangles[i], geometry.attributesOf(i));
       out += '\n';
     }
     xml.close(3, "faces");

@@ -341,7 +341,8 @@ template <class Shadows>
 Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
                                     RayCounts& counts, Shadows& shadows, Ray& mirrorRay) const {
   const Triangle& triangle = meshes_.triangles[hit.triangle];
-  const Material& material = parameters_.materials[triangle.material];
+  const Material& material = parameters_.materials[meshes_.materialOf(hit.triangle)];
+  const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
   const glm::dvec3& w0 = meshes_.vertices[triangle.vertex[0]];
@@ -356,9 +357,9 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
   const glm::dvec3 ngExact = crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
   const glm::vec3 ng = toFloat(ngExact);
   glm::vec3 n = ng;
-  if (triangle.hasNormals()) {
-    const glm::vec3 interpolated = b0 * meshes_.normals[triangle.normal[0]] + b1 * meshes_.normals[triangle.normal[1]] +
-                                   b2 * meshes_.normals[triangle.normal[2]];
+  if (attributes.hasNormals()) {
+    const glm::vec3 interpolated = b0 * meshes_.normals[attributes.normal[0]] +
+                                   b1 * meshes_.normals[attributes.normal[1]] + b2 * meshes_.normals[attributes.normal[2]];
     const float length = glm::length(interpolated);
     if (length > 0.0f && std::isfinite(length)) n = interpolated / length;
   }
@@ -411,22 +412,22 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     v.continues = true;
   }
 
-  if (useTexture_ && material.textureFactor != 0.0f && triangle.hasTexCoords()) {
+  if (useTexture_ && material.textureFactor != 0.0f && attributes.hasTexCoords()) {
     v.textured = true;
     v.textureFactor = material.textureFactor;
-    v.texel = sampleTexture(triangle, hit);
+    v.texel = sampleTexture(attributes, hit);
   }
   return v;
 }
 
 // Texture lookup: uv interpolated from the face's <texturedata> entries; u to the right, v up (OBJ
 // convention: v = 0 is the bottom row of the image); repeat wrap; nearest texel.
-Color Tracer::sampleTexture(const Triangle& triangle, const Hit& hit) const {
+Color Tracer::sampleTexture(const FaceAttributes& face, const Hit& hit) const {
   const Texture& texture = *meshes_.texture;
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
-  const glm::vec2 uv = b0 * meshes_.texCoords[triangle.texCoord[0]] + b1 * meshes_.texCoords[triangle.texCoord[1]] +
-                       b2 * meshes_.texCoords[triangle.texCoord[2]];
+  const glm::vec2 uv = b0 * meshes_.texCoords[face.texCoord[0]] + b1 * meshes_.texCoords[face.texCoord[1]] +
+                       b2 * meshes_.texCoords[face.texCoord[2]];
   if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return Color(0.0f);
   const float u = uv.x - std::floor(uv.x);
   const float v = uv.y - std::floor(uv.y);

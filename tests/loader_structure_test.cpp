@@ -41,7 +41,26 @@ TEST(Loader, ZeroBasedDecisionIsPerFileOverAllMeshes) {
   ASSERT_EQ(loaded.scene.triangles.size(), 3u);
   EXPECT_EQ(loaded.scene.triangles[0].vertex[2], 3u);
   EXPECT_EQ(loaded.scene.meshes.at(1).id, "b");
-  EXPECT_EQ(loaded.scene.triangles[2].mesh, 1u);
+  EXPECT_EQ(loaded.scene.meshOf(2), 1u);
+}
+
+// Plain faces hold no attributes; once one face has them, every triangle has its entry, kept in step with the
+// triangles when degenerate faces are dropped.
+TEST(Loader, FaceAttributesAreHeldOnlyWhenAFaceHasThemAndStayInStep) {
+  EXPECT_TRUE(load(kBase).scene.faceAttributes.empty());
+  const std::string second =
+      "<mesh id=\"n\"><materialid>red</materialid><faces>1//1 1//1 2//1\n2//1 3//1 4//1\n</faces></mesh>";
+  const LoadedScene loaded = load(with("</objects>", second + "</objects>",
+                                       with("</vertexdata>\n", "</vertexdata><normaldata>0 0 1</normaldata>\n")));
+  ASSERT_EQ(loaded.scene.triangles.size(), 3u);  // the repeated-vertex face is dropped
+  ASSERT_EQ(loaded.scene.faceAttributes.size(), 3u);
+  EXPECT_FALSE(loaded.scene.attributesOf(0).any());
+  EXPECT_FALSE(loaded.scene.attributesOf(1).any());
+  EXPECT_EQ(loaded.scene.triangles[2].vertex[0], 1u);
+  EXPECT_TRUE(loaded.scene.attributesOf(2).hasNormals());
+  EXPECT_EQ(loaded.scene.attributesOf(2).normal[2], 0);
+  EXPECT_EQ(loaded.scene.meshOf(2), 1u);
+  EXPECT_EQ(loaded.scene.materialOf(2), loaded.scene.meshes[1].material);
 }
 
 TEST(Loader, IndexOutOfRangeIsAnErrorAtTheFaceLine) {
@@ -55,7 +74,7 @@ TEST(Loader, IndexOutOfRangeIsAnErrorAtTheFaceLine) {
   const LoadedScene mixed = load(with("1 2 3\n1 3 4\n", "1/0 2/1 3/2\n1/0 3/2 4/3\n",
                                       with("</vertexdata>\n", "</vertexdata><texturedata>0 0 1 0 1 1 0 1</texturedata>\n")));
   EXPECT_TRUE(hasWarning(mixed, 38, "face indices are 0-based (texture indices include 0"));
-  EXPECT_EQ(mixed.scene.triangles.at(1).texCoord[2], 3);
+  EXPECT_EQ(mixed.scene.attributesOf(1).texCoord[2], 3);
   EXPECT_EQ(mixed.scene.triangles.at(1).vertex[2], 3u);
 }
 
@@ -75,20 +94,21 @@ TEST(Loader, ObjStyleFaceTokens) {
   const LoadedScene loaded = load(xml);
   EXPECT_TRUE(loaded.warnings.empty());
   ASSERT_EQ(loaded.scene.triangles.size(), 2u);
-  const Triangle& a = loaded.scene.triangles[0];
+  ASSERT_EQ(loaded.scene.faceAttributes.size(), 2u);
+  const FaceAttributes& a = loaded.scene.attributesOf(0);
   EXPECT_TRUE(a.hasTexCoords());
   EXPECT_TRUE(a.hasNormals());
   EXPECT_EQ(a.texCoord[2], 2);
   EXPECT_EQ(a.normal[0], 1);
-  const Triangle& b = loaded.scene.triangles[1];
+  const FaceAttributes& b = loaded.scene.attributesOf(1);
   EXPECT_FALSE(b.hasTexCoords());
   EXPECT_EQ(b.normal[1], 0);
   EXPECT_EQ(loaded.scene.texCoords.at(2), glm::vec2(1, 1));
 
   const LoadedScene vt = load(with("1 2 3\n1 3 4\n", "1/1 2/2 3/3\n1/1 3/3 4/4\n", with("</vertexdata>\n", data + "\n")));
-  EXPECT_TRUE(vt.scene.triangles[1].hasTexCoords());
-  EXPECT_FALSE(vt.scene.triangles[1].hasNormals());
-  EXPECT_EQ(vt.scene.triangles[1].texCoord[2], 3);
+  EXPECT_TRUE(vt.scene.attributesOf(1).hasTexCoords());
+  EXPECT_FALSE(vt.scene.attributesOf(1).hasNormals());
+  EXPECT_EQ(vt.scene.attributesOf(1).texCoord[2], 3);
 
   expectError(with("1 2 3\n1 3 4\n", "1/1/1 2/2/1 3/3/1\n1/5/1 3/3/1 4/4/1\n", with("</vertexdata>\n", data + "\n")), 39,
               "texture index 5 is out of range (the file has 4 <texturedata> coordinates, indices 1..4)");

@@ -39,8 +39,9 @@ TEST(Loader, BaseSceneLoadsWithoutWarnings) {
   EXPECT_EQ(s.triangles[0].vertex[0], 0u);
   EXPECT_EQ(s.triangles[0].vertex[1], 1u);
   EXPECT_EQ(s.triangles[1].vertex[2], 3u);
-  EXPECT_FALSE(s.triangles[0].hasTexCoords());
-  EXPECT_FALSE(s.triangles[0].hasNormals());
+  EXPECT_TRUE(s.faceAttributes.empty());  // plain faces: no per-face attributes held
+  EXPECT_FALSE(s.attributesOf(0).hasTexCoords());
+  EXPECT_FALSE(s.attributesOf(0).hasNormals());
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].id, "quad");
   EXPECT_EQ(s.meshes[0].triangleCount, 2u);

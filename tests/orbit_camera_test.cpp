@@ -226,11 +226,10 @@ void addMesh(SceneGeometry& g, const std::string& id, const glm::dvec3& low, con
   mesh.id = id;
   mesh.firstTriangle = static_cast<std::uint32_t>(g.triangles.size());
   mesh.triangleCount = 2;
-  const auto index = static_cast<std::uint32_t>(g.meshes.size());
   g.meshes.push_back(mesh);
   Triangle a, b;
-  a.vertex[0] = first, a.vertex[1] = first + 1, a.vertex[2] = first + 2, a.mesh = index;
-  b.vertex[0] = first, b.vertex[1] = first + 2, b.vertex[2] = first + 3, b.mesh = index;
+  a.vertex[0] = first, a.vertex[1] = first + 1, a.vertex[2] = first + 2;
+  b.vertex[0] = first, b.vertex[1] = first + 2, b.vertex[2] = first + 3;
   g.triangles.push_back(a);
   g.triangles.push_back(b);
 }

@@ -172,13 +172,14 @@ TEST(SceneWriter, UsesTheHandoutsSpellingsAndOneBasedFaces) {
   plain.vertex[0] = 0;
   plain.vertex[1] = 1;
   plain.vertex[2] = 2;
-  Triangle full = plain;
+  FaceAttributes full;
   for (int k = 0; k < 3; ++k) {
     full.texCoord[k] = 0;
     full.normal[k] = 0;
   }
   full.texCoord[2] = kNoIndex;  // a normal without texture coordinates: v//n
-  scene.triangles = {plain, full};
+  scene.addFace(plain);
+  scene.addFace(plain, full);
   scene.lights.of<TriangularLight>().push_back(TriangularLight{"t", {0, 0, 0}, {1, 0, 0}, {0, 0, 1}, {1.0f, 2.0f, 3.0f}});
   const std::string xml = sceneToXml(scene, "tex.png");
   for (const char* expected : {"<background>", "<nearplane>", "<triangularlight id=\"t\">", "<intensity>",

@@ -27,10 +27,13 @@ Bounds merged(Bounds a, const Bounds& b) {
 
 std::vector<Bounds> meshBounds(const SceneGeometry& geometry) {
   std::vector<Bounds> bounds(geometry.meshes.size());
-  for (const Triangle& triangle : geometry.triangles) {
-    if (triangle.mesh >= bounds.size()) continue;
-    for (const std::uint32_t index : triangle.vertex)
-      if (index < geometry.vertices.size()) bounds[triangle.mesh].add(geometry.vertices[index]);
+  for (std::size_t m = 0; m < geometry.meshes.size(); ++m) {
+    const Mesh& mesh = geometry.meshes[m];
+    const std::size_t end = std::min<std::size_t>(geometry.triangles.size(),
+                                                  static_cast<std::size_t>(mesh.firstTriangle) + mesh.triangleCount);
+    for (std::size_t t = mesh.firstTriangle; t < end; ++t)
+      for (const std::uint32_t index : geometry.triangles[t].vertex)
+        if (index < geometry.vertices.size()) bounds[m].add(geometry.vertices[index]);
   }
   return bounds;
 }

@@ -16,11 +16,10 @@ std::optional<PickResult> pickPixel(const Camera& camera, const PreparedGeometry
   const Ray ray{camera.position - geometry.accel->origin(), direction, 0.0, std::numeric_limits<double>::infinity()};
   const std::optional<Hit> hit = geometry.accel->closestHit(ray);
   if (!hit || hit->triangle >= geometry.source->triangles.size()) return std::nullopt;
-  const Triangle& triangle = geometry.source->triangles[hit->triangle];
   PickResult pick;
   pick.triangle = hit->triangle;
-  pick.mesh = triangle.mesh;
-  pick.material = triangle.material;
+  pick.mesh = geometry.source->meshOf(hit->triangle);
+  pick.material = geometry.source->materialOf(hit->triangle);
   pick.point = camera.position + direction * hit->t;
   return pick;
 }

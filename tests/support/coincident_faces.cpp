@@ -53,7 +53,7 @@ std::vector<bool> coincidentFacePixels(const Scene& scene) {
           break;
         }
         const Triangle& t = scene.triangles[hit->triangle];
-        if (!scene.materials[t.material].isMirror()) break;
+        if (!scene.materials[scene.materialOf(hit->triangle)].isMirror()) break;
         const glm::dvec3 a = scene.vertices[t.vertex[0]] - accel->origin();
         const glm::dvec3 b = scene.vertices[t.vertex[1]] - accel->origin();
         const glm::dvec3 c = scene.vertices[t.vertex[2]] - accel->origin();

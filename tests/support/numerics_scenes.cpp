@@ -129,7 +129,6 @@ Scene facingMirrorsScene(int maxDepth, int pixels) {
     t.vertex[0] = first;
     t.vertex[1] = first + b;
     t.vertex[2] = first + c;
-    t.mesh = static_cast<std::uint32_t>(scene.meshes.size() - 1);
     scene.triangles.push_back(t);
   }
   PointLight light;

@@ -22,8 +22,6 @@ void addTriangle(Scene& scene, const glm::dvec3& a, const glm::dvec3& b, const g
   t.vertex[0] = first;
   t.vertex[1] = first + 1;
   t.vertex[2] = first + 2;
-  t.material = material;
-  t.mesh = static_cast<std::uint32_t>(scene.meshes.size());
   scene.meshes.push_back(Mesh{std::string("m").append(std::to_string(scene.meshes.size())), material,
                               static_cast<std::uint32_t>(scene.triangles.size()), 1});
   scene.triangles.push_back(t);
@@ -39,8 +37,6 @@ void addQuadFacingZ(Scene& scene, double x0, double y0, double x1, double y1, do
     t.vertex[0] = first;
     t.vertex[1] = first + b;
     t.vertex[2] = first + c;
-    t.material = material;
-    t.mesh = mesh;
     scene.triangles.push_back(t);
   }
 }

@@ -16,10 +16,6 @@ void closeMesh(Scene& scene, std::uint32_t firstTriangle, std::uint32_t material
   const auto meshIndex = static_cast<std::uint32_t>(scene.meshes.size());
   const auto count = static_cast<std::uint32_t>(scene.triangles.size()) - firstTriangle;
   scene.meshes.push_back(Mesh{std::string(name) + std::to_string(meshIndex), material, firstTriangle, count});
-  for (std::uint32_t i = firstTriangle; i < firstTriangle + count; ++i) {
-    scene.triangles[i].material = material;
-    scene.triangles[i].mesh = meshIndex;
-  }
 }
 
 void addFace(Scene& scene, std::uint32_t a, std::uint32_t b, std::uint32_t c) {

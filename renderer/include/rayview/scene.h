@@ -65,16 +65,23 @@ struct SceneParameters {
 
 inline constexpr std::int32_t kNoIndex = -1;
 
-// One face, already resolved to 0-based indices into the scene's arrays.
+// One face, already resolved to 0-based indices into the scene's vertices. 12 bytes: at 1e7 triangles every byte
+// here is 10 MB (docs/PERFORMANCE.md, scale series). Its mesh and material come from the mesh ranges
+// (SceneGeometry::meshOf), its corners' texture and normal indices from SceneGeometry::faceAttributes.
 struct Triangle {
   std::uint32_t vertex[3] = {0, 0, 0};
+};
+
+// The texture-coordinate and normal indices of a face's corners (the 2025 format's v/t, v//n and v/t/n forms),
+// kNoIndex where the face gives none.
+struct FaceAttributes {
   std::int32_t texCoord[3] = {kNoIndex, kNoIndex, kNoIndex};  // into SceneGeometry::texCoords
   std::int32_t normal[3] = {kNoIndex, kNoIndex, kNoIndex};    // into SceneGeometry::normals
-  std::uint32_t material = 0;                                 // into SceneParameters::materials
-  std::uint32_t mesh = 0;                                     // into SceneGeometry::meshes
 
   bool hasTexCoords() const { return texCoord[0] != kNoIndex; }
   bool hasNormals() const { return normal[0] != kNoIndex; }
+  bool any() const { return hasTexCoords() || hasNormals(); }
+  bool operator==(const FaceAttributes&) const = default;
 };
 
 struct Mesh {
@@ -95,12 +102,32 @@ struct SceneGeometry {
   std::vector<glm::dvec3> vertices;
   std::vector<glm::vec2> texCoords;   // <texturedata>
   std::vector<glm::vec3> normals;     // <normaldata>
-  std::vector<Mesh> meshes;
+  std::vector<Mesh> meshes;           // in order; each a range of `triangles`, together covering them all
   std::vector<Triangle> triangles;    // all meshes, mesh by mesh
+  // One per triangle when any face gives texture or normal indices, else empty: the plain faces of most scenes
+  // (and of every large one so far) pay nothing for the 2025 format's attributes.
+  std::vector<FaceAttributes> faceAttributes;
 
   std::string textureImage;           // <textureimage> as written in the file ("" when absent)
   std::optional<Texture> texture;     // loaded image, when it could be read
+
+  // The mesh a triangle belongs to (a binary search of the ranges; 0 when there are no meshes), and so its material.
+  std::uint32_t meshOf(std::uint32_t triangle) const;
+  std::uint32_t materialOf(std::uint32_t triangle) const {
+    return meshes.empty() ? 0u : meshes[meshOf(triangle)].material;
+  }
+  // The triangle's texture and normal indices: none (kNoIndex) when the scene has no face attributes.
+  const FaceAttributes& attributesOf(std::size_t triangle) const {
+    static const FaceAttributes kNone;
+    return faceAttributes.empty() ? kNone : faceAttributes[triangle];
+  }
+  // Appends a face, keeping faceAttributes empty or one per triangle.
+  void addFace(const Triangle& triangle, const FaceAttributes& attributes = {});
 };
+
+// SceneGeometry::addFace on a pair of arrays (the loader's stream keeps its faces apart from a scene).
+void appendFace(std::vector<Triangle>& triangles, std::vector<FaceAttributes>& faceAttributes, const Triangle& triangle,
+                const FaceAttributes& attributes);
 
 struct Scene : SceneParameters, SceneGeometry {
   std::filesystem::path sourcePath;   // the file it came from ("" for an embedded scene)

@@ -105,7 +105,7 @@ class Tracer {
   template <class Shadows>
   PathVertex shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
                       Shadows& shadows, Ray& mirrorRay) const;
-  Color sampleTexture(const Triangle& triangle, const Hit& hit) const;
+  Color sampleTexture(const FaceAttributes& face, const Hit& hit) const;
 
   const SceneParameters& parameters_;  // camera, lights, materials, depth
   const SceneGeometry& meshes_;        // triangles, normals, texture coordinates, texture
