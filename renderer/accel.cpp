@@ -92,7 +92,8 @@ std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, co
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                          BuildProgress progress, void* progressUser) {
 #ifdef RAYVIEW_HAVE_EMBREE
-  if (kind == AccelKind::Embree) return makeEmbreeAccel(scene, origin, progress, progressUser);
+  if (kind == AccelKind::Embree)
+    return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size()), progress, progressUser);
 #endif
   (void)kind;
   return makeReferenceAccel(scene, origin, progress, progressUser);

@@ -1,14 +1,25 @@
 #pragma once
 // Private: constructors of the traversal back-ends, chosen by buildAccel().
 
+#include <cstddef>
 #include <memory>
 
 #include "rayview/accel.h"
 
 namespace rayview {
 
-std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress,
-                                       void* progressUser);
+// Embree's BVH layouts. Fast: the default flags, one triangle per leaf. Compact: Embree's COMPACT flag and up to
+// two triangles per leaf: at 1e6 triangles the BVH is ~72 -> ~57 B per triangle and the build's peak lower by as
+// much, for 0-8 % slower rays (docs/PERFORMANCE.md). The answers are the same either way: every hit is the closest
+// by the watertight test and the tie rule, whatever order the BVH visits the triangles in.
+enum class EmbreeLayout { Fast, Compact };
+
+// Scenes from this many triangles get the compact layout: there memory is what limits.
+inline constexpr std::size_t kCompactBvhTriangles = 500'000;
+EmbreeLayout embreeLayoutFor(std::size_t triangles);
+
+std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,
+                                       BuildProgress progress, void* progressUser);
 std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin,
                                           BuildProgress progress, void* progressUser);
 

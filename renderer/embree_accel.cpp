@@ -26,15 +26,22 @@ void reportDeviceError(void*, RTCError code, const char* message) {
   std::fprintf(stderr, "rayview: Embree error %d: %s\n", static_cast<int>(code), message ? message : "");
 }
 
-// One device per process: creating a device starts Embree's worker threads, which is not free.
-RTCDevice sharedDevice() {
-  static RTCDevice device = [] {
-    RTCDevice d = rtcNewDevice(nullptr);
-    if (!d) throw std::runtime_error("Embree: cannot create a device");
-    rtcSetDeviceErrorFunction(d, reportDeviceError, nullptr);
-    return d;
-  }();
-  return device;
+RTCDevice newDevice(const char* config) {
+  RTCDevice d = rtcNewDevice(config);
+  if (!d) throw std::runtime_error("Embree: cannot create a device");
+  rtcSetDeviceErrorFunction(d, reportDeviceError, nullptr);
+  return d;
+}
+
+// One device per layout and process, made when first needed: creating a device is not free. How many user
+// primitives a leaf may hold is a device setting (Embree's default is one); the compact layout's device allows two.
+RTCDevice sharedDevice(EmbreeLayout layout) {
+  if (layout == EmbreeLayout::Compact) {
+    static RTCDevice compact = newDevice("object_accel_max_leaf_size=2");
+    return compact;
+  }
+  static RTCDevice fast = newDevice(nullptr);
+  return fast;
 }
 
 struct ProgressRelay {
@@ -71,8 +78,6 @@ bool relayProgress(void* ptr, double fraction) {
   return relay->callback(relay->user, fraction);
 }
 
-// Scenes from this many triangles get Embree's compact BVH layout (docs/PERFORMANCE.md, scale series).
-constexpr std::size_t kCompactBvhTriangles = 500'000;
 
 // Triangles as user primitives: Embree's BVH and traversal, the watertight test of watertight_triangle.h
 // in double on the camera-relative double vertices (Embree 3's own robust test misses some rays through
@@ -170,17 +175,16 @@ PacketScratch& packetScratch() {
 
 class EmbreeAccel final : public Accel {
  public:
-  EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress, void* progressUser)
+  EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout, BuildProgress progress,
+              void* progressUser)
       : Accel(origin) {
-    RTCDevice device = sharedDevice();
+    RTCDevice device = sharedDevice(layout);
     scene_ = rtcNewScene(device);
     // ROBUST: watertight triangle tests (SPEC section 6). MEDIUM build quality: the viewer must show
     // a freshly loaded 1M-triangle scene quickly; HIGH builds take several times longer for ~10 % faster rays.
-    // COMPACT from kCompactBvhTriangles up: a smaller BVH (about 25 B per triangle less, and a lower peak while
-    // building) for ~3 % slower rays; below, where memory is not what limits, the faster layout.
-    rtcSetSceneFlags(scene_, scene.triangles.size() >= kCompactBvhTriangles
-                                 ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
-                                 : RTC_SCENE_FLAG_ROBUST);
+    // The compact layout (embreeLayoutFor) adds COMPACT: a smaller BVH for ~3 % slower rays.
+    rtcSetSceneFlags(scene_, layout == EmbreeLayout::Compact ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
+                                                             : RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     ProgressRelay relay{progress, progressUser};
     if (progress) rtcSetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
@@ -376,9 +380,13 @@ class EmbreeAccel final : public Accel {
 
 }  // namespace
 
-std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress,
-                                       void* progressUser) {
-  auto accel = std::make_unique<EmbreeAccel>(scene, origin, progress, progressUser);
+EmbreeLayout embreeLayoutFor(std::size_t triangles) {
+  return triangles >= kCompactBvhTriangles ? EmbreeLayout::Compact : EmbreeLayout::Fast;
+}
+
+std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,
+                                       BuildProgress progress, void* progressUser) {
+  auto accel = std::make_unique<EmbreeAccel>(scene, origin, layout, progress, progressUser);
   if (!accel->valid()) return nullptr;  // cancelled through the progress callback
   return accel;
 }

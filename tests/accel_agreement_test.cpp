@@ -25,11 +25,13 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "accel_backends.h"
 #include "rayview/accel.h"
 #include "rayview/scene_loader.h"
 #include "support/conformance_scenes.h"
@@ -246,6 +248,68 @@ TEST_P(AccelAgreement, SameClosestTriangleAndDistance) {
   EXPECT_EQ(tally.unexplained, 0);
   EXPECT_EQ(tally.occlusionUnexplained, 0);
   EXPECT_EQ(tally.agree + tally.ties + tally.rounding + tally.unexplained, tally.rays);
+}
+
+// Embree's two BVH layouts (the compact one is what scenes from kCompactBvhTriangles get) give the same answers,
+// bit for bit: every hit is the closest by the watertight test and the tie rule, whatever order the BVH visits the
+// triangles in. Single rays and packets, closest hits and occlusion.
+TEST(EmbreeLayouts, TheCompactLayoutGivesTheSameAnswersBitForBit) {
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
+  ASSERT_EQ(embreeLayoutFor(kCompactBvhTriangles - 1), EmbreeLayout::Fast);
+  ASSERT_EQ(embreeLayoutFor(kCompactBvhTriangles), EmbreeLayout::Compact);
+  int scenes = 0;
+  for (const std::filesystem::path& path : testing::conformanceScenePaths()) {
+    const std::string name = path.stem().string();
+    if (name != "killeroo_2020" && name != "bunny" && name != "car") continue;
+    ++scenes;
+    const Scene scene = loadSceneFile(path).scene;
+    const glm::dvec3 origin = scene.camera.position;
+    const std::unique_ptr<Accel> fast = makeEmbreeAccel(scene, origin, EmbreeLayout::Fast, nullptr, nullptr);
+    const std::unique_ptr<Accel> compact = makeEmbreeAccel(scene, origin, EmbreeLayout::Compact, nullptr, nullptr);
+    ASSERT_TRUE(fast && compact);
+    glm::dvec3 lower(INFINITY), upper(-INFINITY);
+    for (const glm::dvec3& v : scene.vertices) lower = glm::min(lower, v), upper = glm::max(upper, v);
+    Random random(kSeed ^ fnv1a(name));
+    // Toward a random point of a random triangle, from the camera or from a random point of the scene's box; every
+    // fourth a segment ending there.
+    std::vector<Ray> rays;
+    for (int k = 0; k < 20000; ++k) {
+      const Triangle& t = scene.triangles[static_cast<std::size_t>(random.uniform() * scene.triangles.size())];
+      double u = random.uniform(), v = random.uniform();
+      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
+      const glm::dvec3 b = (1.0 - u - v) * scene.vertices[t.vertex[0]] + u * scene.vertices[t.vertex[1]] +
+                           v * scene.vertices[t.vertex[2]] - origin;
+      const glm::dvec3 a = k % 2 == 0 ? glm::dvec3(0.0) : lower + glm::dvec3(random.uniform(), random.uniform(),
+                                                                               random.uniform()) * (upper - lower) - origin;
+      const double length = glm::length(b - a);
+      if (length > 0.0) rays.push_back(Ray{a, (b - a) / length, 0.0, k % 4 == 1 ? length : INFINITY});
+    }
+    int hits = 0;
+    for (std::size_t i = 0; i + kRayPacket <= rays.size(); i += kRayPacket) {
+      std::optional<Hit> packetFast[kRayPacket], packetCompact[kRayPacket];
+      fast->closestHits(&rays[i], kRayPacket, packetFast);
+      compact->closestHits(&rays[i], kRayPacket, packetCompact);
+      bool occludedFast[kRayPacket], occludedCompact[kRayPacket];
+      fast->occludedMany(&rays[i], kRayPacket, occludedFast);
+      compact->occludedMany(&rays[i], kRayPacket, occludedCompact);
+      for (int k = 0; k < kRayPacket; ++k) {
+        const Ray& ray = rays[i + k];
+        const std::optional<Hit> single = compact->closestHit(ray);
+        for (const std::optional<Hit>* other : {&std::as_const(packetFast[k]), &std::as_const(packetCompact[k]), &single}) {
+          ASSERT_EQ(other->has_value(), packetFast[k].has_value()) << name << " ray " << i + k;
+          if (!packetFast[k]) continue;
+          ASSERT_EQ((*other)->triangle, packetFast[k]->triangle) << name << " ray " << i + k;
+          ASSERT_EQ((*other)->t, packetFast[k]->t) << name << " ray " << i + k;
+          ASSERT_EQ((*other)->b1, packetFast[k]->b1) << name << " ray " << i + k;
+        }
+        hits += packetFast[k].has_value();
+        ASSERT_EQ(occludedCompact[k], occludedFast[k]) << name << " ray " << i + k;
+        ASSERT_EQ(compact->occluded(ray), occludedFast[k]) << name << " ray " << i + k;
+      }
+    }
+    EXPECT_GT(hits, static_cast<int>(rays.size()) / 2) << name << ": the rays must mostly hit";
+  }
+  EXPECT_EQ(scenes, 3);
 }
 
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(AccelAgreement);
