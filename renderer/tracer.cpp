@@ -147,6 +147,23 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   eyeRelative_ = parameters.camera.position - accel.origin();
   lights_ = parameters.lights.prepare(accel.origin(), settings);
   useTexture_ = meshes.texture.has_value() && !meshes.texture->rgb.empty();
+  for (const Mesh& mesh : meshes.meshes) {
+    meshStarts_.push_back(mesh.firstTriangle);
+    meshMaterials_.push_back(mesh.material);
+  }
+  if (meshStarts_.empty()) meshStarts_.push_back(0), meshMaterials_.push_back(0);
+}
+
+// The last mesh starting at or before the triangle (as SceneGeometry::meshOf): a binary search without branches,
+// which a hit's unpredictable triangle would mispredict.
+const Material& Tracer::materialOf(std::uint32_t triangle) const {
+  const std::uint32_t* first = meshStarts_.data();
+  for (std::size_t n = meshStarts_.size(); n > 1;) {
+    const std::size_t half = n / 2;
+    first = first[half] <= triangle ? first + half : first;
+    n -= half;
+  }
+  return parameters_.materials[meshMaterials_[static_cast<std::size_t>(first - meshStarts_.data())]];
 }
 
 int Tracer::pixelSamples() const { return std::clamp(settings_.pixelSamples, 1, kMaxPixelSamples); }
@@ -341,8 +358,9 @@ template <class Shadows>
 Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
                                     RayCounts& counts, Shadows& shadows, Ray& mirrorRay) const {
   const Triangle& triangle = meshes_.triangles[hit.triangle];
-  const Material& material = parameters_.materials[meshes_.materialOf(hit.triangle)];
-  const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
+  const Material& material = materialOf(hit.triangle);
+  // Plain faces (most scenes) have no attributes to read.
+  const FaceAttributes* attributes = meshes_.faceAttributes.empty() ? nullptr : &meshes_.faceAttributes[hit.triangle];
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
   const glm::dvec3& w0 = meshes_.vertices[triangle.vertex[0]];
@@ -357,9 +375,9 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
   const glm::dvec3 ngExact = crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
   const glm::vec3 ng = toFloat(ngExact);
   glm::vec3 n = ng;
-  if (attributes.hasNormals()) {
-    const glm::vec3 interpolated = b0 * meshes_.normals[attributes.normal[0]] +
-                                   b1 * meshes_.normals[attributes.normal[1]] + b2 * meshes_.normals[attributes.normal[2]];
+  if (attributes && attributes->hasNormals()) {
+    const glm::vec3 interpolated = b0 * meshes_.normals[attributes->normal[0]] +
+                                   b1 * meshes_.normals[attributes->normal[1]] + b2 * meshes_.normals[attributes->normal[2]];
     const float length = glm::length(interpolated);
     if (length > 0.0f && std::isfinite(length)) n = interpolated / length;
   }
@@ -412,10 +430,10 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     v.continues = true;
   }
 
-  if (useTexture_ && material.textureFactor != 0.0f && attributes.hasTexCoords()) {
+  if (useTexture_ && material.textureFactor != 0.0f && attributes && attributes->hasTexCoords()) {
     v.textured = true;
     v.textureFactor = material.textureFactor;
-    v.texel = sampleTexture(attributes, hit);
+    v.texel = sampleTexture(*attributes, hit);
   }
   return v;
 }

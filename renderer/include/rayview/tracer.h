@@ -106,6 +106,8 @@ class Tracer {
   PathVertex shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
                       Shadows& shadows, Ray& mirrorRay) const;
   Color sampleTexture(const FaceAttributes& face, const Hit& hit) const;
+  // SceneGeometry::materialOf, on arrays of the mesh ranges' starts and materials alone: once per hit.
+  const Material& materialOf(std::uint32_t triangle) const;
 
   const SceneParameters& parameters_;  // camera, lights, materials, depth
   const SceneGeometry& meshes_;        // triangles, normals, texture coordinates, texture
@@ -116,6 +118,8 @@ class Tracer {
   glm::dvec3 eyeRelative_{0.0};
   SceneLights::Prepared lights_;  // by type, in the order of light_types.h
   bool useTexture_ = false;
+  std::vector<std::uint32_t> meshStarts_;     // each mesh's first triangle, in order
+  std::vector<std::uint32_t> meshMaterials_;  // and its material
 };
 
 }  // namespace rayview
