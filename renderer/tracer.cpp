@@ -307,7 +307,10 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
   }
   int depth = 0;
   for (; activeCount > 0 && depth < kBlockDepth; ++depth) {
-    vertices.resize(static_cast<std::size_t>(depth + 1) * kRayPacket);
+    // Grown, never shrunk: resizing down and up again value-initialised each depth's row (a memset per depth and
+    // block), though every vertex read is one this block wrote.
+    if (vertices.size() < static_cast<std::size_t>(depth + 1) * kRayPacket)
+      vertices.resize(static_cast<std::size_t>(depth + 1) * kRayPacket);
     PathVertex* row = &vertices[static_cast<std::size_t>(depth) * kRayPacket];
     for (int a = 0; a < activeCount; ++a) {
       const int m = active[a];
