@@ -78,7 +78,6 @@ bool relayProgress(void* ptr, double fraction) {
   return relay->callback(relay->user, fraction);
 }
 
-
 // Triangles as user primitives: Embree's BVH and traversal, the watertight test of watertight_triangle.h
 // in double on the camera-relative double vertices (Embree 3's own robust test misses some rays through
 // shared vertices; see docs/numerics.md).

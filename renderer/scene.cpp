@@ -1,6 +1,7 @@
 #include "rayview/scene.h"
 
 #include <algorithm>
+#include <cstddef>
 
 namespace rayview {
 
@@ -12,16 +13,15 @@ bool SceneParameters::hasMirrors() const {
 }
 
 std::uint32_t SceneGeometry::meshOf(std::uint32_t triangle) const {
-  // The last mesh starting at or before the triangle: an empty mesh never wins over the one that holds it,
-  // since ranges come in order and an empty one shares its start with the next.
-  const auto after = std::upper_bound(meshes.begin(), meshes.end(), triangle,
-                                      [](std::uint32_t t, const Mesh& m) { return t < m.firstTriangle; });
-  return after == meshes.begin() ? 0u : static_cast<std::uint32_t>(after - meshes.begin() - 1);
+  return static_cast<std::uint32_t>(
+      lastRangeAtOrBefore(meshes.size(), triangle, [&](std::size_t k) { return meshes[k].firstTriangle; }));
 }
 
 void appendFace(std::vector<Triangle>& triangles, std::vector<FaceAttributes>& faceAttributes, const Triangle& triangle,
                 const FaceAttributes& attributes) {
   if (attributes.any() || !faceAttributes.empty()) {
+    // Room for as many as the triangles have (the loader reserves those from the text's size): no reallocation.
+    if (faceAttributes.empty()) faceAttributes.reserve(std::max(triangles.capacity(), triangles.size() + 1));
     faceAttributes.resize(triangles.size());  // the plain faces before the first with attributes: none
     faceAttributes.push_back(attributes);
   }

@@ -154,16 +154,10 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   if (meshStarts_.empty()) meshStarts_.push_back(0), meshMaterials_.push_back(0);
 }
 
-// The last mesh starting at or before the triangle (as SceneGeometry::meshOf): a binary search without branches,
-// which a hit's unpredictable triangle would mispredict.
 const Material& Tracer::materialOf(std::uint32_t triangle) const {
-  const std::uint32_t* first = meshStarts_.data();
-  for (std::size_t n = meshStarts_.size(); n > 1;) {
-    const std::size_t half = n / 2;
-    first = first[half] <= triangle ? first + half : first;
-    n -= half;
-  }
-  return parameters_.materials[meshMaterials_[static_cast<std::size_t>(first - meshStarts_.data())]];
+  const std::uint32_t* starts = meshStarts_.data();
+  const std::size_t mesh = lastRangeAtOrBefore(meshStarts_.size(), triangle, [&](std::size_t k) { return starts[k]; });
+  return parameters_.materials[meshMaterials_[mesh]];
 }
 
 int Tracer::pixelSamples() const { return std::clamp(settings_.pixelSamples, 1, kMaxPixelSamples); }

@@ -413,5 +413,32 @@ TEST(LoaderFile, MissingFileIsAnErrorNamingIt) {
   EXPECT_THROW(loadSceneFile(fs::temp_directory_path()), SceneError);
 }
 
+// A triangle's mesh (and material) is the range that holds it, whatever empty meshes lie around it.
+TEST(SceneGeometry, EachTriangleBelongsToTheMeshRangeThatHoldsIt) {
+  SceneGeometry g;
+  g.triangles.resize(3);
+  g.meshes = {Mesh{"empty-first", 7, 0, 0}, Mesh{"b", 1, 0, 2}, Mesh{"empty-middle", 8, 2, 0}, Mesh{"d", 2, 2, 1},
+              Mesh{"empty-last", 9, 3, 0}};
+  EXPECT_EQ(g.meshOf(0), 1u);
+  EXPECT_EQ(g.meshOf(1), 1u);
+  EXPECT_EQ(g.meshOf(2), 3u);
+  EXPECT_EQ(g.materialOf(1), 1u);
+  EXPECT_EQ(g.materialOf(2), 2u);
+  EXPECT_EQ(SceneGeometry{}.materialOf(0), 0u);  // no meshes: material 0, never out of bounds
+
+  // The branch-free search against a plain scan, on every size up to 40 with repeated starts.
+  for (std::size_t count = 1; count <= 40; ++count) {
+    std::vector<std::uint32_t> starts(count);
+    for (std::size_t k = 1; k < count; ++k) starts[k] = starts[k - 1] + static_cast<std::uint32_t>((k * 7) % 3);
+    for (std::uint32_t t = 0; t <= starts.back() + 2; ++t) {
+      std::size_t expected = 0;
+      for (std::size_t k = 0; k < count; ++k)
+        if (starts[k] <= t) expected = k;
+      EXPECT_EQ(lastRangeAtOrBefore(count, t, [&](std::size_t k) { return starts[k]; }), expected)
+          << count << " ranges, triangle " << t;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rayview

@@ -6,6 +6,7 @@
 //   coordinates, texture). Large, loaded once, shared, never edited.
 // A Scene is both, as the loader reads them. No acceleration data, no GL.
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -83,6 +84,20 @@ struct FaceAttributes {
   bool any() const { return hasTexCoords() || hasNormals(); }
   bool operator==(const FaceAttributes&) const = default;
 };
+
+// Of `count` ranges starting at start(0) <= start(1) <= ..., the index of the last that starts at or before
+// `triangle` (0 when none does): the mesh that holds a triangle, since an empty mesh shares its start with the next
+// one. A binary search without branches (a hit's triangle is unpredictable); `start(k)` reads range k's start.
+template <class Start>
+std::size_t lastRangeAtOrBefore(std::size_t count, std::uint32_t triangle, Start start) {
+  std::size_t first = 0;
+  for (std::size_t n = count; n > 1;) {
+    const std::size_t half = n / 2;
+    first = start(first + half) <= triangle ? first + half : first;
+    n -= half;
+  }
+  return first;
+}
 
 struct Mesh {
   std::string id;
