@@ -356,8 +356,7 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
                                     RayCounts& counts, Shadows& shadows, Ray& mirrorRay) const {
   const Triangle& triangle = meshes_.triangles[hit.triangle];
   const Material& material = materialOf(hit.triangle);
-  // Plain faces (most scenes) have no attributes to read.
-  const FaceAttributes* attributes = meshes_.faceAttributes.empty() ? nullptr : &meshes_.faceAttributes[hit.triangle];
+  const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
   const glm::dvec3& w0 = meshes_.vertices[triangle.vertex[0]];
@@ -372,9 +371,9 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
   const glm::dvec3 ngExact = crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
   const glm::vec3 ng = toFloat(ngExact);
   glm::vec3 n = ng;
-  if (attributes && attributes->hasNormals()) {
-    const glm::vec3 interpolated = b0 * meshes_.normals[attributes->normal[0]] +
-                                   b1 * meshes_.normals[attributes->normal[1]] + b2 * meshes_.normals[attributes->normal[2]];
+  if (attributes.hasNormals()) {
+    const glm::vec3 interpolated = b0 * meshes_.normals[attributes.normal[0]] +
+                                   b1 * meshes_.normals[attributes.normal[1]] + b2 * meshes_.normals[attributes.normal[2]];
     const float length = glm::length(interpolated);
     if (length > 0.0f && std::isfinite(length)) n = interpolated / length;
   }
@@ -427,10 +426,10 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     v.continues = true;
   }
 
-  if (useTexture_ && material.textureFactor != 0.0f && attributes && attributes->hasTexCoords()) {
+  if (useTexture_ && material.textureFactor != 0.0f && attributes.hasTexCoords()) {
     v.textured = true;
     v.textureFactor = material.textureFactor;
-    v.texel = sampleTexture(*attributes, hit);
+    v.texel = sampleTexture(attributes, hit);
   }
   return v;
 }
