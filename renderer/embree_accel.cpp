@@ -16,6 +16,7 @@
 
 #include "accel_backends.h"
 #include "float_steps.h"
+#include "watertight_lanes.h"
 #include "watertight_triangle.h"
 
 namespace rayview {
@@ -64,6 +65,9 @@ struct QueryLane {
 struct QueryContext {
   RTCIntersectContext context;  // first member: Embree hands back a pointer to it
   QueryLane* lanes;
+  // A packet query's rays again, as the four-wide test reads them (watertight_lanes.h); tFar kept equal to
+  // each lane's. Null for a single ray.
+  WatertightLanes<kRayPacket>* packed = nullptr;
 };
 
 void initLane(QueryLane& lane, const Ray& ray) {
@@ -121,33 +125,83 @@ bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryLa
   return intersectWatertight(lane.prepared, t.a, t.b, t.c, lane.ray->tNear, lane.tFar, hit);
 }
 
+// The lanes of a packet callback (N == kRayPacket, lane k with id k: fillPacket) in blocks of four: a block whose
+// valid lanes (two or more) share their axis permutation goes through the four-wide test, any other lane
+// through the scalar one. `onHit(i, hit)` gets each valid lane i whose ray hits the triangle (and does not
+// exclude it), in increasing order of i, as the scalar loop gives them.
+template <class OnHit>
+void testPacketLanes(const WatertightLanes<kRayPacket>& packed, const QueryLane* lanes, const int* valid,
+                     const TriangleData::Corners& t, unsigned primID, OnHit&& onHit) {
+  for (int first = 0; first < kRayPacket; first += kWatertightWidth) {
+    unsigned block = 0;
+    for (int j = 0; j < kWatertightWidth; ++j)
+      if (valid[first + j]) block |= 1u << j;
+    if (block == 0) continue;
+    int permutation = -1;
+    bool shared = (block & (block - 1)) != 0;  // two or more lanes
+    for (int j = 0; j < kWatertightWidth && shared; ++j) {
+      if (!(block & (1u << j))) continue;
+      if (permutation < 0) permutation = packed.permutation[first + j];
+      shared = packed.permutation[first + j] == permutation;
+    }
+    if (shared) {
+      TriangleHit hits[kWatertightWidth];
+      const unsigned hit = block & intersectWatertight4(packed, first, permutation, t.a, t.b, t.c, hits);
+      for (int j = 0; j < kWatertightWidth; ++j)
+        if ((hit & (1u << j)) && primID != lanes[first + j].ray->excludedTriangle) onHit(first + j, hits[j]);
+      continue;
+    }
+    for (int j = 0; j < kWatertightWidth; ++j) {
+      TriangleHit one;
+      if ((block & (1u << j)) && testTriangle(t, primID, lanes[first + j], one)) onHit(first + j, one);
+    }
+  }
+}
+
 void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
-  QueryLane* lanes = reinterpret_cast<QueryContext*>(args->context)->lanes;
+  const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
+  QueryLane* lanes = query.lanes;
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   const TriangleData::Corners corners = data.corners(args->primID);  // once for every lane
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (!args->valid[i]) continue;
-    QueryLane& lane = lanes[RTCRayN_id(rays, args->N, i)];
-    TriangleHit hit;
-    if (!testTriangle(corners, args->primID, lane, hit)) continue;
+  // Lane i of Embree's arguments (lane `id` of the query) hits at `hit`: the closest so far?
+  auto record = [&](unsigned i, unsigned id, const TriangleHit& hit) {
+    QueryLane& lane = lanes[id];
     if (lane.triangle != RTC_INVALID_GEOMETRY_ID && !replacesClosestHit(hit.t, args->primID, lane.hit.t, lane.triangle))
-      continue;
+      return;
     lane.hit = hit;
     lane.triangle = args->primID;
     lane.tFar = std::min(lane.ray->tFar, tieSearchLimit(hit.t));
+    if (query.packed) query.packed->tFar[id] = lane.tFar;
     // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
     RTCRayN_tfar(rays, args->N, i) = nextFloatUp(static_cast<float>(lane.tFar));
     RTCHitN_primID(hits, args->N, i) = args->primID;
     RTCHitN_geomID(hits, args->N, i) = args->geomID;
+  };
+  if (query.packed && args->N == kRayPacket) {
+    testPacketLanes(*query.packed, lanes, args->valid, corners, args->primID,
+                    [&](int i, const TriangleHit& hit) { record(i, i, hit); });
+    return;
+  }
+  for (unsigned i = 0; i < args->N; ++i) {
+    if (!args->valid[i]) continue;
+    const unsigned id = RTCRayN_id(rays, args->N, i);
+    TriangleHit hit;
+    if (testTriangle(corners, args->primID, lanes[id], hit)) record(i, id, hit);
   }
 }
 
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
-  QueryLane* lanes = reinterpret_cast<QueryContext*>(args->context)->lanes;
+  const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
+  QueryLane* lanes = query.lanes;
   const TriangleData::Corners corners = data.corners(args->primID);
+  if (query.packed && args->N == kRayPacket) {
+    testPacketLanes(*query.packed, lanes, args->valid, corners, args->primID,
+                    [&](int i, const TriangleHit&) { RTCRayN_tfar(args->ray, args->N, i) = -INFINITY; });
+    return;
+  }
   for (unsigned i = 0; i < args->N; ++i) {
     if (!args->valid[i]) continue;
     TriangleHit hit;
@@ -162,6 +216,7 @@ void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
 // Embree's packet traversal did ~3 % more work.
 struct PacketScratch {
   QueryLane lanes[kRayPacket];
+  WatertightLanes<kRayPacket> packed;
   alignas(64) RTCRayHit16 rayHit{};
   alignas(64) RTCRay16 ray{};
   alignas(64) int valid[kRayPacket] = {};
@@ -233,13 +288,14 @@ class EmbreeAccel final : public Accel {
     QueryLane* lanes = scratch.lanes;
     RTCRayHit16& packet = scratch.rayHit;
     int* valid = scratch.valid;
-    if (!fillPacket(rays, count, lanes, packet.ray, valid, [&](int k) { hits[k] = closestHitWithoutEmbree(rays[k]); }))
+    if (!fillPacket(rays, count, lanes, scratch.packed, packet.ray, valid,
+                    [&](int k) { hits[k] = closestHitWithoutEmbree(rays[k]); }))
       return;
     for (int k = 0; k < kRayPacket; ++k) {
       packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
-    QueryContext query{{}, lanes};
+    QueryContext query{{}, lanes, &scratch.packed};
     rtcInitIntersectContext(&query.context);
     query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect16(valid, scene_, &query.context, &packet);
@@ -252,9 +308,10 @@ class EmbreeAccel final : public Accel {
     QueryLane* lanes = scratch.lanes;
     RTCRay16& packet = scratch.ray;
     int* valid = scratch.valid;
-    if (!fillPacket(rays, count, lanes, packet, valid, [&](int k) { answers[k] = occludedWithoutEmbree(rays[k]); }))
+    if (!fillPacket(rays, count, lanes, scratch.packed, packet, valid,
+                    [&](int k) { answers[k] = occludedWithoutEmbree(rays[k]); }))
       return;
-    QueryContext query{{}, lanes};
+    QueryContext query{{}, lanes, &scratch.packed};
     rtcInitIntersectContext(&query.context);
     query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcOccluded16(valid, scene_, &query.context, &packet);
@@ -321,7 +378,8 @@ class EmbreeAccel final : public Accel {
   // Lanes k < count of a packet, each ray's float copy with its lane as id; a ray Embree cannot take is answered
   // by `without(k)` and left out (valid[k] = 0). Returns whether any lane is left for Embree.
   template <class Without>
-  static bool fillPacket(const Ray* rays, int count, QueryLane* lanes, RTCRay16& packet, int* valid, Without&& without) {
+  static bool fillPacket(const Ray* rays, int count, QueryLane* lanes, WatertightLanes<kRayPacket>& packed,
+                         RTCRay16& packet, int* valid, Without&& without) {
     bool any = false;
     for (int k = 0; k < kRayPacket; ++k) {
       valid[k] = 0;
@@ -337,6 +395,7 @@ class EmbreeAccel final : public Accel {
         continue;
       }
       initLane(lanes[k], rays[k]);
+      packed.set(k, lanes[k].prepared, rays[k].tNear, lanes[k].tFar);
       RTCRay one;
       fill(one, rays[k]);
       packet.org_x[k] = one.org_x;

@@ -106,13 +106,18 @@ inline bool intersectPermuted(const WatertightRay& ray, const glm::dvec3& v0, co
 
 }  // namespace watertight_detail
 
+// The ray's axis permutation as one number, 0 to 5: kz * 2, plus 1 when (kx, ky) is swapped. (kx, ky) is
+// (kz + 1, kz + 2) mod 3, or swapped for a direction along -kz (prepareWatertightRay).
+inline int watertightPermutation(const WatertightRay& ray) {
+  const bool swapped = ray.kx != (ray.kz + 1) % 3;
+  return ray.kz * 2 + (swapped ? 1 : 0);
+}
+
 // Intersects the ray with triangle (v0, v1, v2); reports a hit with tNear <= t <= tFar. No back-face culling.
 inline bool intersectWatertight(const WatertightRay& ray, const glm::dvec3& v0, const glm::dvec3& v1,
                                 const glm::dvec3& v2, double tNear, double tFar, TriangleHit& hit) {
   using watertight_detail::intersectPermuted;
-  // (kx, ky) is (kz + 1, kz + 2) mod 3, or swapped for a direction along -kz (prepareWatertightRay).
-  const bool swapped = ray.kx != (ray.kz + 1) % 3;
-  switch (ray.kz * 2 + (swapped ? 1 : 0)) {
+  switch (watertightPermutation(ray)) {
     case 0: return intersectPermuted<1, 2, 0>(ray, v0, v1, v2, tNear, tFar, hit);
     case 1: return intersectPermuted<2, 1, 0>(ray, v0, v1, v2, tNear, tFar, hit);
     case 2: return intersectPermuted<2, 0, 1>(ray, v0, v1, v2, tNear, tFar, hit);
