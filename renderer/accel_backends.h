@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <memory>
+#include <string>
 
 #include "rayview/accel.h"
 
@@ -21,6 +22,10 @@ EmbreeLayout embreeLayoutFor(std::size_t triangles);
 
 std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,
                                        BuildProgress progress, void* progressUser);
+// For tests: the fast layout on a device limited to one vector ISA ("avx2", "sse4.2"; Embree's `isa` setting).
+// Embree's packet width follows the ISA (16 lanes with AVX-512, 8 with AVX2, 4 with SSE), so the callbacks get
+// a 16-ray packet whole or in pieces: this builds each piece size on one machine.
+std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin, const std::string& isa);
 std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin,
                                           BuildProgress progress, void* progressUser);
 

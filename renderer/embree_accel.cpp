@@ -3,6 +3,7 @@
 
 #include <cstdio>
 #include <limits>
+#include <map>
 #include <mutex>
 #include <stdexcept>
 #include <string>
@@ -43,6 +44,16 @@ RTCDevice sharedDevice(EmbreeLayout layout) {
   }
   static RTCDevice fast = newDevice(nullptr);
   return fast;
+}
+
+// A device limited to one vector ISA, one per ISA and process, for tests (makeEmbreeAccelForIsa).
+RTCDevice isaDevice(const std::string& isa) {
+  static std::mutex mutex;
+  static std::map<std::string, RTCDevice> devices;
+  const std::lock_guard<std::mutex> lock(mutex);
+  RTCDevice& device = devices[isa];
+  if (!device) device = newDevice(("isa=" + isa).c_str());
+  return device;
 }
 
 struct ProgressRelay {
@@ -125,36 +136,49 @@ bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryLa
   return intersectWatertight(lane.prepared, t.a, t.b, t.c, lane.ray->tNear, lane.tFar, hit);
 }
 
-// The lanes of a packet callback (N == kRayPacket, lane k with id k: fillPacket) in blocks of four: a block whose
-// valid lanes (two or more) share their axis permutation goes through the four-wide test, any other lane
-// through the scalar one. `onHit(i, hit)` gets each valid lane i whose ray hits the triangle (and does not
-// exclude it), in increasing order of i, as the scalar loop gives them.
+// The valid lanes of a callback's N, each tested against the triangle; `onHit(i, id, hit)` gets each valid lane i
+// (query lane `id`, the float ray's id) whose ray hits it and does not exclude it, in increasing order of i, as a
+// plain loop over the lanes gives them. For a packet query (`packed` set), four consecutive lanes of Embree's
+// that are four consecutive query lanes from a multiple of four (Embree hands a 16-wide packet whole on an
+// AVX-512 machine, in halves or quarters on others: all line up), two or more of them valid and sharing their
+// axis permutation, go through the four-wide test; every other lane through the scalar one.
 template <class OnHit>
-void testPacketLanes(const WatertightLanes<kRayPacket>& packed, const QueryLane* lanes, const int* valid,
-                     const TriangleData::Corners& t, unsigned primID, OnHit&& onHit) {
-  for (int first = 0; first < kRayPacket; first += kWatertightWidth) {
+void testLanes(const WatertightLanes<kRayPacket>* packed, const QueryLane* lanes, const int* valid, unsigned N,
+               RTCRayN* rays, const TriangleData::Corners& t, unsigned primID, OnHit&& onHit) {
+  auto id = [&](unsigned i) { return RTCRayN_id(rays, N, i); };
+  unsigned first = 0;
+  for (; packed && first + kWatertightWidth <= N; first += kWatertightWidth) {
     unsigned block = 0;
     for (int j = 0; j < kWatertightWidth; ++j)
       if (valid[first + j]) block |= 1u << j;
     if (block == 0) continue;
+    const unsigned lane0 = id(first);
+    bool vector = (block & (block - 1)) != 0 && lane0 % kWatertightWidth == 0 && lane0 < kRayPacket;
+    for (int j = 1; j < kWatertightWidth && vector; ++j) vector = id(first + j) == lane0 + j;
     int permutation = -1;
-    bool shared = (block & (block - 1)) != 0;  // two or more lanes
-    for (int j = 0; j < kWatertightWidth && shared; ++j) {
+    for (int j = 0; j < kWatertightWidth && vector; ++j) {
       if (!(block & (1u << j))) continue;
-      if (permutation < 0) permutation = packed.permutation[first + j];
-      shared = packed.permutation[first + j] == permutation;
+      if (permutation < 0) permutation = packed->permutation[lane0 + j];
+      vector = packed->permutation[lane0 + j] == permutation;
     }
-    if (shared) {
+    if (vector) {
       TriangleHit hits[kWatertightWidth];
-      const unsigned hit = block & intersectWatertight4(packed, first, permutation, t.a, t.b, t.c, hits);
-      for (int j = 0; j < kWatertightWidth; ++j)
-        if ((hit & (1u << j)) && primID != lanes[first + j].ray->excludedTriangle) onHit(first + j, hits[j]);
+      const unsigned hit =
+          block & intersectWatertight4(*packed, static_cast<int>(lane0), permutation, t.a, t.b, t.c, hits);
+      for (unsigned j = 0; j < kWatertightWidth; ++j)
+        if ((hit & (1u << j)) && primID != lanes[lane0 + j].ray->excludedTriangle) onHit(first + j, lane0 + j, hits[j]);
       continue;
     }
-    for (int j = 0; j < kWatertightWidth; ++j) {
+    for (unsigned j = 0; j < kWatertightWidth; ++j) {
+      if (!(block & (1u << j))) continue;
       TriangleHit one;
-      if ((block & (1u << j)) && testTriangle(t, primID, lanes[first + j], one)) onHit(first + j, one);
+      if (testTriangle(t, primID, lanes[id(first + j)], one)) onHit(first + j, id(first + j), one);
     }
+  }
+  for (unsigned i = first; i < N; ++i) {
+    if (!valid[i]) continue;
+    TriangleHit one;
+    if (testTriangle(t, primID, lanes[id(i)], one)) onHit(i, id(i), one);
   }
 }
 
@@ -166,48 +190,28 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   const TriangleData::Corners corners = data.corners(args->primID);  // once for every lane
   // Lane i of Embree's arguments (lane `id` of the query) hits at `hit`: the closest so far?
-  auto record = [&](unsigned i, unsigned id, const TriangleHit& hit) {
-    QueryLane& lane = lanes[id];
-    if (lane.triangle != RTC_INVALID_GEOMETRY_ID && !replacesClosestHit(hit.t, args->primID, lane.hit.t, lane.triangle))
-      return;
-    lane.hit = hit;
-    lane.triangle = args->primID;
-    lane.tFar = std::min(lane.ray->tFar, tieSearchLimit(hit.t));
-    if (query.packed) query.packed->tFar[id] = lane.tFar;
-    // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
-    RTCRayN_tfar(rays, args->N, i) = nextFloatUp(static_cast<float>(lane.tFar));
-    RTCHitN_primID(hits, args->N, i) = args->primID;
-    RTCHitN_geomID(hits, args->N, i) = args->geomID;
-  };
-  if (query.packed && args->N == kRayPacket) {
-    testPacketLanes(*query.packed, lanes, args->valid, corners, args->primID,
-                    [&](int i, const TriangleHit& hit) { record(i, i, hit); });
-    return;
-  }
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (!args->valid[i]) continue;
-    const unsigned id = RTCRayN_id(rays, args->N, i);
-    TriangleHit hit;
-    if (testTriangle(corners, args->primID, lanes[id], hit)) record(i, id, hit);
-  }
+  testLanes(query.packed, lanes, args->valid, args->N, rays, corners, args->primID,
+            [&](unsigned i, unsigned id, const TriangleHit& hit) {
+              QueryLane& lane = lanes[id];
+              if (lane.triangle != RTC_INVALID_GEOMETRY_ID &&
+                  !replacesClosestHit(hit.t, args->primID, lane.hit.t, lane.triangle))
+                return;
+              lane.hit = hit;
+              lane.triangle = args->primID;
+              lane.tFar = std::min(lane.ray->tFar, tieSearchLimit(hit.t));
+              if (query.packed) query.packed->tFar[id] = lane.tFar;
+              // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
+              RTCRayN_tfar(rays, args->N, i) = nextFloatUp(static_cast<float>(lane.tFar));
+              RTCHitN_primID(hits, args->N, i) = args->primID;
+              RTCHitN_geomID(hits, args->N, i) = args->geomID;
+            });
 }
 
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
-  QueryLane* lanes = query.lanes;
-  const TriangleData::Corners corners = data.corners(args->primID);
-  if (query.packed && args->N == kRayPacket) {
-    testPacketLanes(*query.packed, lanes, args->valid, corners, args->primID,
-                    [&](int i, const TriangleHit&) { RTCRayN_tfar(args->ray, args->N, i) = -INFINITY; });
-    return;
-  }
-  for (unsigned i = 0; i < args->N; ++i) {
-    if (!args->valid[i]) continue;
-    TriangleHit hit;
-    if (testTriangle(corners, args->primID, lanes[RTCRayN_id(args->ray, args->N, i)], hit))
-      RTCRayN_tfar(args->ray, args->N, i) = -INFINITY;
-  }
+  testLanes(query.packed, query.lanes, args->valid, args->N, args->ray, data.corners(args->primID), args->primID,
+            [&](unsigned i, unsigned, const TriangleHit&) { RTCRayN_tfar(args->ray, args->N, i) = -INFINITY; });
 }
 
 // A packet query's lanes and Embree's packet, kept per thread: set up on the stack they cost ~3 KB of
@@ -229,10 +233,9 @@ PacketScratch& packetScratch() {
 
 class EmbreeAccel final : public Accel {
  public:
-  EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout, BuildProgress progress,
-              void* progressUser)
+  EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, RTCDevice device, EmbreeLayout layout,
+              BuildProgress progress, void* progressUser)
       : Accel(origin) {
-    RTCDevice device = sharedDevice(layout);
     scene_ = rtcNewScene(device);
     // ROBUST: watertight triangle tests (SPEC section 6). MEDIUM build quality: the viewer must show
     // a freshly loaded 1M-triangle scene quickly; HIGH builds take several times longer for ~10 % faster rays.
@@ -444,8 +447,14 @@ EmbreeLayout embreeLayoutFor(std::size_t triangles) {
 
 std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,
                                        BuildProgress progress, void* progressUser) {
-  auto accel = std::make_unique<EmbreeAccel>(scene, origin, layout, progress, progressUser);
+  auto accel = std::make_unique<EmbreeAccel>(scene, origin, sharedDevice(layout), layout, progress, progressUser);
   if (!accel->valid()) return nullptr;  // cancelled through the progress callback
+  return accel;
+}
+
+std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin, const std::string& isa) {
+  auto accel = std::make_unique<EmbreeAccel>(scene, origin, isaDevice(isa), EmbreeLayout::Fast, nullptr, nullptr);
+  if (!accel->valid()) return nullptr;
   return accel;
 }
 
