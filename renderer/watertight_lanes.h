@@ -104,15 +104,10 @@ template <int kLanes>
 inline unsigned intersectWatertight4(const WatertightLanes<kLanes>& rays, int first, int permutation,
                                      const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2,
                                      TriangleHit hits[kWatertightWidth]) {
-  using watertight_detail::intersectPermuted4;
-  switch (permutation) {
-    case 0: return intersectPermuted4<1, 2, 0>(rays, first, v0, v1, v2, hits);
-    case 1: return intersectPermuted4<2, 1, 0>(rays, first, v0, v1, v2, hits);
-    case 2: return intersectPermuted4<2, 0, 1>(rays, first, v0, v1, v2, hits);
-    case 3: return intersectPermuted4<0, 2, 1>(rays, first, v0, v1, v2, hits);
-    case 4: return intersectPermuted4<0, 1, 2>(rays, first, v0, v1, v2, hits);
-    default: return intersectPermuted4<1, 0, 2>(rays, first, v0, v1, v2, hits);
-  }
+  return withWatertightAxes(permutation, [&](auto axes) {
+    using A = decltype(axes);
+    return watertight_detail::intersectPermuted4<A::kx, A::ky, A::kz>(rays, first, v0, v1, v2, hits);
+  });
 }
 
 }  // namespace rayview

@@ -113,18 +113,33 @@ inline int watertightPermutation(const WatertightRay& ray) {
   return ray.kz * 2 + (swapped ? 1 : 0);
 }
 
+// A permutation's axes as compile-time constants.
+template <int kx_, int ky_, int kz_>
+struct WatertightAxes {
+  static constexpr int kx = kx_, ky = ky_, kz = kz_;
+};
+
+// f(WatertightAxes<kx, ky, kz>{}) for watertightPermutation's number: the one table of the six, for the scalar
+// test and the four-lane one (watertight_lanes.h).
+template <class F>
+[[gnu::always_inline]] inline auto withWatertightAxes(int permutation, F&& f) {
+  switch (permutation) {
+    case 0: return f(WatertightAxes<1, 2, 0>{});
+    case 1: return f(WatertightAxes<2, 1, 0>{});
+    case 2: return f(WatertightAxes<2, 0, 1>{});
+    case 3: return f(WatertightAxes<0, 2, 1>{});
+    case 4: return f(WatertightAxes<0, 1, 2>{});
+    default: return f(WatertightAxes<1, 0, 2>{});
+  }
+}
+
 // Intersects the ray with triangle (v0, v1, v2); reports a hit with tNear <= t <= tFar. No back-face culling.
 inline bool intersectWatertight(const WatertightRay& ray, const glm::dvec3& v0, const glm::dvec3& v1,
                                 const glm::dvec3& v2, double tNear, double tFar, TriangleHit& hit) {
-  using watertight_detail::intersectPermuted;
-  switch (watertightPermutation(ray)) {
-    case 0: return intersectPermuted<1, 2, 0>(ray, v0, v1, v2, tNear, tFar, hit);
-    case 1: return intersectPermuted<2, 1, 0>(ray, v0, v1, v2, tNear, tFar, hit);
-    case 2: return intersectPermuted<2, 0, 1>(ray, v0, v1, v2, tNear, tFar, hit);
-    case 3: return intersectPermuted<0, 2, 1>(ray, v0, v1, v2, tNear, tFar, hit);
-    case 4: return intersectPermuted<0, 1, 2>(ray, v0, v1, v2, tNear, tFar, hit);
-    default: return intersectPermuted<1, 0, 2>(ray, v0, v1, v2, tNear, tFar, hit);
-  }
+  return withWatertightAxes(watertightPermutation(ray), [&](auto axes) {
+    using A = decltype(axes);
+    return watertight_detail::intersectPermuted<A::kx, A::ky, A::kz>(ray, v0, v1, v2, tNear, tFar, hit);
+  });
 }
 
 // The closest-hit rule both traversals share. Hits whose distances agree to kHitTieTolerance (relative)
