@@ -225,8 +225,7 @@ std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& g
     xml.open(2, "mesh", mesh.id, true);
     xml.text(3, "materialid", mesh.material < parameters.materials.size() ? parameters.materials[mesh.material].id : "");
     xml.open(3, "faces");
-    const std::size_t end = std::min<std::size_t>(geometry.triangles.size(),
-                                                  static_cast<std::size_t>(mesh.firstTriangle) + mesh.triangleCount);
+    const std::size_t end = geometry.meshEnd(mesh);
     for (std::size_t i = mesh.firstTriangle; i < end; ++i) {
       xml.indent(4);
       writeFace(out, geometry.triangles[i], geometry.attributesOf(i));

@@ -29,8 +29,7 @@ std::vector<Bounds> meshBounds(const SceneGeometry& geometry) {
   std::vector<Bounds> bounds(geometry.meshes.size());
   for (std::size_t m = 0; m < geometry.meshes.size(); ++m) {
     const Mesh& mesh = geometry.meshes[m];
-    const std::size_t end = std::min<std::size_t>(geometry.triangles.size(),
-                                                  static_cast<std::size_t>(mesh.firstTriangle) + mesh.triangleCount);
+    const std::size_t end = geometry.meshEnd(mesh);
     for (std::size_t t = mesh.firstTriangle; t < end; ++t)
       for (const std::uint32_t index : geometry.triangles[t].vertex)
         if (index < geometry.vertices.size()) bounds[m].add(geometry.vertices[index]);

@@ -129,7 +129,7 @@ MeshTopology meshTopology(const Scene& scene, const Mesh& mesh) {
   topology.vertexTriangles.resize(scene.vertices.size());
   topology.onBoundary.assign(scene.vertices.size(), false);
   std::map<std::pair<std::uint32_t, std::uint32_t>, std::size_t> edgeIndex;
-  for (std::uint32_t t = mesh.firstTriangle; t < mesh.firstTriangle + mesh.triangleCount; ++t) {
+  for (std::uint32_t t = mesh.firstTriangle; t < scene.meshEnd(mesh); ++t) {
     const Triangle& tri = scene.triangles[t];
     for (int k = 0; k < 3; ++k) {
       topology.vertexTriangles[tri.vertex[k]].push_back(t);

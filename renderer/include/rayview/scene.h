@@ -6,6 +6,7 @@
 //   coordinates, texture). Large, loaded once, shared, never edited.
 // A Scene is both, as the loader reads them. No acceleration data, no GL.
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -130,6 +131,10 @@ struct SceneGeometry {
   std::uint32_t meshOf(std::uint32_t triangle) const;
   std::uint32_t materialOf(std::uint32_t triangle) const {
     return meshes.empty() ? 0u : meshes[meshOf(triangle)].material;
+  }
+  // One past a mesh's last triangle, clamped to the triangles there are (a mesh range may claim more).
+  std::size_t meshEnd(const Mesh& mesh) const {
+    return std::min<std::size_t>(triangles.size(), static_cast<std::size_t>(mesh.firstTriangle) + mesh.triangleCount);
   }
   // The triangle's texture and normal indices: none (kNoIndex) when the scene has no face attributes.
   const FaceAttributes& attributesOf(std::size_t triangle) const {
