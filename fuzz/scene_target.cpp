@@ -74,27 +74,6 @@ void expectTheSame(const Outcome& streamed, const Outcome& dom) {
       fail("the stream and the DOM give different meshes");
 }
 
-// Whatever loads is whole: the meshes are ranges of the triangles in order and cover them all, face attributes are
-// none or one per triangle, every index is in range.
-void expectWhole(const rayview::Scene& s) {
-  using rayview::fuzz::fail;
-  std::uint64_t next = 0;
-  for (const rayview::Mesh& mesh : s.meshes) {
-    if (mesh.firstTriangle != next || mesh.material >= s.materials.size()) fail("a mesh out of order or its material");
-    next += mesh.triangleCount;
-  }
-  if (next != s.triangles.size()) fail("the meshes do not cover the triangles");
-  if (!s.faceAttributes.empty() && s.faceAttributes.size() != s.triangles.size()) fail("face attributes not one per triangle");
-  for (std::size_t i = 0; i < s.triangles.size(); ++i) {
-    const rayview::FaceAttributes& a = s.attributesOf(i);
-    for (int k = 0; k < 3; ++k)
-      if (s.triangles[i].vertex[k] >= s.vertices.size() ||
-          (a.hasTexCoords() && static_cast<std::size_t>(a.texCoord[k]) >= s.texCoords.size()) ||
-          (a.hasNormals() && static_cast<std::size_t>(a.normal[k]) >= s.normals.size()))
-        fail("an index out of range");
-  }
-}
-
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -110,7 +89,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   expectTheSame(streamed, load(text, options, false));
   if (!streamed.error.empty()) return 0;
   LoadedScene& loaded = streamed.loaded;
-  expectWhole(loaded.scene);
+  if (const std::string problem = wholenessProblem(loaded.scene); !problem.empty()) fuzz::fail(problem.c_str());
 
   Scene& scene = loaded.scene;
   scene.camera.width = std::clamp(scene.camera.width, 1, kMaxPixelsPerSide);

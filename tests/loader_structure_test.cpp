@@ -440,5 +440,42 @@ TEST(SceneGeometry, EachTriangleBelongsToTheMeshRangeThatHoldsIt) {
   }
 }
 
+// The check the tests and the fuzz targets share names what breaks a scene, and passes what loads.
+TEST(SceneGeometry, WholenessProblemNamesWhatIsBroken) {
+  Scene whole;
+  whole.materials.resize(2);
+  whole.vertices.resize(3);
+  whole.triangles = {Triangle{{0, 1, 2}}, Triangle{{2, 1, 0}}, Triangle{{0, 2, 1}}};
+  whole.meshes = {Mesh{"a", 0, 0, 2}, Mesh{"empty", 1, 2, 0}, Mesh{"c", 1, 2, 1}};
+  EXPECT_EQ(wholenessProblem(whole), "");
+  EXPECT_EQ(wholenessProblem(Scene{}), "");
+
+  auto broken = [&](auto&& edit) {
+    Scene s = whole;
+    edit(s);
+    return wholenessProblem(s);
+  };
+  EXPECT_NE(broken([](Scene& s) { s.meshes[2].firstTriangle = 1; }).find("does not start where"), std::string::npos);
+  EXPECT_NE(broken([](Scene& s) { s.meshes[0].material = 2; }).find("no real material"), std::string::npos);
+  EXPECT_NE(broken([](Scene& s) { s.meshes[2].triangleCount = 2; }).find("claims more triangles"), std::string::npos);
+  EXPECT_NE(broken([](Scene& s) { s.meshes.pop_back(); }).find("do not cover"), std::string::npos);
+  EXPECT_NE(broken([](Scene& s) { s.triangles[1].vertex[2] = 3; }).find("triangle 1: a vertex"), std::string::npos);
+  EXPECT_NE(broken([](Scene& s) { s.faceAttributes.resize(2); }).find("not one per triangle"), std::string::npos);
+  EXPECT_NE(broken([](Scene& s) {
+              s.faceAttributes.resize(3);
+              s.normals.resize(1);
+              s.faceAttributes[2].normal[0] = s.faceAttributes[2].normal[1] = 0;
+              s.faceAttributes[2].normal[2] = 1;
+            }).find("triangle 2: a normal"),
+            std::string::npos);
+  EXPECT_NE(broken([](Scene& s) {
+              s.texCoords.resize(1);
+              s.faceAttributes.resize(3);
+              s.faceAttributes[0].texCoord[0] = s.faceAttributes[0].texCoord[1] = 0;
+              s.faceAttributes[0].texCoord[2] = 1;
+            }).find("triangle 0: a texture coordinate"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace rayview

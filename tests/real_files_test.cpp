@@ -209,31 +209,7 @@ TEST_P(RealFile, HasItsExpectedOutcome) {
   }
   // Whatever loads is a whole scene: every index resolved, every material real.
   const Scene& s = loaded.scene;
-  // The meshes are ranges of the triangles, in order and covering them all; face attributes are none or one per
-  // triangle.
-  std::uint32_t next = 0;
-  for (std::uint32_t m = 0; m < s.meshes.size(); ++m) {
-    const Mesh& mesh = s.meshes[m];
-    ASSERT_EQ(mesh.firstTriangle, next) << mesh.id;
-    ASSERT_LT(mesh.material, s.materials.size()) << mesh.id;
-    next += mesh.triangleCount;
-    for (std::uint32_t t = mesh.firstTriangle; t < next; ++t) ASSERT_EQ(s.meshOf(t), m) << mesh.id;
-  }
-  ASSERT_EQ(next, s.triangles.size());
-  ASSERT_TRUE(s.faceAttributes.empty() || s.faceAttributes.size() == s.triangles.size());
-  for (std::size_t i = 0; i < s.triangles.size(); ++i) {
-    const Triangle& t = s.triangles[i];
-    const FaceAttributes& a = s.attributesOf(i);
-    for (int k = 0; k < 3; ++k) {
-      ASSERT_LT(t.vertex[k], s.vertices.size());
-      if (a.hasTexCoords()) {
-        ASSERT_LT(static_cast<std::size_t>(a.texCoord[k]), s.texCoords.size());
-      }
-      if (a.hasNormals()) {
-        ASSERT_LT(static_cast<std::size_t>(a.normal[k]), s.normals.size());
-      }
-    }
-  }
+  ASSERT_EQ(wholenessProblem(s), "");
   // And it renders: every pixel finite, at a reduced resolution (same frustum) to keep the test quick.
   Scene small = s;
   const double shrink = std::min(1.0, 48.0 / std::max(s.camera.width, s.camera.height));

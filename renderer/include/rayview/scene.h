@@ -157,4 +157,10 @@ struct Scene : SceneParameters, SceneGeometry {
   const SceneGeometry& geometry() const { return *this; }
 };
 
+// What every scene the loader returns holds: the meshes are ranges of the triangles in order that cover them all,
+// each with a real material, and meshOf finds each triangle's; face attributes are none or one per triangle; every
+// vertex, texture-coordinate and normal index is in range. "" when it holds, else the first thing that breaks it.
+// One check for the tests and the fuzz targets.
+std::string wholenessProblem(const Scene& scene);
+
 }  // namespace rayview
