@@ -62,11 +62,11 @@ struct ProgressRelay {
 };
 
 // The ray in double travels with the query: Embree traverses its float boxes with a float copy, and
-// every candidate triangle is tested against the double ray. The closest hit so far is kept here too.
+// every candidate triangle is tested against the double ray. The closest hit so far is kept here too (the
+// interval's end it implies in QueryContext::tFar).
 struct QueryLane {
   const Ray* ray = nullptr;
   WatertightRay prepared;
-  double tFar = 0.0;            // the ray's tFar, then the closest hit so far plus the tie band
   TriangleHit hit;
   unsigned triangle = RTC_INVALID_GEOMETRY_ID;
 };
@@ -76,15 +76,16 @@ struct QueryLane {
 struct QueryContext {
   RTCIntersectContext context;  // first member: Embree hands back a pointer to it
   QueryLane* lanes;
-  // A packet query's rays again, as the four-wide test reads them (watertight_lanes.h); tFar kept equal to
-  // each lane's. Null for a single ray.
+  // Each lane's end of the interval still searched: the ray's tFar, then the closest hit so far plus the tie band.
+  // For a packet, packed->tFar; for a single ray, a double of the query's own.
+  double* tFar;
+  // A packet query's rays again, as the four-wide test reads them (watertight_lanes.h). Null for a single ray.
   WatertightLanes<kRayPacket>* packed = nullptr;
 };
 
 void initLane(QueryLane& lane, const Ray& ray) {
   lane.ray = &ray;
   lane.prepared = prepareWatertightRay(ray.origin, ray.direction);
-  lane.tFar = ray.tFar;
   lane.triangle = RTC_INVALID_GEOMETRY_ID;
 }
 
@@ -131,9 +132,12 @@ void triangleBounds(const RTCBoundsFunctionArguments* args) {
   *args->bounds_o = RTCBounds{lower.x, lower.y, lower.z, 0.0f, upper.x, upper.y, upper.z, 0.0f};
 }
 
-bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryLane& lane, TriangleHit& hit) {
+// Query lane `id` against the triangle, by the scalar test.
+bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryContext& query, unsigned id,
+                  TriangleHit& hit) {
+  const QueryLane& lane = query.lanes[id];
   if (primID == lane.ray->excludedTriangle) return false;
-  return intersectWatertight(lane.prepared, t.a, t.b, t.c, lane.ray->tNear, lane.tFar, hit);
+  return intersectWatertight(lane.prepared, t.a, t.b, t.c, lane.ray->tNear, query.tFar[id], hit);
 }
 
 // The valid lanes of a callback's N, each tested against the triangle; `onHit(i, id, hit)` gets each valid lane i
@@ -143,8 +147,10 @@ bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryLa
 // AVX-512 machine, in halves or quarters on others: all line up), two or more of them valid and sharing their
 // axis permutation, go through the four-wide test; every other lane through the scalar one.
 template <class OnHit>
-void testLanes(const WatertightLanes<kRayPacket>* packed, const QueryLane* lanes, const int* valid, unsigned N,
-               RTCRayN* rays, const TriangleData::Corners& t, unsigned primID, OnHit&& onHit) {
+void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN* rays, const TriangleData::Corners& t,
+               unsigned primID, OnHit&& onHit) {
+  const WatertightLanes<kRayPacket>* packed = query.packed;
+  const QueryLane* lanes = query.lanes;
   auto id = [&](unsigned i) { return RTCRayN_id(rays, N, i); };
   unsigned first = 0;
   for (; packed && first + kWatertightWidth <= N; first += kWatertightWidth) {
@@ -172,13 +178,13 @@ void testLanes(const WatertightLanes<kRayPacket>* packed, const QueryLane* lanes
     for (unsigned j = 0; j < kWatertightWidth; ++j) {
       if (!(block & (1u << j))) continue;
       TriangleHit one;
-      if (testTriangle(t, primID, lanes[id(first + j)], one)) onHit(first + j, id(first + j), one);
+      if (testTriangle(t, primID, query, id(first + j), one)) onHit(first + j, id(first + j), one);
     }
   }
   for (unsigned i = first; i < N; ++i) {
     if (!valid[i]) continue;
     TriangleHit one;
-    if (testTriangle(t, primID, lanes[id(i)], one)) onHit(i, id(i), one);
+    if (testTriangle(t, primID, query, id(i), one)) onHit(i, id(i), one);
   }
 }
 
@@ -190,7 +196,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   const TriangleData::Corners corners = data.corners(args->primID);  // once for every lane
   // Lane i of Embree's arguments (lane `id` of the query) hits at `hit`: the closest so far?
-  testLanes(query.packed, lanes, args->valid, args->N, rays, corners, args->primID,
+  testLanes(query, args->valid, args->N, rays, corners, args->primID,
             [&](unsigned i, unsigned id, const TriangleHit& hit) {
               QueryLane& lane = lanes[id];
               if (lane.triangle != RTC_INVALID_GEOMETRY_ID &&
@@ -198,10 +204,9 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
                 return;
               lane.hit = hit;
               lane.triangle = args->primID;
-              lane.tFar = std::min(lane.ray->tFar, tieSearchLimit(hit.t));
-              if (query.packed) query.packed->tFar[id] = lane.tFar;
+              query.tFar[id] = std::min(lane.ray->tFar, tieSearchLimit(hit.t));
               // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
-              RTCRayN_tfar(rays, args->N, i) = nextFloatUp(static_cast<float>(lane.tFar));
+              RTCRayN_tfar(rays, args->N, i) = nextFloatUp(static_cast<float>(query.tFar[id]));
               RTCHitN_primID(hits, args->N, i) = args->primID;
               RTCHitN_geomID(hits, args->N, i) = args->geomID;
             });
@@ -210,7 +215,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
-  testLanes(query.packed, query.lanes, args->valid, args->N, args->ray, data.corners(args->primID), args->primID,
+  testLanes(query, args->valid, args->N, args->ray, data.corners(args->primID), args->primID,
             [&](unsigned i, unsigned, const TriangleHit&) { RTCRayN_tfar(args->ray, args->N, i) = -INFINITY; });
 }
 
@@ -276,7 +281,8 @@ class EmbreeAccel final : public Accel {
     if (!representable(ray)) return closestHitWithoutEmbree(ray);
     QueryLane lane;
     initLane(lane, ray);
-    QueryContext query{{}, &lane};
+    double tFar = ray.tFar;
+    QueryContext query{{}, &lane, &tFar};
     rtcInitIntersectContext(&query.context);
     RTCRayHit rayHit;
     fill(rayHit.ray, ray);
@@ -298,7 +304,7 @@ class EmbreeAccel final : public Accel {
       packet.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
       packet.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
     }
-    QueryContext query{{}, lanes, &scratch.packed};
+    QueryContext query{{}, lanes, scratch.packed.tFar, &scratch.packed};
     rtcInitIntersectContext(&query.context);
     query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect16(valid, scene_, &query.context, &packet);
@@ -314,7 +320,7 @@ class EmbreeAccel final : public Accel {
     if (!fillPacket(rays, count, lanes, scratch.packed, packet, valid,
                     [&](int k) { answers[k] = occludedWithoutEmbree(rays[k]); }))
       return;
-    QueryContext query{{}, lanes, &scratch.packed};
+    QueryContext query{{}, lanes, scratch.packed.tFar, &scratch.packed};
     rtcInitIntersectContext(&query.context);
     query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcOccluded16(valid, scene_, &query.context, &packet);
@@ -326,7 +332,8 @@ class EmbreeAccel final : public Accel {
     if (!representable(ray)) return occludedWithoutEmbree(ray);
     QueryLane lane;
     initLane(lane, ray);
-    QueryContext query{{}, &lane};
+    double tFar = ray.tFar;
+    QueryContext query{{}, &lane, &tFar};
     rtcInitIntersectContext(&query.context);
     RTCRay r;
     fill(r, ray);
@@ -398,7 +405,7 @@ class EmbreeAccel final : public Accel {
         continue;
       }
       initLane(lanes[k], rays[k]);
-      packed.set(k, lanes[k].prepared, rays[k].tNear, lanes[k].tFar);
+      packed.set(k, lanes[k].prepared, rays[k].tNear, rays[k].tFar);
       RTCRay one;
       fill(one, rays[k]);
       packet.org_x[k] = one.org_x;
