@@ -13,6 +13,7 @@
 
 #include <cstdint>
 #include <cstring>
+#include <utility>
 
 #include <glm/vec3.hpp>
 
@@ -21,6 +22,30 @@
 namespace rayview {
 
 inline constexpr int kWatertightWidth = 4;
+
+namespace watertight_detail {
+
+using Double4 = double __attribute__((vector_size(32)));
+using Mask4 = long long __attribute__((vector_size(32)));
+
+inline Double4 load4(const double* p) {
+  Double4 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
+inline void store4(double* p, Double4 v) { std::memcpy(p, &v, sizeof v); }
+
+inline Double4 splat4(double x) { return Double4{x, x, x, x}; }
+
+inline Mask4 splatMask4(long long x) { return Mask4{x, x, x, x}; }
+
+// The component of each lane's (x, y, z) named by its axis (0, 1 or 2).
+inline Double4 pickAxis(Mask4 axis, Double4 x, Double4 y, Double4 z) {
+  return axis == splatMask4(0) ? x : (axis == splatMask4(1) ? y : z);
+}
+
+}  // namespace watertight_detail
 
 // A packet's rays as the four-wide test reads them: one array per quantity, lane k at [k]. kLanes is a
 // multiple of kWatertightWidth.
@@ -44,20 +69,57 @@ struct WatertightLanes {
     tFar[k] = far;
     permutation[k] = watertightPermutation(ray);
   }
+
+  // Lane k as the scalar test reads it: what set() was given (or prepareFour made).
+  WatertightRay ray(int k) const {
+    WatertightRay r;
+    r.origin = glm::dvec3(origin[0][k], origin[1][k], origin[2][k]);
+    r.kz = permutation[k] / 2;
+    r.kx = (r.kz + 1) % 3;
+    r.ky = (r.kx + 1) % 3;
+    if (permutation[k] % 2 != 0) std::swap(r.kx, r.ky);
+    r.shearX = shearX[k];
+    r.shearY = shearY[k];
+    r.shearZ = shearZ[k];
+    return r;
+  }
+
+  // Lanes first .. first + 3 (first a multiple of four) from four rays at once, given by axis: lane first + j
+  // gets exactly what set(first + j, prepareWatertightRay(o_j, d_j), near[j], far[j]) gives it (the same
+  // choices and the same three divisions, each rounded on its own). Defined below.
+  [[gnu::always_inline]] void prepareFour(int first, const watertight_detail::Double4 (&o)[3],
+                                          const watertight_detail::Double4 (&d)[3], watertight_detail::Double4 near,
+                                          watertight_detail::Double4 far);
 };
 
-namespace watertight_detail {
-
-using Double4 = double __attribute__((vector_size(32)));
-using Mask4 = long long __attribute__((vector_size(32)));
-
-inline Double4 load4(const double* p) {
-  Double4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
+template <int kLanes>
+inline void WatertightLanes<kLanes>::prepareFour(int first, const watertight_detail::Double4 (&o)[3],
+                                          const watertight_detail::Double4 (&d)[3], watertight_detail::Double4 near,
+                                          watertight_detail::Double4 far) {
+  using namespace watertight_detail;
+  const Double4 zero{};
+  Double4 a[3];
+  for (int axis = 0; axis < 3; ++axis) a[axis] = d[axis] < zero ? -d[axis] : d[axis];
+  // kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2), then kx, ky the next two axes in turn.
+  const Mask4 one = splatMask4(1), two = splatMask4(2);
+  const Mask4 kz = a[0] > a[1] ? (a[0] > a[2] ? splatMask4(0) : two) : (a[1] > a[2] ? one : two);
+  const Mask4 nextX = kz == two ? splatMask4(0) : kz + one;
+  const Mask4 nextY = nextX == two ? splatMask4(0) : nextX + one;
+  const Double4 dz = pickAxis(kz, d[0], d[1], d[2]);
+  // Keep the winding independent of the direction's sign, as prepareWatertightRay does.
+  const Mask4 swapped = dz < zero;
+  const Mask4 kx = swapped ? nextY : nextX, ky = swapped ? nextX : nextY;
+  for (int axis = 0; axis < 3; ++axis) store4(origin[axis] + first, o[axis]);
+  store4(shearX + first, pickAxis(kx, d[0], d[1], d[2]) / dz);
+  store4(shearY + first, pickAxis(ky, d[0], d[1], d[2]) / dz);
+  store4(shearZ + first, splat4(1.0) / dz);
+  store4(tNear + first, near);
+  store4(tFar + first, far);
+  const Mask4 number = kz * two + (swapped & one);
+  for (int j = 0; j < kWatertightWidth; ++j) permutation[first + j] = static_cast<int>(number[j]);
 }
 
-inline Double4 splat4(double x) { return Double4{x, x, x, x}; }
+namespace watertight_detail {
 
 template <int kx, int ky, int kz, int kLanes>
 inline unsigned intersectPermuted4(const WatertightLanes<kLanes>& r, int first, const glm::dvec3& v0,

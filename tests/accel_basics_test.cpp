@@ -100,5 +100,28 @@ TEST(FloatSteps, AgreeWithNextafter) {
   EXPECT_TRUE(std::isnan(nextFloatUp(std::numeric_limits<float>::quiet_NaN())));
 }
 
+// The four-wide steps (a packet's rays are filled four at a time) give each lane the scalar step's bits.
+TEST(FloatSteps, FourWideAgreeWithTheScalarSteps) {
+  const float values[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-40f, -1e-40f, 3.4e38f, -3.4e38f,
+                          std::numeric_limits<float>::max(), std::numeric_limits<float>::lowest(),
+                          std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::infinity(),
+                          -std::numeric_limits<float>::infinity(), std::numeric_limits<float>::quiet_NaN(),
+                          123.456f, -0.001f};
+  constexpr int kCount = sizeof values / sizeof values[0];
+  static_assert(kCount % 4 == 0);
+  for (int first = 0; first < kCount; first += 4) {
+    // Each value in every lane position.
+    for (int shift = 0; shift < 4; ++shift) {
+      Float4 x;
+      for (int j = 0; j < 4; ++j) x[j] = values[first + (j + shift) % 4];
+      const Float4 up = nextFloatUp4(x), down = nextFloatDown4(x);
+      for (int j = 0; j < 4; ++j) {
+        EXPECT_EQ(std::bit_cast<std::uint32_t>(up[j]), std::bit_cast<std::uint32_t>(nextFloatUp(x[j]))) << x[j];
+        EXPECT_EQ(std::bit_cast<std::uint32_t>(down[j]), std::bit_cast<std::uint32_t>(nextFloatDown(x[j]))) << x[j];
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rayview

@@ -330,6 +330,71 @@ TEST(WatertightLanes, AgreeWithTheScalarTestBitForBit) {
   EXPECT_LT(hits, compared);
 }
 
+// Four rays prepared at once (WatertightLanes::prepareFour, how a packet is filled) give each lane exactly what
+// prepareWatertightRay and set() give it one at a time: the same permutation and the same shears, bit for bit.
+// Directions with ties between the largest components (where the choice of axis lives), zero and negative-zero
+// components, and every sign.
+TEST(WatertightLanes, PreparedFourAtOnceAsOneAtATime) {
+  using watertight_detail::Double4;
+  std::mt19937_64 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::uniform_int_distribution<int> pick(0, 5);
+  auto component = [&](double tie) {
+    switch (pick(random)) {
+      case 0: return tie;
+      case 1: return -tie;
+      case 2: return 0.0;
+      case 3: return -0.0;
+      default: return unit(random);
+    }
+  };
+  auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  int permutationsSeen = 0;
+  for (int block = 0; block < 20000; ++block) {
+    Double4 o[3], d[3], near, far;
+    glm::dvec3 origins[kWatertightWidth], directions[kWatertightWidth];
+    for (int j = 0; j < kWatertightWidth; ++j) {
+      const double tie = unit(random);
+      glm::dvec3 direction(component(tie), component(tie), component(tie));
+      if (direction == glm::dvec3(0.0)) direction.z = tie != 0.0 ? tie : 1.0;
+      origins[j] = glm::dvec3(unit(random), unit(random), unit(random)) * 100.0;
+      directions[j] = direction;
+      for (int axis = 0; axis < 3; ++axis) {
+        o[axis][j] = origins[j][axis];
+        d[axis][j] = direction[axis];
+      }
+      near[j] = unit(random) + 1.0;
+      far[j] = near[j] + 2.0;
+    }
+    WatertightLanes<2 * kWatertightWidth> four, one;
+    const int first = (block % 2) * kWatertightWidth;
+    four.prepareFour(first, o, d, near, far);
+    for (int j = 0; j < kWatertightWidth; ++j) {
+      const WatertightRay scalar = prepareWatertightRay(origins[j], directions[j]);
+      one.set(first + j, scalar, near[j], far[j]);
+      const int k = first + j;
+      ASSERT_EQ(four.permutation[k], one.permutation[k]) << "block " << block << " lane " << j;
+      permutationsSeen |= 1 << four.permutation[k];
+      for (int axis = 0; axis < 3; ++axis) ASSERT_EQ(bits(four.origin[axis][k]), bits(one.origin[axis][k]));
+      ASSERT_EQ(bits(four.shearX[k]), bits(one.shearX[k])) << "block " << block << " lane " << j;
+      ASSERT_EQ(bits(four.shearY[k]), bits(one.shearY[k])) << "block " << block << " lane " << j;
+      ASSERT_EQ(bits(four.shearZ[k]), bits(one.shearZ[k])) << "block " << block << " lane " << j;
+      ASSERT_EQ(bits(four.tNear[k]), bits(near[j]));
+      ASSERT_EQ(bits(four.tFar[k]), bits(far[j]));
+      // And the scalar test reads the lane back as prepareWatertightRay made it.
+      const WatertightRay back = four.ray(k);
+      ASSERT_EQ(back.kx, scalar.kx);
+      ASSERT_EQ(back.ky, scalar.ky);
+      ASSERT_EQ(back.kz, scalar.kz);
+      ASSERT_EQ(bits(back.shearX), bits(scalar.shearX));
+      ASSERT_EQ(bits(back.shearY), bits(scalar.shearY));
+      ASSERT_EQ(bits(back.shearZ), bits(scalar.shearZ));
+      ASSERT_EQ(back.origin, scalar.origin);
+    }
+  }
+  EXPECT_EQ(permutationsSeen, 0b111111);  // all six permutations met
+}
+
 INSTANTIATE_TEST_SUITE_P(BothBackEnds, Watertight, ::testing::Values(AccelKind::Embree, AccelKind::Reference),
                          [](const auto& info) { return std::string(toString(info.param)); });
 
