@@ -409,9 +409,6 @@ class EmbreeAccel final : public Accel {
   template <class Without>
   static bool fillPacket(const Ray* rays, int count, QueryLane* lanes, WatertightLanes<kRayPacket>& packed,
                          RTCRay16& packet, int* valid, Without&& without) {
-    using watertight_detail::Double4;
-    using watertight_detail::Mask4;
-    using Int4 = std::int32_t __attribute__((vector_size(16)));
     bool any = false;
     int first = 0;
     for (; first < count; first += kWatertightWidth) {
@@ -431,9 +428,9 @@ class EmbreeAccel final : public Accel {
       const Int4 inCount = Int4{first, first + 1, first + 2, first + 3} < count;
       packed.prepareFour(first, o, d, near, far);
       // representable(), lane by lane.
-      const Double4 limit = watertight_detail::splat4(kEmbreeCoordinateLimit);
+      const Double4 limit = splat4(kEmbreeCoordinateLimit);
       auto magnitude = [](Double4 v) {
-        return std::bit_cast<Double4>(std::bit_cast<Mask4>(v) & watertight_detail::splatMask4(0x7fffffffffffffffLL));
+        return std::bit_cast<Double4>(std::bit_cast<Mask4>(v) & splatMask4(0x7fffffffffffffffLL));
       };
       Mask4 wide = (near >= Double4{}) & (far == far);
       for (int axis = 0; axis < 3; ++axis) wide &= (magnitude(o[axis]) <= limit) & (magnitude(d[axis]) <= limit);

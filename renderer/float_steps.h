@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <limits>
 
+#include "simd4.h"
+
 namespace rayview {
 
 // The smallest float above x; x itself for +infinity and NaN.
@@ -20,10 +22,7 @@ inline float nextFloatUp(float x) {
 inline float nextFloatDown(float x) { return -nextFloatUp(-x); }
 
 // The same for four floats at once (a packet's rays are filled four at a time): lane for lane, bit for bit.
-using Float4 = float __attribute__((vector_size(16)));
-
 inline Float4 nextFloatUp4(Float4 x) {
-  using Int4 = std::int32_t __attribute__((vector_size(16)));
   const Int4 bits = std::bit_cast<Int4>(x);
   const Float4 zero{}, infinity = Float4{} + std::numeric_limits<float>::infinity();
   const Int4 one = Int4{} + 1;

@@ -17,6 +17,7 @@
 
 #include <glm/vec3.hpp>
 
+#include "simd4.h"
 #include "watertight_triangle.h"
 
 namespace rayview {
@@ -24,21 +25,6 @@ namespace rayview {
 inline constexpr int kWatertightWidth = 4;
 
 namespace watertight_detail {
-
-using Double4 = double __attribute__((vector_size(32)));
-using Mask4 = long long __attribute__((vector_size(32)));
-
-inline Double4 load4(const double* p) {
-  Double4 v;
-  std::memcpy(&v, p, sizeof v);
-  return v;
-}
-
-inline void store4(double* p, Double4 v) { std::memcpy(p, &v, sizeof v); }
-
-inline Double4 splat4(double x) { return Double4{x, x, x, x}; }
-
-inline Mask4 splatMask4(long long x) { return Mask4{x, x, x, x}; }
 
 // The component of each lane's (x, y, z) named by its axis (0, 1 or 2).
 inline Double4 pickAxis(Mask4 axis, Double4 x, Double4 y, Double4 z) {
@@ -87,15 +73,15 @@ struct WatertightLanes {
   // Lanes first .. first + 3 (first a multiple of four) from four rays at once, given by axis: lane first + j
   // gets exactly what set(first + j, prepareWatertightRay(o_j, d_j), near[j], far[j]) gives it (the same
   // choices and the same three divisions, each rounded on its own). Defined below.
-  [[gnu::always_inline]] void prepareFour(int first, const watertight_detail::Double4 (&o)[3],
-                                          const watertight_detail::Double4 (&d)[3], watertight_detail::Double4 near,
-                                          watertight_detail::Double4 far);
+  [[gnu::always_inline]] void prepareFour(int first, const Double4 (&o)[3],
+                                          const Double4 (&d)[3], Double4 near,
+                                          Double4 far);
 };
 
 template <int kLanes>
-inline void WatertightLanes<kLanes>::prepareFour(int first, const watertight_detail::Double4 (&o)[3],
-                                          const watertight_detail::Double4 (&d)[3], watertight_detail::Double4 near,
-                                          watertight_detail::Double4 far) {
+inline void WatertightLanes<kLanes>::prepareFour(int first, const Double4 (&o)[3],
+                                          const Double4 (&d)[3], Double4 near,
+                                          Double4 far) {
   using namespace watertight_detail;
   const Double4 zero{};
   Double4 a[3];

@@ -335,7 +335,6 @@ TEST(WatertightLanes, AgreeWithTheScalarTestBitForBit) {
 // Directions with ties between the largest components (where the choice of axis lives), zero and negative-zero
 // components, and every sign.
 TEST(WatertightLanes, PreparedFourAtOnceAsOneAtATime) {
-  using watertight_detail::Double4;
   std::mt19937_64 random(11);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
   std::uniform_int_distribution<int> pick(0, 5);
