@@ -322,8 +322,16 @@ class EmbreeAccel final : public Accel {
     rtcInitIntersectContext(&query.context);
     query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
     rtcIntersect16(valid, scene_, &query.context, &packet);
-    for (int k = 0; k < count; ++k)
-      if (valid[k]) hits[k] = hitOf(lanes[k]);
+    // Each hit constructed in place: assigned from a returned optional, it went through the stack and its wide
+    // loads of narrow stores missed store forwarding.
+    for (int k = 0; k < count; ++k) {
+      if (!valid[k]) continue;
+      const QueryLane& lane = lanes[k];
+      if (lane.triangle == RTC_INVALID_GEOMETRY_ID)
+        hits[k].reset();
+      else
+        hits[k].emplace(lane.hit.t, lane.triangle, lane.hit.b1, lane.hit.b2);
+    }
   }
 
   void occludedMany(const Ray* rays, int count, bool* answers) const override {

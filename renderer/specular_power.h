@@ -11,6 +11,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "simd4.h"
+
 namespace rayview {
 
 inline constexpr float kMaxWholeExponent = 4096.0f;  // 12 squarings: the error bound above
@@ -28,6 +30,27 @@ inline float specularPower(float x, float exponent) {
     }
   }
   return std::pow(x, exponent);
+}
+
+// specularPower for four (x, exponent) pairs at once, lane for lane bit for bit: the same squarings in the same
+// order (a lane whose exponent has fewer bits only squares its base further, unused).
+inline Float4 specularPower4(Float4 x, Float4 exponent) {
+  const Int4 n = __builtin_convertvector(exponent, Int4);  // truncated, as the scalar cast
+  const Int4 whole = (exponent >= Float4{}) & (exponent <= splat4(kMaxWholeExponent)) &
+                     (__builtin_convertvector(n, Float4) == exponent);
+  Mask4 bits = __builtin_convertvector(n & whole, Mask4);
+  std::uint32_t left = 0;
+  for (int j = 0; j < 4; ++j) left |= static_cast<std::uint32_t>(bits[j]);
+  Double4 base = __builtin_convertvector(x, Double4), power = splat4(1.0);
+  for (; left != 0; left >>= 1) {
+    power = (bits & splatMask4(1)) != splatMask4(0) ? power * base : power;
+    base *= base;
+    bits >>= 1;
+  }
+  Float4 result = __builtin_convertvector(power, Float4);
+  for (int j = 0; j < 4; ++j)
+    if (!whole[j]) result[j] = std::pow(x[j], exponent[j]);
+  return result;
 }
 
 }  // namespace rayview

@@ -10,6 +10,7 @@
 #include "rayview/light_samples.h"
 #include "rayview/light_types.h"
 #include "rayview/prepared_scene.h"
+#include "point_light_lanes.h"
 #include "rayview/ray_offset.h"
 #include "specular_power.h"
 
@@ -73,11 +74,15 @@ Color foldPath(int first, int last, VertexAt&& vertexAt, Color next = Color(0.0f
 
 }  // namespace
 
-// A light direction's contribution counts unless its shadow ray (when it has one) is occluded.
+// A light direction's contribution counts unless its shadow ray (when it has one) is occluded. The ray comes as
+// its parts, so that the queue below writes them straight into its entry: a Ray built on the stack and copied
+// whole is read with wide loads of narrow stores, which miss store forwarding (~10 % of a render, mirror_scene).
 struct Tracer::ImmediateShadows {
   const Accel& accel;
-  void light(const Ray* shadow, const Color& contribution, int /*sequence*/, Color& color) const {
-    if (!shadow || !accel.occluded(*shadow)) color += contribution;
+  void light(const Color& contribution, int /*sequence*/, Color& color) const { color += contribution; }
+  void light(const Color& contribution, int /*sequence*/, Color& color, const glm::dvec3& origin,
+             const glm::dvec3& direction, double tFar, std::uint32_t excluded) const {
+    if (!accel.occluded(Ray{origin, direction, 0.0, tFar, excluded})) color += contribution;
   }
 };
 
@@ -99,8 +104,25 @@ struct Tracer::QueuedShadows {
   Ray packet[kRayPacket];
   int lane = 0;
 
-  void light(const Ray* shadow, const Color& contribution, int sequence, Color&) {
-    entries.push_back({contribution, lane, sequence, shadow != nullptr, shadow ? *shadow : Ray{}});
+  void light(const Color& contribution, int sequence, Color&) { add(lane, sequence, contribution, false); }
+  void light(const Color& contribution, int sequence, Color&, const glm::dvec3& origin, const glm::dvec3& direction,
+             double tFar, std::uint32_t excluded) {
+    Ray& ray = *add(lane, sequence, contribution, true);
+    ray.origin = origin;
+    ray.direction = direction;
+    ray.tNear = 0.0;
+    ray.tFar = tFar;
+    ray.excludedTriangle = excluded;
+  }
+
+  // An entry for `laneOf`; its shadow ray, when it has one, is the caller's to write (field by field).
+  Ray* add(int laneOf, int sequence, const Color& contribution, bool hasRay) {
+    Entry& e = entries.emplace_back();
+    e.contribution = contribution;
+    e.lane = laneOf;
+    e.sequence = sequence;
+    e.hasRay = hasRay;
+    return &e.ray;
   }
 
   // Adds each lane's contributions to colorOf(lane).
@@ -146,6 +168,7 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   basis_ = cameraBasis(parameters.camera);
   eyeRelative_ = parameters.camera.position - accel.origin();
   lights_ = parameters.lights.prepare(accel.origin(), settings);
+  pointLightsOnly_ = std::get<std::vector<TriangularLightShading>>(lights_).empty();
   useTexture_ = meshes.texture.has_value() && !meshes.texture->rgb.empty();
   for (const Mesh& mesh : meshes.meshes) {
     meshStarts_.push_back(mesh.firstTriangle);
@@ -172,21 +195,22 @@ Color Tracer::tracePixel(int i, int j, RayCounts& counts) const {
 
 Color Tracer::traceSample(int i, int j, int k, RayCounts& counts) const {
   std::uint32_t seed = 0;
-  const Ray ray = sampleRay(i, j, k, seed);
+  Ray ray;
+  sampleRay(i, j, k, seed, ray);
   return traceCameraRay(ray, seed, counts);
 }
 
-Ray Tracer::sampleRay(int i, int j, int k, std::uint32_t& seed) const {
+void Tracer::sampleRay(int i, int j, int k, std::uint32_t& seed, Ray& ray) const {
   const std::uint32_t pixelSeed = seedOfPixel(i, j);
   const int samples = pixelSamples();
   if (samples == 1) {
     seed = pixelSeed;
-    return cameraRay(i, j);
+    return cameraRay(i, j, ray);
   }
   const glm::vec2 offset = pixelSampleOffset(k, samples, pixelSeed);
   // pixelDirection aims at i + 0.5: shift by the offset from the centre. Light samples vary per camera ray.
   seed = hash32(pixelSeed + static_cast<std::uint32_t>(k));
-  return cameraRay(i + (offset.x - 0.5), j + (offset.y - 0.5));
+  cameraRay(i + (offset.x - 0.5), j + (offset.y - 0.5), ray);
 }
 
 void Tracer::tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const {
@@ -197,10 +221,10 @@ void Tracer::tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts
     Color sum(0.0f);
     for (int first = 0; first < samples; first += kRayPacket) {
       const int m = std::min(kRayPacket, samples - first);
-      Ray rays[kRayPacket];
+      thread_local Ray rays[kRayPacket];  // every field written by sampleRay: no zeroing per packet
       std::uint32_t seeds[kRayPacket];
       Color colors[kRayPacket];
-      for (int k = 0; k < m; ++k) rays[k] = sampleRay(pixels[n].x, pixels[n].y, first + k, seeds[k]);
+      for (int k = 0; k < m; ++k) sampleRay(pixels[n].x, pixels[n].y, first + k, seeds[k], rays[k]);
       traceCameraRays(rays, seeds, m, colors, counts);
       for (int k = 0; k < m; ++k) sum += colors[k];
     }
@@ -211,9 +235,9 @@ void Tracer::tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts
 void Tracer::traceSamples(const PixelXY* pixels, int count, int k, Color* out, RayCounts& counts) const {
   for (int first = 0; first < count; first += kRayPacket) {
     const int n = std::min(kRayPacket, count - first);
-    Ray rays[kRayPacket];
+    thread_local Ray rays[kRayPacket];  // every field written by sampleRay: no zeroing per packet (~1 KB)
     std::uint32_t seeds[kRayPacket];
-    for (int m = 0; m < n; ++m) rays[m] = sampleRay(pixels[first + m].x, pixels[first + m].y, k, seeds[m]);
+    for (int m = 0; m < n; ++m) sampleRay(pixels[first + m].x, pixels[first + m].y, k, seeds[m], rays[m]);
     traceCameraRays(rays, seeds, n, out + first, counts);
   }
 }
@@ -226,9 +250,12 @@ void Tracer::traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int co
   tracePaths(rays, hits, seeds, count, out, counts);
 }
 
-Ray Tracer::cameraRay(double i, double j) const {
-  const glm::dvec3 direction = glm::normalize(pixelDirection(parameters_.camera, basis_, i, j));
-  return Ray{eyeRelative_, direction, 0.0, kInfinity};
+void Tracer::cameraRay(double i, double j, Ray& ray) const {
+  ray.origin = eyeRelative_;
+  ray.direction = glm::normalize(pixelDirection(parameters_.camera, basis_, i, j));
+  ray.tNear = 0.0;
+  ray.tFar = kInfinity;
+  ray.excludedTriangle = kNoTriangle;
 }
 
 Color Tracer::traceCameraRay(const Ray& ray, std::uint32_t seed, RayCounts& counts) const {
@@ -259,7 +286,8 @@ Color Tracer::followPath(const Ray& firstRay, const Hit& firstHit, int firstDept
   int last = 0;
   for (int k = 0;; ++k) {
     Ray next;
-    PathVertex& v = vertexAt(k) = shadeHit(ray, hit, firstDepth + k, pixelSeed, counts, shadows, next);
+    PathVertex& v = vertexAt(k);
+    shadeHit(ray, hit, firstDepth + k, pixelSeed, counts, shadows, v, next);
     last = k;
     if (!v.continues) break;
     ++counts.reflection;
@@ -275,19 +303,21 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
                         int count, Color* out, RayCounts& counts) const {
   // tracePath for each lane with a hit, every lane's depth d before any lane's depth d + 1.
   // The buffers stay with the thread: no allocation per block once they have grown (~10 % of car's time).
-  // So do the lanes' rays and hits (on the stack, their initialisation was ~5 KB of zeroing per block).
+  // So do the lanes' mirror rays and hits (on the stack, their initialisation was ~5 KB of zeroing per block).
   thread_local std::vector<PathVertex> vertices;  // vertex of depth d of lane m at d * kRayPacket + m
   thread_local QueuedShadows shadows;
   struct Lanes {
-    Ray rays[kRayPacket], mirrors[kRayPacket], next[kRayPacket];
-    std::optional<Hit> hits[kRayPacket], nextHits[kRayPacket];
+    Ray mirrors[kRayPacket], next[kRayPacket];
+    std::optional<Hit> nextHits[kRayPacket];
   };
   thread_local Lanes lanes;
-  Ray* rays = lanes.rays;
   Ray* mirrors = lanes.mirrors;
   Ray* next = lanes.next;
-  std::optional<Hit>* hits = lanes.hits;
   std::optional<Hit>* nextHits = lanes.nextHits;
+  // Each lane's ray and hit at this depth, where they are (the camera's or the last mirror packet's): copied, a
+  // hit just written field by field was read with wide loads, which miss store forwarding.
+  const Ray* rays[kRayPacket];
+  const Hit* hits[kRayPacket];
   shadows.entries.clear();
   int last[kRayPacket];
   int active[kRayPacket];
@@ -295,8 +325,8 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
   for (int m = 0; m < count; ++m) {
     last[m] = -1;
     if (!firstHits[m]) continue;
-    rays[m] = cameraRays[m];
-    hits[m] = firstHits[m];
+    rays[m] = &cameraRays[m];
+    hits[m] = &*firstHits[m];
     active[activeCount++] = m;
   }
   int depth = 0;
@@ -306,12 +336,16 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
     if (vertices.size() < static_cast<std::size_t>(depth + 1) * kRayPacket)
       vertices.resize(static_cast<std::size_t>(depth + 1) * kRayPacket);
     PathVertex* row = &vertices[static_cast<std::size_t>(depth) * kRayPacket];
+    LitPoint lit[kRayPacket];
     for (int a = 0; a < activeCount; ++a) {
       const int m = active[a];
       shadows.lane = m;
-      row[m] = shadeHit(rays[m], *hits[m], depth, pixelSeeds[m], counts, shadows, mirrors[m]);
+      shadeHit(*rays[m], *hits[m], depth, pixelSeeds[m], counts, shadows, row[m], mirrors[m],
+               pointLightsOnly_ ? &lit[a] : nullptr);
+      lit[a].lane = m;
       last[m] = depth;
     }
+    if (pointLightsOnly_) shadePointLights(lit, activeCount, counts, shadows);
     shadows.resolve(accel_, [&](int m) -> Color& { return row[m].local; });
     // The lanes whose path goes on: their mirror rays as one packet.
     int going[kRayPacket];
@@ -328,8 +362,8 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
     for (int g = 0; g < goingCount; ++g) {
       if (!nextHits[g]) continue;  // a reflected ray that hits nothing adds nothing (course reference)
       const int m = going[g];
-      rays[m] = next[g];
-      hits[m] = nextHits[g];
+      rays[m] = &next[g];  // next and nextHits are rewritten only after the next depth's shading
+      hits[m] = &*nextHits[g];
       active[activeCount++] = m;
     }
   }
@@ -339,7 +373,7 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
   for (int m = 0; m < count; ++m) beyond[m] = Color(0.0f);
   for (int a = 0; a < activeCount; ++a) {
     const int m = active[a];
-    beyond[m] = followPath(rays[m], *hits[m], depth, pixelSeeds[m], counts);
+    beyond[m] = followPath(*rays[m], *hits[m], depth, pixelSeeds[m], counts);
   }
   for (int m = 0; m < count; ++m)
     out[m] = last[m] < 0 ? parameters_.background
@@ -351,9 +385,31 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
                                beyond[m]);
 }
 
+SecondaryStart Tracer::secondaryStart() const {
+  SecondaryStart start;
+  start.excludeHit = settings_.secondaryRayStart == SecondaryRayStart::ExcludeHitTriangle;
+  start.fixedEpsilon = parameters_.shadowRayEpsilon.has_value();
+  start.epsilon = start.fixedEpsilon ? *parameters_.shadowRayEpsilon : 0.0;
+  start.eye = eyeRelative_;
+  return start;
+}
+
+void Tracer::shadePointLights(const LitPoint* points, int count, RayCounts& counts, QueuedShadows& shadows) const {
+  const auto& lights = std::get<std::vector<PointLightShading>>(lights_);
+  const SecondaryStart start = secondaryStart();
+  for (int first = 0; first < count; first += 4) {
+    const LitPoint* four = points + first;
+    shadePointLightsFour(four, std::min(4, count - first), lights, start,
+                         [&](int j, int place, const Color& contribution, bool hasRay) {
+                           if (hasRay) ++counts.shadow;
+                           return shadows.add(four[j].lane, place, contribution, hasRay);
+                         });
+  }
+}
+
 template <class Shadows>
-Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed,
-                                    RayCounts& counts, Shadows& shadows, Ray& mirrorRay) const {
+void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
+                      Shadows& shadows, PathVertex& v, Ray& mirrorRay, LitPoint* lit) const {
   const Triangle& triangle = meshes_.triangles[hit.triangle];
   const Material& material = materialOf(hit.triangle);
   const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
@@ -379,19 +435,20 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
   }
   const glm::dvec3 dExact = glm::normalize(ray.direction);
   const glm::vec3 toEye = -toFloat(dExact);
-  const bool excludeHit = settings_.secondaryRayStart == SecondaryRayStart::ExcludeHitTriangle;
-  const bool fixedEpsilon = parameters_.shadowRayEpsilon.has_value();
-  const double epsilon = fixedEpsilon ? *parameters_.shadowRayEpsilon : 0.0;
-  // A secondary ray leaving the surface along `direction`.
-  auto secondaryRay = [&](const glm::dvec3& direction) {
-    if (excludeHit) return Ray{pExact, direction, 0.0, kInfinity, hit.triangle};
-    const glm::dvec3 origin = fixedEpsilon ? pExact + epsilon * ngExact : offsetRayOrigin(pExact, eyeRelative_, ngExact, direction);
-    return Ray{origin, direction, 0.0, kInfinity};
+  const SecondaryStart start = secondaryStart();
+  // Where a secondary ray leaving the surface along `direction` starts, and the triangle it must not hit.
+  auto secondaryOrigin = [&](const glm::dvec3& direction) {
+    if (start.excludeHit) return pExact;
+    return start.fixedEpsilon ? pExact + start.epsilon * ngExact
+                              : offsetRayOrigin(pExact, start.eye, ngExact, direction);
   };
+  const std::uint32_t excluded = start.excludeHit ? hit.triangle : kNoTriangle;
 
-  PathVertex v;
+  // `v` may be a block's slot from an earlier block: every field foldPath reads is set.
   Color& color = v.local;
   color = material.ambient * parameters_.ambientLight;
+  v.continues = false;
+  v.textured = false;
 
   // One light direction: its Blinn-Phong terms, then (when they add anything) the shadow ray toward `target`
   // (stopping just before it), or along `l` without end.
@@ -404,24 +461,37 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     const float specular = specularPower(std::max(0.0f, glm::dot(n, h)), material.phongExponent);
     const Color contribution = diffuse + material.specular * irradiance * specular;
     if (contribution == Color(0.0f)) return;  // no shadow ray for light that would add nothing
-    Ray shadow = secondaryRay(l);
-    if (target) {
-      const glm::dvec3 toTarget = *target - shadow.origin;
-      const double length = glm::length(toTarget);
-      if (!(length > 0.0)) return shadows.light(nullptr, contribution, place, color);
-      shadow.direction = toTarget / length;
-      shadow.tFar = justBefore(length);
+    const glm::dvec3 origin = secondaryOrigin(l);
+    if (!target) {
+      ++counts.shadow;
+      return shadows.light(contribution, place, color, origin, l, kInfinity, excluded);
     }
+    const glm::dvec3 toTarget = *target - origin;
+    const double length = glm::length(toTarget);
+    if (!(length > 0.0)) return shadows.light(contribution, place, color);
     ++counts.shadow;
-    shadows.light(&shadow, contribution, place, color);
+    shadows.light(contribution, place, color, origin, toTarget / length, justBefore(length), excluded);
   };
 
-  std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);
+  if (lit) {
+    lit->p = pExact;
+    lit->ng = ngExact;
+    lit->n = n;
+    lit->toEye = toEye;
+    lit->material = &material;
+    lit->triangle = hit.triangle;
+  } else {
+    std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);
+  }
 
   if (material.isMirror() && depth < parameters_.maxRayDepth) {
     const glm::dvec3 nExact(n);
     const glm::dvec3 r = glm::normalize(dExact - 2.0 * glm::dot(dExact, nExact) * nExact);
-    mirrorRay = secondaryRay(r);
+    mirrorRay.origin = secondaryOrigin(r);
+    mirrorRay.direction = r;
+    mirrorRay.tNear = 0.0;
+    mirrorRay.tFar = kInfinity;
+    mirrorRay.excludedTriangle = excluded;
     v.mirror = material.mirror;
     v.continues = true;
   }
@@ -431,7 +501,6 @@ Tracer::PathVertex Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, s
     v.textureFactor = material.textureFactor;
     v.texel = sampleTexture(attributes, hit);
   }
-  return v;
 }
 
 // Texture lookup: uv interpolated from the face's <texturedata> entries; u to the right, v up (OBJ

@@ -53,6 +53,8 @@ inline std::uint8_t quantizeChannel(float value) {
 }
 
 struct PreparedGeometry;
+struct LitPoint;
+struct SecondaryStart;
 
 class Tracer {
  public:
@@ -87,9 +89,11 @@ class Tracer {
   Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, const Accel& accel,
          const ShadingGeometry& shading, const RenderSettings& settings);
   Color traceCameraRay(const Ray& ray, std::uint32_t seed, RayCounts& counts) const;
-  Ray cameraRay(double i, double j) const;
+  // Rays are written field by field into their place: returned by value and copied, a fresh Ray is read with wide
+  // loads of narrow stores, which miss store forwarding (half of traceSamples' time).
+  void cameraRay(double i, double j, Ray& ray) const;
   // The camera ray of sample k of pixel (i, j) and the seed of its light samples.
-  Ray sampleRay(int i, int j, int k, std::uint32_t& seed) const;
+  void sampleRay(int i, int j, int k, std::uint32_t& seed, Ray& ray) const;
   // The colours of `count` <= kRayPacket camera rays traced together.
   void traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int count, Color* out, RayCounts& counts) const;
   Color tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const;
@@ -100,11 +104,16 @@ class Tracer {
   // The paths of up to kRayPacket camera rays, depth by depth: each depth's shadow rays and mirror rays in packets.
   void tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits, const std::uint32_t* pixelSeeds,
                   int count, Color* out, RayCounts& counts) const;
-  // The hit's own light (ambient, lights, shadows); sets `mirrorRay` and returns its weight when the path goes on.
-  // Each light direction that adds something goes to `shadows` with its shadow ray, which decides whether it counts.
+  // The hit's own light (ambient, lights, shadows) into `v`; when the path goes on, sets `mirrorRay` and v's weight
+  // of the next hit. Each light direction that adds something goes to `shadows` with its shadow ray, which decides
+  // whether it counts. With `lit` set, the lights are left out and the hit as they see it goes to `lit`
+  // (shadePointLights, later).
   template <class Shadows>
-  PathVertex shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
-                      Shadows& shadows, Ray& mirrorRay) const;
+  void shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
+                Shadows& shadows, PathVertex& v, Ray& mirrorRay, LitPoint* lit = nullptr) const;
+  // The point lights' light directions at `count` hits (a block's, point_light_lanes.h), four hits at a time.
+  void shadePointLights(const LitPoint* points, int count, RayCounts& counts, QueuedShadows& shadows) const;
+  SecondaryStart secondaryStart() const;
   Color sampleTexture(const FaceAttributes& face, const Hit& hit) const;
   // SceneGeometry::materialOf, on arrays of the mesh ranges' starts and materials alone: once per hit.
   const Material& materialOf(std::uint32_t triangle) const;
@@ -117,6 +126,7 @@ class Tracer {
   CameraBasis basis_;
   glm::dvec3 eyeRelative_{0.0};
   SceneLights::Prepared lights_;  // by type, in the order of light_types.h
+  bool pointLightsOnly_ = false;  // so a block's hits are lit four at a time (shadePointLights)
   bool useTexture_ = false;
   std::vector<std::uint32_t> meshStarts_;     // each mesh's first triangle, in order
   std::vector<std::uint32_t> meshMaterials_;  // and its material
