@@ -3,7 +3,7 @@
 // lights are all point lights, each light's part of four hits' Blinn-Phong terms and shadow rays is computed in
 // vector registers: the square roots and divisions (four per light and hit) run four lanes per instruction.
 // Lane for lane the same IEEE operations in the same order as Tracer::shadeHit's scalar code, each rounded on its
-// own: the same light directions, contributions and shadow rays bit for bit (Packets.BlocksTraceAsSinglePixels
+// own: the same light directions, contributions and shadow rays bit for bit (Packets.BlocksOfPixelsTraceAsSinglePixels
 // compares whole images of every conformance scene against the scalar path).
 
 #include <algorithm>

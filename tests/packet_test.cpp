@@ -102,10 +102,12 @@ TEST_P(Packets, AnswerEachRayAsItsOwnQueryDoes) {
 // Every pixel of a block traced together equals the pixel traced alone (tracePixels against tracePixel, and
 // traceSamples against traceSample for one sample of an anti-aliased pixel), colour and ray counts. `single`
 // gets the single pixels' ray counts.
-void expectBlocksTraceAsSinglePixels(const Scene& scene, int pixelSamples, RayCounts& single) {
+void expectBlocksTraceAsSinglePixels(const Scene& scene, int pixelSamples, RayCounts& single,
+                                     SecondaryRayStart start = SecondaryRayStart::Offset) {
   const auto geometry = prepareGeometry(scene, AccelKind::Embree);
   RenderSettings settings;
   settings.pixelSamples = pixelSamples;
+  settings.secondaryRayStart = start;
   const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
   ASSERT_EQ(tracer.pixelSamples(), pixelSamples);
   const int width = scene.camera.width, height = scene.camera.height;
@@ -159,6 +161,19 @@ TEST_P(Packets, BlocksOfPixelsTraceAsSinglePixels) { expectBlocksTraceAsSinglePi
 
 // 20 samples: a pixel's samples take two packets (16 and 4).
 TEST_P(Packets, BlocksOfAntiAliasedPixelsTraceAsSinglePixels) { expectBlocksTraceAsSinglePixels(GetParam(), 20, 24); }
+
+// The conformance scenes set <shadowrayepsilon>; the same without it (the robust offset, on whichever side the
+// light is) and with secondary rays excluding the hit's triangle instead. Point-light shading takes each of the
+// three its own way, four hits at a time (point_light_lanes.h).
+TEST_P(Packets, BlocksTraceAsSinglePixelsWhereverSecondaryRaysStart) {
+  Scene scene = loadSceneFile(GetParam()).scene;
+  scene.camera.width = std::max(1, scene.camera.width / 8);
+  scene.camera.height = std::max(1, scene.camera.height / 8);
+  scene.shadowRayEpsilon.reset();
+  RayCounts offset, excluding;
+  expectBlocksTraceAsSinglePixels(scene, 1, offset, SecondaryRayStart::Offset);
+  expectBlocksTraceAsSinglePixels(scene, 1, excluding, SecondaryRayStart::ExcludeHitTriangle);
+}
 
 // Facing mirrors, 40 bounces: the block follows its paths together to a fixed depth, then each lane alone; the
 // pixels and ray counts are still the single pixels', and a depth of a million costs no more block memory.
