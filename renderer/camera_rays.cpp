@@ -31,10 +31,18 @@ CameraBasis cameraBasis(const Camera& camera) {
   return basis;
 }
 
-glm::dvec3 pixelDirection(const Camera& camera, const CameraBasis& basis, double i, double j) {
+glm::dvec3 pixelColumnPart(const Camera& camera, const CameraBasis& basis, double i) {
   const double su = camera.left + (camera.right - camera.left) * (i + 0.5) / camera.width;
+  return -camera.nearDistance * basis.w + su * basis.u;
+}
+
+glm::dvec3 pixelRowPart(const Camera& camera, const CameraBasis& basis, double j) {
   const double sv = camera.top - (camera.top - camera.bottom) * (j + 0.5) / camera.height;
-  return -camera.nearDistance * basis.w + su * basis.u + sv * basis.v;
+  return sv * basis.v;
+}
+
+glm::dvec3 pixelDirection(const Camera& camera, const CameraBasis& basis, double i, double j) {
+  return pixelColumnPart(camera, basis, i) + pixelRowPart(camera, basis, j);
 }
 
 }  // namespace rayview

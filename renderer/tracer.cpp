@@ -166,6 +166,11 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
                const ShadingGeometry& shading, const RenderSettings& settings)
     : parameters_(parameters), meshes_(meshes), accel_(accel), shading_(shading), settings_(settings) {
   basis_ = cameraBasis(parameters.camera);
+  const Camera& camera = parameters.camera;
+  columnParts_.resize(static_cast<std::size_t>(camera.width));
+  rowParts_.resize(static_cast<std::size_t>(camera.height));
+  for (int i = 0; i < camera.width; ++i) columnParts_[i] = pixelColumnPart(camera, basis_, i);
+  for (int j = 0; j < camera.height; ++j) rowParts_[j] = pixelRowPart(camera, basis_, j);
   eyeRelative_ = parameters.camera.position - accel.origin();
   lights_ = parameters.lights.prepare(accel.origin(), settings);
   pointLightsOnly_ = std::get<std::vector<TriangularLightShading>>(lights_).empty();
@@ -244,7 +249,7 @@ void Tracer::traceSamples(const PixelXY* pixels, int count, int k, Color* out, R
 
 void Tracer::traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int count, Color* out,
                              RayCounts& counts) const {
-  std::optional<Hit> hits[kRayPacket];
+  thread_local std::optional<Hit> hits[kRayPacket];  // closestHits sets each of the count: no zeroing per packet
   counts.camera += static_cast<std::uint64_t>(count);
   accel_.closestHits(rays, count, hits);
   tracePaths(rays, hits, seeds, count, out, counts);
@@ -253,6 +258,16 @@ void Tracer::traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int co
 void Tracer::cameraRay(double i, double j, Ray& ray) const {
   ray.origin = eyeRelative_;
   ray.direction = glm::normalize(pixelDirection(parameters_.camera, basis_, i, j));
+  ray.tNear = 0.0;
+  ray.tFar = kInfinity;
+  ray.excludedTriangle = kNoTriangle;
+}
+
+void Tracer::cameraRay(int i, int j, Ray& ray) const {
+  if (i < 0 || j < 0 || i >= static_cast<int>(columnParts_.size()) || j >= static_cast<int>(rowParts_.size()))
+    return cameraRay(static_cast<double>(i), static_cast<double>(j), ray);
+  ray.origin = eyeRelative_;
+  ray.direction = glm::normalize(columnParts_[i] + rowParts_[j]);
   ray.tNear = 0.0;
   ray.tFar = kInfinity;
   ray.excludedTriangle = kNoTriangle;

@@ -14,8 +14,11 @@ struct CameraBasis {
 // w = -normalize(gaze); u = normalize(up x w); v = w x u. Throws std::invalid_argument for a degenerate camera.
 CameraBasis cameraBasis(const Camera& camera);
 
-// Direction (not normalised) from the eye through the centre of pixel (column i, row j from the top).
+// Direction (not normalised) from the eye through the centre of pixel (column i, row j from the top): exactly
+// pixelColumnPart(i) + pixelRowPart(j), so a renderer may keep the parts of its image's columns and rows.
 glm::dvec3 pixelDirection(const Camera& camera, const CameraBasis& basis, double i, double j);
+glm::dvec3 pixelColumnPart(const Camera& camera, const CameraBasis& basis, double i);  // to the near plane, across
+glm::dvec3 pixelRowPart(const Camera& camera, const CameraBasis& basis, double j);     // down
 
 // Empty when the camera is usable, else what is wrong with it ("gaze is zero", ...).
 std::string cameraProblem(const Camera& camera);

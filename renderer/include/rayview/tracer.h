@@ -92,6 +92,8 @@ class Tracer {
   // Rays are written field by field into their place: returned by value and copied, a fresh Ray is read with wide
   // loads of narrow stores, which miss store forwarding (half of traceSamples' time).
   void cameraRay(double i, double j, Ray& ray) const;
+  // The same through a pixel's centre, from the image's column and row parts (pixelDirection's divisions once).
+  void cameraRay(int i, int j, Ray& ray) const;
   // The camera ray of sample k of pixel (i, j) and the seed of its light samples.
   void sampleRay(int i, int j, int k, std::uint32_t& seed, Ray& ray) const;
   // The colours of `count` <= kRayPacket camera rays traced together.
@@ -124,6 +126,7 @@ class Tracer {
   const ShadingGeometry& shading_;
   RenderSettings settings_;
   CameraBasis basis_;
+  std::vector<glm::dvec3> columnParts_, rowParts_;  // pixelColumnPart / pixelRowPart of each pixel centre
   glm::dvec3 eyeRelative_{0.0};
   SceneLights::Prepared lights_;  // by type, in the order of light_types.h
   bool pointLightsOnly_ = false;  // so a block's hits are lit four at a time (shadePointLights)
