@@ -171,7 +171,7 @@ void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN*
       vector = packed->permutation[lane0 + j] == permutation;
     }
     if (vector) {
-      TriangleHit hits[kWatertightWidth];
+      TriangleHits4 hits;
       const unsigned hit =
           block & intersectWatertight4(*packed, static_cast<int>(lane0), permutation, t.a, t.b, t.c, hits);
       for (unsigned j = 0; j < kWatertightWidth; ++j)

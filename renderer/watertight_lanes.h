@@ -105,11 +105,18 @@ inline void WatertightLanes<kLanes>::prepareFour(int first, const Double4 (&o)[3
   for (int j = 0; j < kWatertightWidth; ++j) permutation[first + j] = static_cast<int>(number[j]);
 }
 
+// Four lanes' hits as intersectWatertight4 gives them. Not initialised: only a hit lane's are read, and zeroing
+// an array of TriangleHit (a `rep stos` per block of four, in every Embree callback) was measurable.
+struct TriangleHits4 {
+  double t[kWatertightWidth], b1[kWatertightWidth], b2[kWatertightWidth];
+  TriangleHit operator[](int j) const { return TriangleHit{t[j], b1[j], b2[j]}; }
+};
+
 namespace watertight_detail {
 
 template <int kx, int ky, int kz, int kLanes>
 inline unsigned intersectPermuted4(const WatertightLanes<kLanes>& r, int first, const glm::dvec3& v0,
-                                   const glm::dvec3& v1, const glm::dvec3& v2, TriangleHit* hits) {
+                                   const glm::dvec3& v1, const glm::dvec3& v2, TriangleHits4& hits) {
   const Double4 ox = load4(r.origin[kx] + first), oy = load4(r.origin[ky] + first), oz = load4(r.origin[kz] + first);
   const Double4 shearX = load4(r.shearX + first), shearY = load4(r.shearY + first), shearZ = load4(r.shearZ + first);
   const Double4 ax = splat4(v0[kx]) - ox, ay = splat4(v0[ky]) - oy, az = splat4(v0[kz]) - oz;
@@ -133,12 +140,12 @@ inline unsigned intersectPermuted4(const WatertightLanes<kLanes>& r, int first, 
                        (t <= load4(r.tFar + first));
   const Double4 b1 = v / det;
   const Double4 b2 = w / det;
+  store4(hits.t, t);
+  store4(hits.b1, b1);
+  store4(hits.b2, b2);
   unsigned mask = 0;
-  for (int j = 0; j < kWatertightWidth; ++j) {
-    if (!inside[j]) continue;
-    mask |= 1u << j;
-    hits[j] = TriangleHit{t[j], b1[j], b2[j]};
-  }
+  for (int j = 0; j < kWatertightWidth; ++j)
+    if (inside[j]) mask |= 1u << j;
   return mask;
 }
 
@@ -151,7 +158,7 @@ inline unsigned intersectPermuted4(const WatertightLanes<kLanes>& r, int first, 
 template <int kLanes>
 inline unsigned intersectWatertight4(const WatertightLanes<kLanes>& rays, int first, int permutation,
                                      const glm::dvec3& v0, const glm::dvec3& v1, const glm::dvec3& v2,
-                                     TriangleHit hits[kWatertightWidth]) {
+                                     TriangleHits4& hits) {
   return withWatertightAxes(permutation, [&](auto axes) {
     using A = decltype(axes);
     return watertight_detail::intersectPermuted4<A::kx, A::ky, A::kz>(rays, first, v0, v1, v2, hits);

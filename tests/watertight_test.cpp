@@ -312,7 +312,7 @@ TEST(WatertightLanes, AgreeWithTheScalarTestBitForBit) {
         TriangleHit scalar;
         const bool scalarHit = intersectWatertight(prepared[j], corner[0], corner[1], corner[2], lanes.tNear[j],
                                                    lanes.tFar[j], scalar);
-        TriangleHit wide[kWatertightWidth];
+        TriangleHits4 wide;
         const unsigned mask = intersectWatertight4(lanes, 0, watertightPermutation(prepared[j]), corner[0], corner[1],
                                                    corner[2], wide);
         ++compared;
