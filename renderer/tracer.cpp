@@ -10,8 +10,8 @@
 #include "rayview/light_samples.h"
 #include "rayview/light_types.h"
 #include "rayview/prepared_scene.h"
-#include "point_light_lanes.h"
 #include "rayview/ray_offset.h"
+#include "point_light_lanes.h"
 #include "specular_power.h"
 
 namespace rayview {
