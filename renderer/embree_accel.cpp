@@ -327,10 +327,15 @@ class EmbreeAccel final : public Accel {
     for (int k = 0; k < count; ++k) {
       if (!valid[k]) continue;
       const QueryLane& lane = lanes[k];
-      if (lane.triangle == RTC_INVALID_GEOMETRY_ID)
+      if (lane.triangle == RTC_INVALID_GEOMETRY_ID) {
         hits[k].reset();
-      else
-        hits[k].emplace(lane.hit.t, lane.triangle, lane.hit.b1, lane.hit.b2);
+        continue;
+      }
+      Hit& hit = hits[k].emplace();
+      hit.t = lane.hit.t;
+      hit.triangle = lane.triangle;
+      hit.b1 = lane.hit.b1;
+      hit.b2 = lane.hit.b2;
     }
   }
 
