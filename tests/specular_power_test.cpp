@@ -56,5 +56,28 @@ TEST(SpecularPower, EdgesAsStdPow) {
   }
 }
 
+// Four (x, exponent) pairs at once (point-light shading, point_light_lanes.h) give each lane specularPower's bits:
+// whole exponents of different bit lengths side by side, zero, and the std::pow ones (not whole, negative, too
+// large) mixed into the same four.
+TEST(SpecularPower, FourAtOnceAsOneAtATime) {
+  std::mt19937 random(3);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  const float exponents[] = {0.0f, 1.0f, 2.0f, 3.0f, 20.0f, 60.0f, 100.0f, 500.0f, 1000.0f, 4095.0f, 4096.0f,
+                             0.5f, 2.25f, 99.9f, -1.0f, -3.0f, 4097.0f, 5000.0f, 1e9f};
+  constexpr int kExponents = sizeof exponents / sizeof exponents[0];
+  std::uniform_int_distribution<int> pick(0, kExponents - 1);
+  for (int block = 0; block < 20000; ++block) {
+    Float4 x, e;
+    for (int j = 0; j < 4; ++j) {
+      x[j] = block % 5 == 0 ? 0.0f : (block % 7 == 0 ? 1.0f : unit(random));
+      e[j] = exponents[pick(random)];
+    }
+    const Float4 four = specularPower4(x, e);
+    for (int j = 0; j < 4; ++j)
+      ASSERT_EQ(std::bit_cast<std::uint32_t>(four[j]), std::bit_cast<std::uint32_t>(specularPower(x[j], e[j])))
+          << x[j] << "^" << e[j] << " in lane " << j;
+  }
+}
+
 }  // namespace
 }  // namespace rayview
