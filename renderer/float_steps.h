@@ -23,10 +23,11 @@ inline float nextFloatDown(float x) { return -nextFloatUp(-x); }
 
 // The same for four floats at once (a packet's rays are filled four at a time): lane for lane, bit for bit.
 inline Float4 nextFloatUp4(Float4 x) {
-  const Int4 bits = std::bit_cast<Int4>(x);
+  using UInt4 = std::uint32_t __attribute__((vector_size(16)));  // unsigned: -0's bits less one wrap, as the scalar's
+  const UInt4 bits = std::bit_cast<UInt4>(x);
   const Float4 zero{}, infinity = Float4{} + std::numeric_limits<float>::infinity();
-  const Int4 one = Int4{} + 1;
-  Int4 next = x > zero ? bits + one : bits - one;
+  const UInt4 one = UInt4{} + 1u;
+  UInt4 next = x > zero ? bits + one : bits - one;
   next = x == zero ? one : next;                             // the smallest denormal, for +0 and -0
   return std::bit_cast<Float4>(x < infinity ? next : bits);  // +inf and NaN stay
 }
