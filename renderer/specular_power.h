@@ -35,9 +35,10 @@ inline float specularPower(float x, float exponent) {
 // specularPower for four (x, exponent) pairs at once, lane for lane bit for bit: the same squarings in the same
 // order (a lane whose exponent has fewer bits only squares its base further, unused).
 inline Float4 specularPower4(Float4 x, Float4 exponent) {
-  const Int4 n = __builtin_convertvector(exponent, Int4);  // truncated, as the scalar cast
-  const Int4 whole = (exponent >= Float4{}) & (exponent <= splat4(kMaxWholeExponent)) &
-                     (__builtin_convertvector(n, Float4) == exponent);
+  // Converted only within the range, as the scalar code does: out of it (or NaN) the conversion is undefined.
+  const Int4 inRange = (exponent >= Float4{}) & (exponent <= splat4(kMaxWholeExponent));
+  const Int4 n = __builtin_convertvector(inRange ? exponent : Float4{}, Int4);  // truncated, as the scalar cast
+  const Int4 whole = inRange & (__builtin_convertvector(n, Float4) == exponent);
   Mask4 bits = __builtin_convertvector(n & whole, Mask4);
   std::uint32_t left = 0;
   for (int j = 0; j < 4; ++j) left |= static_cast<std::uint32_t>(bits[j]);
