@@ -1,7 +1,6 @@
 // Embree 3 back-end: one triangle geometry holding every scene triangle, in float, relative to origin().
 #include <embree3/rtcore.h>
 
-#include <bit>
 #include <cstdio>
 #include <cstring>
 #include <limits>
@@ -442,11 +441,8 @@ class EmbreeAccel final : public Accel {
       packed.prepareFour(first, o, d, near, far);
       // representable(), lane by lane.
       const Double4 limit = splat4(kEmbreeCoordinateLimit);
-      auto magnitude = [](Double4 v) {
-        return std::bit_cast<Double4>(std::bit_cast<Mask4>(v) & splatMask4(0x7fffffffffffffffLL));
-      };
       Mask4 wide = (near >= Double4{}) & (far == far);
-      for (int axis = 0; axis < 3; ++axis) wide &= (magnitude(o[axis]) <= limit) & (magnitude(d[axis]) <= limit);
+      for (int axis = 0; axis < 3; ++axis) wide &= (abs4(o[axis]) <= limit) & (abs4(d[axis]) <= limit);
       const Int4 usable = __builtin_convertvector(wide, Int4) & inCount;
       // fill(), lane by lane; a lane Embree does not take gets zeros.
       auto toFloat = [&](Double4 v) { return usable ? __builtin_convertvector(v, Float4) : Float4{}; };

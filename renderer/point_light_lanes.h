@@ -6,8 +6,6 @@
 // own: the same light directions, contributions and shadow rays bit for bit (Packets.BlocksOfPixelsTraceAsSinglePixels
 // compares whole images of every conformance scene against the scalar path).
 
-#include <algorithm>
-#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -22,7 +20,7 @@
 
 namespace rayview {
 
-// Where a hit's secondary rays start (Tracer::secondaryRay): at the hit excluding its triangle, at a fixed
+// Where a hit's secondary rays start (Tracer::secondaryStart, shadeHit's secondaryOrigin): at the hit excluding its triangle, at a fixed
 // <shadowrayepsilon> along the normal, or at the robust offset of ray_offset.h.
 struct SecondaryStart {
   bool excludeHit = false;
@@ -66,11 +64,10 @@ void shadePointLightsFour(const LitPoint* points, int count, const std::vector<P
   }
   const Float4 exponent = gatherF([](const LitPoint& q) { return q.material->phongExponent; });
   // offsetRayOrigin's offset: kRelativeRayOffset times the hit's largest distance from the eye along an axis.
-  auto magnitude = [](Double4 v) { return std::bit_cast<Double4>(std::bit_cast<Mask4>(v) & splatMask4(0x7fffffffffffffffLL)); };
   const Double4 offset =
       splat4(kRelativeRayOffset) *
-      max4(max4(magnitude(p[0] - splat4(start.eye.x)),
-                max4(magnitude(p[1] - splat4(start.eye.y)), magnitude(p[2] - splat4(start.eye.z)))),
+      max4(max4(abs4(p[0] - splat4(start.eye.x)),
+                max4(abs4(p[1] - splat4(start.eye.y)), abs4(p[2] - splat4(start.eye.z)))),
            splat4(kSmallestOffsetScale));
   const Double4 zeroD{};
   const Float4 zero{};

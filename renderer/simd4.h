@@ -50,6 +50,15 @@ inline Float4 sqrt4(Float4 x) {
 #endif
 }
 
+// |x| lane by lane, as std::fabs: the sign bit cleared.
+inline Double4 abs4(Double4 x) {
+  Mask4 bits;
+  std::memcpy(&bits, &x, sizeof bits);
+  bits &= splatMask4(0x7fffffffffffffffLL);
+  std::memcpy(&x, &bits, sizeof x);
+  return x;
+}
+
 // std::max(a, b) lane by lane: (a < b) ? b : a, NaNs and signed zeros included.
 inline Double4 max4(Double4 a, Double4 b) { return a < b ? b : a; }
 inline Float4 max4(Float4 a, Float4 b) { return a < b ? b : a; }

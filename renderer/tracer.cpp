@@ -261,18 +261,18 @@ void Tracer::traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int co
 }
 
 void Tracer::cameraRay(double i, double j, Ray& ray) const {
-  ray.origin = eyeRelative_;
-  ray.direction = glm::normalize(pixelDirection(parameters_.camera, basis_, i, j));
-  ray.tNear = 0.0;
-  ray.tFar = kInfinity;
-  ray.excludedTriangle = kNoTriangle;
+  setCameraRay(pixelDirection(parameters_.camera, basis_, i, j), ray);
 }
 
 void Tracer::cameraRay(int i, int j, Ray& ray) const {
   if (i < 0 || j < 0 || i >= static_cast<int>(columnParts_.size()) || j >= static_cast<int>(rowParts_.size()))
     return cameraRay(static_cast<double>(i), static_cast<double>(j), ray);
+  setCameraRay(columnParts_[i] + rowParts_[j], ray);
+}
+
+void Tracer::setCameraRay(const glm::dvec3& direction, Ray& ray) const {
   ray.origin = eyeRelative_;
-  ray.direction = glm::normalize(columnParts_[i] + rowParts_[j]);
+  ray.direction = glm::normalize(direction);
   ray.tNear = 0.0;
   ray.tFar = kInfinity;
   ray.excludedTriangle = kNoTriangle;

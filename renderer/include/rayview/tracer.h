@@ -94,6 +94,8 @@ class Tracer {
   void cameraRay(double i, double j, Ray& ray) const;
   // The same through a pixel's centre, from the image's column and row parts (pixelDirection's divisions once).
   void cameraRay(int i, int j, Ray& ray) const;
+  // Both: the camera ray along `direction` (not normalised), written field by field.
+  void setCameraRay(const glm::dvec3& direction, Ray& ray) const;
   // The camera ray of sample k of pixel (i, j) and the seed of its light samples.
   void sampleRay(int i, int j, int k, std::uint32_t& seed, Ray& ray) const;
   // The colours of `count` <= kRayPacket camera rays traced together.
