@@ -10,12 +10,14 @@ launcher's without top_pad) and with this script's CLOCK_MONOTONIC start in RAYV
 stamps it (app/process_start.h), so that the summary's start-up counts from the fork. The stages are what the
 summary prints: start-up (fork to the first ray, less load and build: exec, dynamic loading, the thread pool),
 load, build, render, write (encoding and writing the PNG); "rest" is the whole process less those (its exit
-and the summary's printing). Medians of --runs per stage.
+and the summary's printing); "faults" counts the process's page faults (minor and major; ~13 us each on
+this project's machines, bench/page_fault_bench). Medians of --runs per stage.
 """
 import argparse
 import collections
 import os
 import re
+import resource
 import statistics
 import subprocess
 import tempfile
@@ -25,7 +27,7 @@ from bench_scenes import ROOT, SEVEN, name
 
 SUMMARY = re.compile(r"time\s+load ([\d.]+) ms, BVH build ([\d.]+) ms, render ([\d.]+) ms, write ([\d.]+) ms\n"
                      r"start-up\s+([\d.]+) ms: process start")
-COLUMNS = ["start-up", "load", "build", "render", "write", "rest", "whole"]
+COLUMNS = ["start-up", "load", "build", "render", "write", "rest", "whole", "faults"]
 
 
 def run(cli, scene, threads, out, tunables):
@@ -33,13 +35,16 @@ def run(cli, scene, threads, out, tunables):
     env.pop("GLIBC_TUNABLES", None)
     if tunables:
         env["GLIBC_TUNABLES"] = tunables
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.monotonic_ns()
     env["RAYVIEW_LAUNCH_NS"] = str(t0)
     p = subprocess.run([cli, "render", scene, "-o", out, "--threads", str(threads)], env=env, capture_output=True,
                        text=True, check=True)
     whole = (time.monotonic_ns() - t0) / 1e6
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    faults = (after.ru_minflt - before.ru_minflt) + (after.ru_majflt - before.ru_majflt)
     load, build, render, write, startup = (float(v) for v in SUMMARY.search(p.stdout).groups())
-    return [startup, load, build, render, write, whole - (startup + load + build + render + write), whole]
+    return [startup, load, build, render, write, whole - (startup + load + build + render + write), whole, faults]
 
 
 def main():
@@ -65,7 +70,8 @@ def main():
                     for column, ms in zip(COLUMNS, run(cli, scene, a.threads, out, value)):
                         times[n][column].append(ms)
             for n, by in times.items():
-                cells = " | ".join(f"{statistics.median(by[c]):.1f}" for c in COLUMNS)
+                cells = " | ".join(f"{statistics.median(by[c]):.0f}" if c == "faults" else f"{statistics.median(by[c]):.1f}"
+                                   for c in COLUMNS)
                 print(f"| {name(scene)} | {n} | {cells} |", flush=True)
 
 
