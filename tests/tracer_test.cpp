@@ -112,6 +112,42 @@ TEST(Shading, HardShadowBehindAnOccluder) {
   EXPECT_NEAR(centrePixel(scene).x, 7.0f, 1e-4f);
 }
 
+// A light just behind a face's plane that its tilted vertex normals still turn toward: it lights the face, and
+// the shadow ray must start on the light's side of the face (behind the geometric normal, SPEC section 6), or it
+// crosses the face itself and the light is lost. Both shading paths: the scalar one (tracePixel) and the one that
+// shades a block's hits four at a time (tracePixels, used when all lights are point lights).
+TEST(Shading, ShadowRayStartsOnTheLightsSideWhenTheShadingNormalTurnsToALightBehindTheFace) {
+  Material m = plainMaterial();
+  m.ambient = Color(0.0f);
+  m.diffuse = Color(1.0f);
+  Scene scene = quadScene(m);
+  const glm::vec3 tilted = glm::normalize(glm::vec3(1.0f, 0.0f, 0.2f));
+  scene.normals.push_back(tilted);
+  FaceAttributes attributes;
+  for (std::int32_t& n : attributes.normal) n = 0;
+  scene.faceAttributes.assign(scene.triangles.size(), attributes);
+  const glm::dvec3 light(10.0, 0.0, -2.5);  // 0.5 behind the quad's plane z = -2
+  scene.lights.of<PointLight>().push_back({"1", light, Color(1000.0f)});
+
+  // The centre pixel's hit is (0, 0, -2): E = 1000 / |light - hit|^2, times max(0, n.l).
+  const glm::dvec3 toLight = light - glm::dvec3(0.0, 0.0, -2.0);
+  const glm::dvec3 l = glm::normalize(toLight);
+  ASSERT_LT(l.z, 0.0);  // behind the geometric normal (0, 0, 1) ...
+  const double lit = 1000.0 / glm::dot(toLight, toLight) * glm::dot(glm::dvec3(tilted), l);
+  ASSERT_GT(lit, 1.0);  // ... in front of the shading normal
+  EXPECT_NEAR(centrePixel(scene).x, lit, 1e-3 * lit);
+
+  auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
+  PixelXY block[9];
+  for (int n = 0; n < 9; ++n) block[n] = {n % 3, n / 3};
+  Color together[9];
+  RayCounts counts;
+  tracer.tracePixels(block, 9, together, counts);
+  EXPECT_NEAR(together[4].x, lit, 1e-3 * lit);
+  EXPECT_EQ(counts.shadow, 9u);  // every pixel sees the lit quad and sends its shadow ray
+}
+
 TriangularLight lightAboveCentre(float intensity) {
   // n_L = normalize((v1-v2) x (v1-v3)) = (0,0,-1): it shines toward -z, onto the quad. Centroid (0,-1/3,0).
   return TriangularLight{"t", {0, 1, 0}, {1, -1, 0}, {-1, -1, 0}, Color(intensity)};
