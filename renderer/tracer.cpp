@@ -465,10 +465,23 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
   const std::uint32_t excluded = start.excludeHit ? hit.triangle : kNoTriangle;
 
   // `v` may be a block's slot from an earlier block: every field foldPath reads is set.
-  Color& color = v.local;
-  color = material.ambient * parameters_.ambientLight;
   v.continues = false;
   v.textured = false;
+  // The mirror ray first: its normalisation (a square root, then a division) overlaps the shading below.
+  if (material.isMirror() && depth < parameters_.maxRayDepth) {
+    const glm::dvec3 nExact(n);
+    const glm::dvec3 r = glm::normalize(dExact - 2.0 * glm::dot(dExact, nExact) * nExact);
+    mirrorRay.origin = secondaryOrigin(r);
+    mirrorRay.direction = r;
+    mirrorRay.tNear = 0.0;
+    mirrorRay.tFar = kInfinity;
+    mirrorRay.excludedTriangle = excluded;
+    v.mirror = material.mirror;
+    v.continues = true;
+  }
+
+  Color& color = v.local;
+  color = material.ambient * parameters_.ambientLight;
 
   // One light direction: its Blinn-Phong terms, then (when they add anything) the shadow ray toward `target`
   // (stopping just before it), or along `l` without end.
@@ -502,18 +515,6 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
     lit->triangle = hit.triangle;
   } else {
     std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);
-  }
-
-  if (material.isMirror() && depth < parameters_.maxRayDepth) {
-    const glm::dvec3 nExact(n);
-    const glm::dvec3 r = glm::normalize(dExact - 2.0 * glm::dot(dExact, nExact) * nExact);
-    mirrorRay.origin = secondaryOrigin(r);
-    mirrorRay.direction = r;
-    mirrorRay.tNear = 0.0;
-    mirrorRay.tFar = kInfinity;
-    mirrorRay.excludedTriangle = excluded;
-    v.mirror = material.mirror;
-    v.continues = true;
   }
 
   if (useTexture_ && material.textureFactor != 0.0f && attributes.hasTexCoords()) {
