@@ -20,8 +20,8 @@
 
 namespace rayview {
 
-// Where a hit's secondary rays start (Tracer::secondaryStart, shadeHit's secondaryOrigin): at the hit excluding its triangle, at a fixed
-// <shadowrayepsilon> along the normal, or at the robust offset of ray_offset.h.
+// Where a hit's secondary rays start (Tracer::secondaryStart, shadeHit's secondaryOrigin): at the hit excluding
+// its triangle, at a fixed <shadowrayepsilon> along the normal, or at the robust offset of ray_offset.h.
 struct SecondaryStart {
   bool excludeHit = false;
   bool fixedEpsilon = false;

@@ -1,0 +1,80 @@
+// What an Embree build of user geometry costs on its own, as rayview builds its BVH (docs/PERFORMANCE.md,
+// "2026-11-24, sixth session"): a fresh device, the first build in the process (Embree's and TBB's start-up
+// included), then further builds of the same boxes, each timed.
+//
+//     embree_build_bench [--primitives N] [--builds K]        (default: 4968 primitives, bunny's count; 50 builds)
+//
+// The primitives are random small boxes in the unit cube. Flags and quality as embree_accel.cpp sets them
+// (RTC_SCENE_FLAG_ROBUST, RTC_BUILD_QUALITY_MEDIUM).
+#include <embree3/rtcore.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <random>
+#include <vector>
+
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+struct Boxes {
+  std::vector<float> lower;  // x, y, z per primitive
+};
+
+void bounds(const RTCBoundsFunctionArguments* args) {
+  const auto& boxes = *static_cast<const Boxes*>(args->geometryUserPtr);
+  const float* at = &boxes.lower[3 * args->primID];
+  *args->bounds_o = RTCBounds{at[0], at[1], at[2], 0.0f, at[0] + 0.01f, at[1] + 0.01f, at[2] + 0.01f, 0.0f};
+}
+
+void build(RTCDevice device, const Boxes& boxes) {
+  RTCScene scene = rtcNewScene(device);
+  rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+  rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
+  RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+  rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(boxes.lower.size() / 3));
+  rtcSetGeometryUserData(geometry, const_cast<Boxes*>(&boxes));
+  rtcSetGeometryBoundsFunction(geometry, bounds, nullptr);
+  rtcCommitGeometry(geometry);
+  rtcAttachGeometry(scene, geometry);
+  rtcReleaseGeometry(geometry);
+  rtcCommitScene(scene);
+  rtcReleaseScene(scene);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int primitives = 4968, builds = 50;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--primitives") == 0) primitives = std::atoi(argv[i + 1]);
+    else if (std::strcmp(argv[i], "--builds") == 0) builds = std::atoi(argv[i + 1]);
+  }
+  if (argc % 2 == 0 || primitives <= 0 || builds <= 0) {
+    std::fprintf(stderr, "usage: embree_build_bench [--primitives N] [--builds K]\n");
+    return 2;
+  }
+  Boxes boxes;
+  std::mt19937 random(1);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  boxes.lower.resize(3 * static_cast<std::size_t>(primitives));
+  for (float& x : boxes.lower) x = unit(random);
+
+  auto start = std::chrono::steady_clock::now();
+  RTCDevice device = rtcNewDevice(nullptr);
+  const double deviceMs = msSince(start);
+  start = std::chrono::steady_clock::now();
+  build(device, boxes);
+  const double firstMs = msSince(start);
+  start = std::chrono::steady_clock::now();
+  for (int k = 0; k < builds; ++k) build(device, boxes);
+  const double eachMs = msSince(start) / builds;
+  rtcReleaseDevice(device);
+  std::printf("%d user primitives: device %.2f ms, first build %.2f ms, then %.2f ms a build (%.0f ns a primitive)\n",
+              primitives, deviceMs, firstMs, eachMs, eachMs * 1e6 / primitives);
+  return 0;
+}
