@@ -8,7 +8,11 @@ relocation, static initialisers, thread pool and tracer set-up, writing the (PPM
 `rayview --version` is measured the same way: exec + linking + exit, with no scene at all. The dynamic
 loader's own share comes from LD_DEBUG=statistics (cycles), minor page faults from getrusage (wait4).
 
-    bench/startup.py --rayview build/release/app/rayview [--repeat 21] [--threads 2] SCENE.xml...
+    bench/startup.py --rayview build/release/app/rayview [--repeat 21] [--threads 2] [--probes DIR] SCENE.xml...
+
+--probes DIR adds rows for the empty programs bench/CMakeLists.txt builds into DIR (build/release/bench):
+library_load_probe_plain (C and C++ runtimes), _tbb (and libtbb), _embree (and libembree3, which loads libtbb);
+the differences between their rows are what loading those libraries costs a process before `main`.
 """
 import argparse
 import os
@@ -40,6 +44,7 @@ def main():
     parser.add_argument("--rayview", default="build/release/app/rayview")
     parser.add_argument("--repeat", type=int, default=21)
     parser.add_argument("--threads", type=int, default=2)
+    parser.add_argument("--probes", help="directory holding the library_load_probe_* programs")
     parser.add_argument("scenes", nargs="*")
     args = parser.parse_args()
 
@@ -54,8 +59,12 @@ def main():
     print("| command | wall ms | load ms | build ms | render ms | remainder ms | CPU ms (user+sys, all threads) "
           "| minor page faults |")
     print("|---|---:|---:|---:|---:|---:|---:|---:|")
-    for name, command in (("/bin/true (the harness's own fork/exec/wait)", ["/bin/true"]),
-                          ("rayview --version", [args.rayview, "--version"])):
+    commands = [("/bin/true (the harness's own fork/exec/wait)", ["/bin/true"])]
+    if args.probes:
+        for kind, what in (("plain", "C and C++ runtimes"), ("tbb", "+ libtbb"), ("embree", "+ libembree3, libtbb")):
+            commands.append((f"empty program, {what}", [os.path.join(args.probes, f"library_load_probe_{kind}")]))
+    commands.append(("rayview --version", [args.rayview, "--version"]))
+    for name, command in commands:
         walls, faults, cpus = [], [], []
         for _ in range(args.repeat):
             wall, _, _, minflt, cpu = run(command)
