@@ -2,7 +2,8 @@
 """Stage times of whole `rayview render` processes, with glibc's defaults and with the launcher's malloc
 settings, alternating (docs/PERFORMANCE.md, "Page faults and start-up").
 
-    bench/stage_times.py [--build build/release] [--runs 9] [--threads 2] [--variant NAME=TUNABLES]... [SCENE...]
+    bench/stage_times.py [--build build/release] [--runs 9] [--threads 2] [--variant NAME=TUNABLES]... [--spread]
+                         [SCENE...]
                                                        (default: the seven scenes of issue 8)
 
 Runs rayview-cli itself with GLIBC_TUNABLES set for each settings row (--variant adds a row, e.g. the
@@ -11,7 +12,7 @@ stamps it (app/process_start.h), so that the summary's start-up counts from the 
 summary prints: start-up (fork to the first ray, less load and build: exec, dynamic loading, the thread pool),
 load, build, render, write (encoding and writing the PNG); "rest" is the whole process less those (its exit
 and the summary's printing); "faults" counts the process's page faults (minor and major; ~13 us each on
-this project's machines, bench/page_fault_bench). Medians of --runs per stage.
+this project's machines, bench/page_fault_bench). Medians of --runs per stage; --spread adds the quartiles.
 """
 import argparse
 import collections
@@ -47,12 +48,21 @@ def run(cli, scene, threads, out, tunables):
     return [startup, load, build, render, write, whole - (startup + load + build + render + write), whole, faults]
 
 
+def cell(values, form, spread):
+    text = form.format(statistics.median(values))
+    if spread and len(values) >= 2:
+        q1, _, q3 = statistics.quantiles(values, n=4)
+        text += f" ({form.format(q1)}-{form.format(q3)})"
+    return text
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("--build", default=os.path.join(ROOT, "build", "release"))
     p.add_argument("--runs", type=int, default=9)
     p.add_argument("--threads", type=int, default=2)
     p.add_argument("--variant", action="append", default=[], metavar="NAME=TUNABLES")
+    p.add_argument("--spread", action="store_true", help="each cell also gives the quartiles: median (q1-q3)")
     p.add_argument("scenes", nargs="*")
     a = p.parse_args()
     app = os.path.join(a.build, "app")
@@ -70,8 +80,7 @@ def main():
                     for column, ms in zip(COLUMNS, run(cli, scene, a.threads, out, value)):
                         times[n][column].append(ms)
             for n, by in times.items():
-                cells = " | ".join(f"{statistics.median(by[c]):.0f}" if c == "faults" else f"{statistics.median(by[c]):.1f}"
-                                   for c in COLUMNS)
+                cells = " | ".join(cell(by[c], "{:.0f}" if c == "faults" else "{:.1f}", a.spread) for c in COLUMNS)
                 print(f"| {name(scene)} | {n} | {cells} |", flush=True)
 
 
