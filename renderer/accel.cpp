@@ -80,7 +80,7 @@ std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeo
 }
 
 AccelKind accelWithinRange(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin) {
-  if (kind == AccelKind::Embree && !beyond(geometryReach(scene, origin), 0.0).empty()) return AccelKind::Reference;
+  if (kind != AccelKind::Reference && !beyond(geometryReach(scene, origin), 0.0).empty()) return AccelKind::Reference;
   return kind;
 }
 
@@ -92,6 +92,7 @@ std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, co
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                          BuildProgress progress, void* progressUser) {
 #ifdef RAYVIEW_HAVE_EMBREE
+  if (kind == AccelKind::Packet) return makePacketBvhAccel(scene, origin);
   if (kind == AccelKind::Embree)
     return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size()), progress, progressUser);
 #endif

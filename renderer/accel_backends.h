@@ -26,6 +26,12 @@ std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dv
 // Embree's packet width follows the ISA (16 lanes with AVX-512, 8 with AVX2, 4 with SSE), so the callbacks get
 // a 16-ray packet whole or in pieces: this builds each piece size on one machine.
 std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin, const std::string& isa);
+// rayview's packet BVH (packet_bvh_accel.cpp): Embree's answers for every ray within Embree's range, with no Embree.
+std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin);
+// prepareGeometry builds the packet BVH for AccelKind::Embree up to this many triangles: Embree's device, task
+// scheduler and first build cost a process ~5 ms, more than its faster traversal saves a small scene's render
+// (docs/PERFORMANCE.md, "2026-11-24, seventh session").
+inline constexpr std::size_t kPacketBvhTriangles = 5000;
 std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin,
                                           BuildProgress progress, void* progressUser);
 

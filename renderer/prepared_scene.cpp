@@ -16,6 +16,7 @@ std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> g
                                           AccelKind kind, BuildProgress progress, void* progressUser,
                                           Clock::time_point start) {
   auto prepared = std::make_shared<PreparedGeometry>();
+  if (kind == AccelKind::Embree && geometry->triangles.size() <= kPacketBvhTriangles) kind = AccelKind::Packet;
   prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser);
   if (!prepared->accel) return nullptr;
   prepared->shading = prepareShadingGeometry(*geometry, origin);
@@ -31,7 +32,7 @@ std::shared_ptr<const PreparedGeometry> prepareScene(std::shared_ptr<const Scene
   const auto start = Clock::now();
   kind = availableAccel(kind);
   std::string problem;
-  if (kind == AccelKind::Embree) problem = embreeRangeProblem(scene, scene, scene.camera.position);
+  if (kind != AccelKind::Reference) problem = embreeRangeProblem(scene, scene, scene.camera.position);
   auto prepared = prepare(std::move(geometry), scene.camera.position, problem.empty() ? kind : AccelKind::Reference,
                           progress, progressUser, start);
   if (prepared) prepared->accelFallback = std::move(problem);

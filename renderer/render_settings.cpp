@@ -2,11 +2,18 @@
 
 namespace rayview {
 
-std::string_view toString(AccelKind kind) { return kind == AccelKind::Embree ? "embree" : "reference"; }
+std::string_view toString(AccelKind kind) {
+  switch (kind) {
+    case AccelKind::Embree: return "embree";
+    case AccelKind::Packet: return "packet";
+    default: return "reference";
+  }
+}
 
 bool parseAccelKind(std::string_view text, AccelKind& out) {
   if (text == "embree") out = AccelKind::Embree;
   else if (text == "reference") out = AccelKind::Reference;
+  else if (text == "packet") out = AccelKind::Packet;
   else return false;
   return true;
 }
@@ -26,8 +33,7 @@ AccelKind availableAccel(AccelKind requested) {
 #ifdef RAYVIEW_HAVE_EMBREE
   return requested;
 #else
-  (void)requested;
-  return AccelKind::Reference;
+  return requested == AccelKind::Packet ? requested : AccelKind::Reference;
 #endif
 }
 

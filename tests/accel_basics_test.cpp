@@ -74,7 +74,7 @@ TEST_P(AccelBasics, CoordinatesAreRelativeToTheOrigin) {
   EXPECT_NEAR(hit->t, 2.0f, 1e-6f);
 }
 
-INSTANTIATE_TEST_SUITE_P(BothBackEnds, AccelBasics, ::testing::Values(AccelKind::Embree, AccelKind::Reference),
+INSTANTIATE_TEST_SUITE_P(BothBackEnds, AccelBasics, ::testing::Values(AccelKind::Embree, AccelKind::Packet, AccelKind::Reference),
                          [](const auto& info) { return std::string(toString(info.param)); });
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <string>
 
+#include "accel_backends.h"
 #include "rayview/accel.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/scene_loader.h"
@@ -98,11 +99,27 @@ TEST(EmbreeRange, PreparingAFarSceneSaysWhyItIsNotOnEmbree) {
   const auto far = prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Embree);
   EXPECT_EQ(far->accel->kind(), AccelKind::Reference);
   EXPECT_NE(far->accelFallback.find("a vertex is 1e+19 from the camera"), std::string::npos) << far->accelFallback;
+  // Within range: the fast traversal (for a scene this small, the packet BVH: the next test).
   const auto near = prepareGeometry(std::make_shared<const Scene>(quadAt(1e17, -1e17)), AccelKind::Embree);
-  EXPECT_EQ(near->accel->kind(), AccelKind::Embree);
+  EXPECT_EQ(near->accel->kind(), AccelKind::Packet);
   EXPECT_EQ(near->accelFallback, "");
   // The reference BVH asked for is no fallback.
   EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Reference)->accelFallback, "");
+}
+
+// Asked for Embree, prepareGeometry builds rayview's packet BVH up to kPacketBvhTriangles triangles (Embree's
+// start-up costs a small scene more than its traversal saves) and Embree beyond; the packet BVH beyond Embree's
+// range falls back to the reference BVH as Embree does.
+TEST(EmbreeRange, PreparingASmallSceneBuildsThePacketBvhAndALargerOneEmbree) {
+  if (!haveEmbree()) GTEST_SKIP() << "built without Embree";
+  Scene scene = quadAt(1.0, -2.0);
+  while (scene.triangles.size() < kPacketBvhTriangles) testing::addQuadFacingZ(scene, -1, -1, 1, 1, -3.0, 0);
+  ASSERT_EQ(scene.triangles.size(), kPacketBvhTriangles);
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(scene), AccelKind::Embree)->accel->kind(), AccelKind::Packet);
+  testing::addQuadFacingZ(scene, -1, -1, 1, 1, -3.0, 0);
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(scene), AccelKind::Embree)->accel->kind(), AccelKind::Embree);
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Packet)->accel->kind(),
+            AccelKind::Reference);
 }
 
 }  // namespace

@@ -250,9 +250,9 @@ TEST_P(DegenerateInput, FacingMirrorsCostGrowsLinearlyWithDepth) {
               accelName(GetParam()).c_str(), 1000.0 * msAt1000 / (kPixels * kPixels * 1000.0));
 }
 
-INSTANTIATE_TEST_SUITE_P(BothBackEnds, ShadowAcne, ::testing::Values(AccelKind::Embree, AccelKind::Reference),
+INSTANTIATE_TEST_SUITE_P(BothBackEnds, ShadowAcne, ::testing::Values(AccelKind::Embree, AccelKind::Packet, AccelKind::Reference),
                          [](const auto& info) { return accelName(info.param); });
-INSTANTIATE_TEST_SUITE_P(BothBackEnds, DegenerateInput, ::testing::Values(AccelKind::Embree, AccelKind::Reference),
+INSTANTIATE_TEST_SUITE_P(BothBackEnds, DegenerateInput, ::testing::Values(AccelKind::Embree, AccelKind::Packet, AccelKind::Reference),
                          [](const auto& info) { return accelName(info.param); });
 
 }  // namespace

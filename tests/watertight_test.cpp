@@ -394,7 +394,7 @@ TEST(WatertightLanes, PreparedFourAtOnceAsOneAtATime) {
   EXPECT_EQ(permutationsSeen, 0b111111);  // all six permutations met
 }
 
-INSTANTIATE_TEST_SUITE_P(BothBackEnds, Watertight, ::testing::Values(AccelKind::Embree, AccelKind::Reference),
+INSTANTIATE_TEST_SUITE_P(BothBackEnds, Watertight, ::testing::Values(AccelKind::Embree, AccelKind::Packet, AccelKind::Reference),
                          [](const auto& info) { return std::string(toString(info.param)); });
 
 }  // namespace

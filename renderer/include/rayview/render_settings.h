@@ -8,7 +8,10 @@
 
 namespace rayview {
 
-enum class AccelKind { Embree, Reference };
+// Embree: Embree's BVH (for a scene of up to kPacketBvhTriangles triangles, prepareGeometry builds rayview's packet
+// BVH instead: the same answers without Embree's start-up). Reference: the double-precision reference BVH.
+// Packet: rayview's packet BVH whatever the scene's size. Embree and Packet answer every ray identically.
+enum class AccelKind { Embree, Reference, Packet };
 
 // Where shadow and mirror rays start. Offset: off the surface (by <shadowrayepsilon> when the scene sets
 // it, else by the robust relative offset). ExcludeHitTriangle: at the hit point itself, ignoring the

@@ -1,0 +1,521 @@
+// rayview's own BVH for small scenes: a binned-SAH binary tree of float boxes, traversed by packets of up to 16
+// rays with the four-wide watertight test at the leaves. It answers exactly what the Embree back-end answers
+// (the same float rays and boxes, the same watertight test and tie rule), without Embree's device, task scheduler
+// and first build, which cost a small scene's process more than its render (docs/PERFORMANCE.md, "2026-11-24,
+// seventh session").
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <new>
+#include <optional>
+#include <vector>
+
+#include "accel_backends.h"
+#include "float_steps.h"
+#include "watertight_lanes.h"
+#include "watertight_triangle.h"
+
+namespace rayview {
+namespace {
+
+using Float8 = float __attribute__((vector_size(32)));
+using Int8 = std::int32_t __attribute__((vector_size(32)));
+
+Float8 load8(const float* p) {
+  Float8 v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+Float8 splat8(float x) { return Float8{x, x, x, x, x, x, x, x}; }
+Float8 min8(Float8 a, Float8 b) { return a < b ? a : b; }
+Float8 max8(Float8 a, Float8 b) { return a < b ? b : a; }
+Float8 abs8(Float8 a) { return a < splat8(0.0f) ? -a : a; }
+unsigned bits8(Int8 m) {
+#ifdef __AVX__
+  return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<Float8>(m)));
+#else
+  unsigned b = 0;
+  for (int j = 0; j < 8; ++j)
+    if (m[j]) b |= 1u << j;
+  return b;
+#endif
+}
+
+struct Box {
+  glm::vec3 lower{INFINITY}, upper{-INFINITY};
+  void grow(const Box& b) {
+    lower = glm::min(lower, b.lower);
+    upper = glm::max(upper, b.upper);
+  }
+  void grow(const glm::vec3& p) {
+    lower = glm::min(lower, p);
+    upper = glm::max(upper, p);
+  }
+  float halfArea() const {
+    const glm::vec3 e = upper - lower;
+    return e.x < 0.0f ? 0.0f : e.x * e.y + e.y * e.z + e.z * e.x;
+  }
+};
+
+// A node: a leaf's triangles are leafTriangles_[first, first + count); an inner node's children are nodes first and
+// first + 1, split along `axis`.
+struct Node {
+  float lower[3];
+  std::uint32_t first;
+  float upper[3];
+  std::uint32_t countOrAxis;  // a leaf's count, or kInner | axis
+};
+constexpr std::uint32_t kInner = 0x80000000u;
+static_assert(sizeof(Node) == 32);
+
+struct LeafTriangle {
+  glm::dvec3 a, b, c;  // relative to the accel's origin, as the Embree back-end computes them per test
+  std::uint32_t id;
+};
+
+constexpr int kMaxDepth = 64;
+constexpr int kLeafMax = 4;
+constexpr int kBins = 16;
+
+// A float box around the triangle, as the Embree back-end's bounds callback makes it (a relative margin, since
+// the float rounding of the corners may cut a vertex off).
+Box triangleBox(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+  Box box;
+  for (const glm::dvec3* corner : {&a, &b, &c}) box.grow(glm::vec3(*corner));
+  const float margin = 0x1p-20f * std::max({std::fabs(box.lower.x), std::fabs(box.lower.y), std::fabs(box.lower.z),
+                                           std::fabs(box.upper.x), std::fabs(box.upper.y), std::fabs(box.upper.z)});
+  box.lower -= margin;
+  box.upper += margin;
+  return box;
+}
+
+struct BuildTriangle {
+  Box box;
+  glm::vec3 centroid;
+  std::uint32_t id;
+};
+
+class Builder {
+ public:
+  Builder(std::vector<BuildTriangle>& triangles, std::vector<Node>& nodes) : triangles_(triangles), nodes_(nodes) {}
+
+  void build() {
+    nodes_.reserve(2 * triangles_.size() + 1);
+    nodes_.push_back({});
+    split(0, 0, triangles_.size(), 0);
+  }
+
+ private:
+  void makeLeaf(std::size_t node, std::size_t begin, std::size_t end, const Box& box) {
+    Node& n = nodes_[node];
+    store(n, box);
+    n.first = static_cast<std::uint32_t>(begin);
+    n.countOrAxis = static_cast<std::uint32_t>(end - begin);
+  }
+  static void store(Node& n, const Box& box) {
+    for (int k = 0; k < 3; ++k) n.lower[k] = box.lower[k], n.upper[k] = box.upper[k];
+  }
+
+  void split(std::size_t node, std::size_t begin, std::size_t end, int depth) {
+    Box box, centroids;
+    for (std::size_t i = begin; i < end; ++i) {
+      box.grow(triangles_[i].box);
+      centroids.grow(triangles_[i].centroid);
+    }
+    const std::size_t count = end - begin;
+    if (count <= kLeafMax || depth >= kMaxDepth - 2) return makeLeaf(node, begin, end, box);
+
+    // Binned SAH over the three axes.
+    float bestCost = INFINITY;
+    int bestAxis = -1, bestBin = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const float lo = centroids.lower[axis], extent = centroids.upper[axis] - lo;
+      if (!(extent > 0.0f)) continue;
+      Box bins[kBins];
+      std::size_t counts[kBins] = {};
+      const float scale = kBins / extent;
+      for (std::size_t i = begin; i < end; ++i) {
+        const int b = std::min(kBins - 1, static_cast<int>((triangles_[i].centroid[axis] - lo) * scale));
+        bins[b].grow(triangles_[i].box);
+        ++counts[b];
+      }
+      float rightArea[kBins];
+      std::size_t rightCount[kBins];
+      Box right;
+      std::size_t n = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        right.grow(bins[b]);
+        n += counts[b];
+        rightArea[b] = right.halfArea();
+        rightCount[b] = n;
+      }
+      Box left;
+      n = 0;
+      for (int b = 0; b < kBins - 1; ++b) {
+        left.grow(bins[b]);
+        n += counts[b];
+        if (n == 0 || rightCount[b + 1] == 0) continue;
+        const float cost = left.halfArea() * static_cast<float>(n) + rightArea[b + 1] * static_cast<float>(rightCount[b + 1]);
+        if (cost < bestCost) bestCost = cost, bestAxis = axis, bestBin = b;
+      }
+    }
+    std::size_t middle;
+    int axis = bestAxis;
+    if (bestAxis >= 0) {
+      const float lo = centroids.lower[axis], scale = kBins / (centroids.upper[axis] - lo);
+      middle = static_cast<std::size_t>(
+          std::partition(triangles_.begin() + static_cast<std::ptrdiff_t>(begin),
+                         triangles_.begin() + static_cast<std::ptrdiff_t>(end),
+                         [&](const BuildTriangle& t) {
+                           return std::min(kBins - 1, static_cast<int>((t.centroid[axis] - lo) * scale)) <= bestBin;
+                         }) -
+          triangles_.begin());
+    } else {
+      // Every centroid in one point: halves by index.
+      axis = 0;
+      middle = begin + count / 2;
+    }
+    if (middle == begin || middle == end) middle = begin + count / 2;
+
+    const std::size_t left = nodes_.size();
+    nodes_.push_back({});
+    nodes_.push_back({});
+    Node& n = nodes_[node];
+    store(n, box);
+    n.first = static_cast<std::uint32_t>(left);
+    n.countOrAxis = kInner | static_cast<std::uint32_t>(axis);
+    split(left, begin, middle, depth + 1);
+    split(left + 1, middle, end, depth + 1);
+  }
+
+  std::vector<BuildTriangle>& triangles_;
+  std::vector<Node>& nodes_;
+};
+
+// A packet's rays as the traversal reads them: float copies for the boxes (as the Embree back-end hands Embree),
+// the watertight lanes in double for the triangles.
+struct Packet {
+  alignas(32) float org[3][kRayPacket];
+  alignas(32) float inv[3][kRayPacket];
+  alignas(32) float tNear[kRayPacket];
+  alignas(32) float tFar[kRayPacket];
+  WatertightLanes<kRayPacket> packed;
+  const Ray* rays[kRayPacket];
+  TriangleHit hit[kRayPacket];
+  std::uint32_t triangle[kRayPacket];
+};
+
+Packet& packetScratch() {
+  thread_local Packet packet;
+  return packet;
+}
+
+class PacketBvhAccel final : public Accel {
+ public:
+  PacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin) : Accel(origin), scene_(scene) {
+    std::vector<BuildTriangle> build;
+    build.reserve(scene.triangles.size());
+    for (std::uint32_t i = 0; i < scene.triangles.size(); ++i) {
+      const auto& v = scene.triangles[i].vertex;
+      const Box box = triangleBox(scene.vertices[v[0]] - origin, scene.vertices[v[1]] - origin,
+                                  scene.vertices[v[2]] - origin);
+      // Embree skips a primitive whose box is not finite: so does this.
+      bool finite = true;
+      for (int k = 0; k < 3; ++k) finite &= std::isfinite(box.lower[k]) && std::isfinite(box.upper[k]);
+      if (!finite) continue;
+      build.push_back({box, 0.5f * (box.lower + box.upper), i});
+    }
+    if (!build.empty()) {
+      std::vector<Node> nodes;
+      Builder(build, nodes).build();
+      // Root at 1 and each pair of children (first, first + 1) from an even index of a 64-byte aligned array: the two
+      // boxes a visit tests share one cache line.
+      const std::size_t bytes = (nodes.size() + 1) * sizeof(Node);
+      nodes_.reset(static_cast<Node*>(std::aligned_alloc(64, (bytes + 63) / 64 * 64)));
+      if (!nodes_) throw std::bad_alloc();
+      for (std::size_t i = 0; i < nodes.size(); ++i) {
+        nodes_[i + 1] = nodes[i];
+        if (nodes[i].countOrAxis & kInner) nodes_[i + 1].first += 1;
+      }
+    }
+    leafTriangles_.reserve(build.size());
+    for (const BuildTriangle& t : build) {
+      const auto& v = scene.triangles[t.id].vertex;
+      leafTriangles_.push_back(
+          {scene.vertices[v[0]] - origin, scene.vertices[v[1]] - origin, scene.vertices[v[2]] - origin, t.id});
+    }
+  }
+
+  std::optional<Hit> closestHit(const Ray& ray) const override {
+    std::optional<Hit> hit;
+    closestHits(&ray, 1, &hit);
+    return hit;
+  }
+
+  bool occluded(const Ray& ray) const override {
+    bool answer = false;
+    occludedMany(&ray, 1, &answer);
+    return answer;
+  }
+
+  void closestHits(const Ray* rays, int count, std::optional<Hit>* hits) const override {
+    Packet& p = packetScratch();
+    const unsigned lanes = fill(p, rays, count, [&](int k) { hits[k] = closestHitByEveryTriangle(rays[k]); });
+    for (int k = 0; k < count; ++k)
+      if (lanes & (1u << k)) p.triangle[k] = kNoTriangle;
+    if (lanes && nodes_)
+      traverse(p, lanes, [&](int k, const LeafTriangle& t, const TriangleHit& hit, unsigned&) {
+        if (p.triangle[k] != kNoTriangle && !replacesClosestHit(hit.t, t.id, p.hit[k].t, p.triangle[k])) return;
+        p.hit[k] = hit;
+        p.triangle[k] = t.id;
+        p.packed.tFar[k] = std::min(p.rays[k]->tFar, tieSearchLimit(hit.t));
+        p.tFar[k] = nextFloatUp(static_cast<float>(p.packed.tFar[k]));
+      });
+    for (int k = 0; k < count; ++k) {
+      if (!(lanes & (1u << k))) continue;
+      if (p.triangle[k] == kNoTriangle) {
+        hits[k].reset();
+        continue;
+      }
+      Hit& hit = hits[k].emplace();
+      hit.t = p.hit[k].t;
+      hit.triangle = p.triangle[k];
+      hit.b1 = p.hit[k].b1;
+      hit.b2 = p.hit[k].b2;
+    }
+  }
+
+  void occludedMany(const Ray* rays, int count, bool* answers) const override {
+    Packet& p = packetScratch();
+    const unsigned lanes = fill(p, rays, count, [&](int k) { answers[k] = occludedByAnyTriangle(rays[k]); });
+    for (int k = 0; k < count; ++k)
+      if (lanes & (1u << k)) answers[k] = false;
+    if (lanes && nodes_)
+      traverse(p, lanes, [&](int k, const LeafTriangle&, const TriangleHit&, unsigned& active) {
+        answers[k] = true;
+        active &= ~(1u << k);
+      });
+  }
+
+  AccelKind kind() const override { return AccelKind::Packet; }
+
+ private:
+  // Whether the Embree back-end would hand the ray to Embree (EmbreeAccel::representable).
+  static bool representable(const Ray& ray) {
+    const double limit = kEmbreeCoordinateLimit;
+    for (int k = 0; k < 3; ++k)
+      if (!(std::fabs(ray.origin[k]) <= limit) || !(std::fabs(ray.direction[k]) <= limit)) return false;
+    return ray.tNear >= 0.0 && !std::isnan(ray.tFar);
+  }
+
+  // Lanes k < count: the representable ones set up in `p` (their bits returned), the others answered by `without`.
+  // Four rays at a time in vector registers, as the Embree back-end fills its packets (the same prepared lanes, the
+  // same float rays); lanes without a ray get an empty interval and pass no box.
+  template <class Without>
+  static unsigned fill(Packet& p, const Ray* rays, int count, Without&& without) {
+    unsigned lanes = 0;
+    for (int first = 0; first < kRayPacket; first += kWatertightWidth) {
+      if (first >= count) {
+        std::memset(p.tNear + first, 0x7f, kWatertightWidth * sizeof(float));  // 3.4e38: nothing is that far
+        std::memset(p.tFar + first, 0, kWatertightWidth * sizeof(float));
+        for (int axis = 0; axis < 3; ++axis) {
+          std::memset(p.org[axis] + first, 0, kWatertightWidth * sizeof(float));
+          std::memset(p.inv[axis] + first, 0, kWatertightWidth * sizeof(float));
+        }
+        continue;
+      }
+      static const Ray kNone{};
+      const Ray* r[kWatertightWidth];
+      for (int j = 0; j < kWatertightWidth; ++j) r[j] = first + j < count ? &rays[first + j] : &kNone;
+      auto gather = [&](auto field) { return Double4{field(*r[0]), field(*r[1]), field(*r[2]), field(*r[3])}; };
+      Double4 o[3], d[3];
+      for (int axis = 0; axis < 3; ++axis) {
+        o[axis] = gather([axis](const Ray& ray) { return ray.origin[axis]; });
+        d[axis] = gather([axis](const Ray& ray) { return ray.direction[axis]; });
+      }
+      const Double4 near = gather([](const Ray& ray) { return ray.tNear; });
+      const Double4 far = gather([](const Ray& ray) { return ray.tFar; });
+      const Int4 inCount = Int4{first, first + 1, first + 2, first + 3} < count;
+      p.packed.prepareFour(first, o, d, near, far);
+      const Double4 limit = splat4(kEmbreeCoordinateLimit);
+      Mask4 wide = (near >= Double4{}) & (far == far);
+      for (int axis = 0; axis < 3; ++axis) wide &= (abs4(o[axis]) <= limit) & (abs4(d[axis]) <= limit);
+      const Int4 usable = __builtin_convertvector(wide, Int4) & inCount;
+      auto toFloat = [&](Double4 v) { return usable ? __builtin_convertvector(v, Float4) : Float4{}; };
+      const Float4 zero{};
+      Float4 tNear = nextFloatDown4(toFloat(near));
+      tNear = zero < tNear ? tNear : zero;
+      const Float4 tFar = usable ? nextFloatUp4(__builtin_convertvector(far, Float4)) : zero - 1.0f;
+      auto put = [&](float* to, Float4 v) { std::memcpy(to + first, &v, sizeof v); };
+      for (int axis = 0; axis < 3; ++axis) {
+        put(p.org[axis], toFloat(o[axis]));
+        // A zero (or tiny) component would give 0 * inf in the slab test: a tiny one instead, as Embree does.
+        Float4 dir = toFloat(d[axis]);
+        const Float4 tiny = splat4(1e-18f);
+        dir = (dir < tiny) & (dir > -tiny) ? (dir < zero ? -tiny : tiny) : dir;
+        put(p.inv[axis], splat4(1.0f) / dir);
+      }
+      put(p.tNear, tNear);
+      put(p.tFar, tFar);
+      for (int j = 0; j < kWatertightWidth; ++j) {
+        const int k = first + j;
+        if (usable[j]) {
+          lanes |= 1u << k;
+          p.rays[k] = &rays[k];
+        } else if (inCount[j]) {
+          without(k);
+        }
+      }
+    }
+    return lanes;
+  }
+
+  // The lanes of `lanes` whose interval meets the node's box. Conservative: each slab's distances widened by
+  // 2^-18 of themselves, far more than the float rounding of the distances (a few ulp).
+  static unsigned boxLanes(const Packet& p, const Node& n, unsigned lanes) {
+    constexpr float kSlack = 0x1p-18f;
+    unsigned result = 0;
+    for (int half = 0; half < 2; ++half) {
+      if (!((lanes >> (8 * half)) & 0xFFu)) continue;
+      const int at = 8 * half;
+      Float8 near = load8(p.tNear + at), far = load8(p.tFar + at);
+      for (int axis = 0; axis < 3; ++axis) {
+        const Float8 o = load8(p.org[axis] + at), inv = load8(p.inv[axis] + at);
+        const Float8 t0 = (splat8(n.lower[axis]) - o) * inv, t1 = (splat8(n.upper[axis]) - o) * inv;
+        near = max8(near, min8(t0, t1));
+        far = min8(far, max8(t0, t1));
+      }
+      // Widening each slab's distances by their own 2^-18 before the max / min is the same as widening the result
+      // (x - |x| s and x + |x| s are increasing): once here.
+      near -= abs8(near) * splat8(kSlack);
+      far += abs8(far) * splat8(kSlack);
+      result |= bits8(near <= far) << at;
+    }
+    return result & lanes;
+  }
+
+  // Every triangle whose box the packet's lanes meet, tested against those lanes; onHit(k, triangle, hit, active)
+  // for each lane k that hits it within its interval (it may take lanes out of `active`).
+  template <class OnHit>
+  void traverse(Packet& p, unsigned active, OnHit&& onHit) const {
+    // Each entry: a node and the lanes that met its box when its parent was visited (both children's boxes are
+    // tested then, from one cache line). A lane that has since found a closer hit may still be in the mask: its
+    // tests are bounded by its current interval all the same.
+    struct Entry {
+      const Node* node;
+      unsigned lanes;
+    };
+    Entry stack[2 * kMaxDepth];
+    int top = 0;
+    const Node& root = nodes_[1];
+    if (const unsigned lanes = boxLanes(p, root, active)) stack[top++] = {&root, lanes};
+    while (top > 0 && active) {
+      const Entry entry = stack[--top];
+      const Node& n = *entry.node;
+      const unsigned lanes = entry.lanes & active;
+      if (!lanes) continue;
+      if (!(n.countOrAxis & kInner)) {
+        for (std::uint32_t i = n.first; i < n.first + n.countOrAxis; ++i) {
+          const LeafTriangle& t = leafTriangles_[i];
+          testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { onHit(k, t, hit, active); });
+        }
+        continue;
+      }
+      const Node* children = &nodes_[n.first];
+      const unsigned left = boxLanes(p, children[0], lanes), right = boxLanes(p, children[1], lanes);
+      const int axis = static_cast<int>(n.countOrAxis & 3u);
+      const bool backwards = p.inv[axis][__builtin_ctz(lanes)] < 0.0f;
+      // The far child first onto the stack, so that the near one is visited first.
+      const int nearSide = backwards ? 1 : 0;
+      const unsigned nearLanes = backwards ? right : left, farLanes = backwards ? left : right;
+      if (farLanes) stack[top++] = {&children[1 - nearSide], farLanes};
+      if (nearLanes) stack[top++] = {&children[nearSide], nearLanes};
+    }
+  }
+
+  // The lanes of `lanes` against the triangle, four at a time where four consecutive lanes from a multiple of four
+  // share their axis permutation (as the Embree back-end's callbacks test them), else one at a time.
+  template <class OnHit>
+  static void testLanes(const Packet& p, const LeafTriangle& t, unsigned lanes, OnHit&& onHit) {
+    for (int first = 0; first < kRayPacket; first += kWatertightWidth) {
+      const unsigned block = (lanes >> first) & 0xFu;
+      if (!block) continue;
+      bool vector = (block & (block - 1)) != 0;
+      int permutation = -1;
+      for (int j = 0; j < kWatertightWidth && vector; ++j) {
+        if (!(block & (1u << j))) continue;
+        if (permutation < 0) permutation = p.packed.permutation[first + j];
+        vector = p.packed.permutation[first + j] == permutation;
+      }
+      if (vector) {
+        TriangleHits4 hits;
+        const unsigned hit = block & intersectWatertight4(p.packed, first, permutation, t.a, t.b, t.c, hits);
+        for (int j = 0; j < kWatertightWidth; ++j)
+          if ((hit & (1u << j)) && t.id != p.rays[first + j]->excludedTriangle) onHit(first + j, hits[j]);
+        continue;
+      }
+      for (int j = 0; j < kWatertightWidth; ++j) {
+        if (!(block & (1u << j))) continue;
+        const int k = first + j;
+        if (t.id == p.rays[k]->excludedTriangle) continue;
+        TriangleHit hit;
+        if (intersectWatertight(p.packed.ray(k), t.a, t.b, t.c, p.rays[k]->tNear, p.packed.tFar[k], hit)) onHit(k, hit);
+      }
+    }
+  }
+
+  // A triangle's corners relative to the origin, as the build computed them.
+  LeafTriangle corners(std::uint32_t i) const {
+    const auto& v = scene_.triangles[i].vertex;
+    const glm::dvec3& o = origin();
+    return {scene_.vertices[v[0]] - o, scene_.vertices[v[1]] - o, scene_.vertices[v[2]] - o, i};
+  }
+
+  // A ray beyond the float range (the viewer's camera moved far from the build origin) against every triangle, in
+  // double, as the Embree back-end answers it.
+  std::optional<Hit> closestHitByEveryTriangle(const Ray& ray) const {
+    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
+    std::optional<Hit> best;
+    for (std::uint32_t i = 0; i < scene_.triangles.size(); ++i) {
+      const LeafTriangle t = corners(i);
+      if (t.id == ray.excludedTriangle) continue;
+      TriangleHit hit;
+      const double tFar = best ? std::min(ray.tFar, tieSearchLimit(best->t)) : ray.tFar;
+      if (!intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, tFar, hit)) continue;
+      if (best && !replacesClosestHit(hit.t, t.id, best->t, best->triangle)) continue;
+      best = Hit{hit.t, t.id, hit.b1, hit.b2};
+    }
+    return best;
+  }
+
+  bool occludedByAnyTriangle(const Ray& ray) const {
+    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
+    for (std::uint32_t i = 0; i < scene_.triangles.size(); ++i) {
+      const LeafTriangle t = corners(i);
+      if (t.id == ray.excludedTriangle) continue;
+      TriangleHit hit;
+      if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit)) return true;
+    }
+    return false;
+  }
+
+  struct Free {
+    void operator()(Node* p) const { std::free(p); }
+  };
+  std::unique_ptr<Node[], Free> nodes_;  // nodes_[1] is the root (nodes_[0] unused); null without triangles
+  std::vector<LeafTriangle> leafTriangles_;  // in leaf order
+  const SceneGeometry& scene_;               // outlives the accel (buildAccel's contract)
+};
+
+}  // namespace
+
+std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin) {
+  return std::make_unique<PacketBvhAccel>(scene, origin);
+}
+
+}  // namespace rayview
