@@ -17,6 +17,7 @@
 #include <glm/common.hpp>
 
 #include "accel_backends.h"
+#include "float_rays.h"
 #include "float_steps.h"
 #include "watertight_lanes.h"
 #include "watertight_triangle.h"
@@ -291,7 +292,7 @@ class EmbreeAccel final : public Accel {
   bool valid() const { return scene_ != nullptr; }
 
   std::optional<Hit> closestHit(const Ray& ray) const override {
-    if (!representable(ray)) return closestHitWithoutEmbree(ray);
+    if (!floatTraversable(ray)) return closestHitWithoutEmbree(ray);
     QueryLane lane;
     initLane(lane, ray);
     double tFar = ray.tFar;
@@ -355,7 +356,7 @@ class EmbreeAccel final : public Accel {
   }
 
   bool occluded(const Ray& ray) const override {
-    if (!representable(ray)) return occludedWithoutEmbree(ray);
+    if (!floatTraversable(ray)) return occludedWithoutEmbree(ray);
     QueryLane lane;
     initLane(lane, ray);
     double tFar = ray.tFar;
@@ -377,44 +378,26 @@ class EmbreeAccel final : public Accel {
 
   // buildAccel() only builds this back-end for scenes whose rays stay within kEmbreeCoordinateLimit, but a
   // caller may still trace a ray from elsewhere (the viewer's camera moved far from the build origin).
-  // Embree asserts on such a ray: it is answered here by testing every triangle, in double.
-  static bool representable(const Ray& ray) {
-    const double limit = kEmbreeCoordinateLimit;
-    for (int k = 0; k < 3; ++k)
-      if (!(std::fabs(ray.origin[k]) <= limit) || !(std::fabs(ray.direction[k]) <= limit)) return false;
-    return ray.tNear >= 0.0 && !std::isnan(ray.tFar);
-  }
-
+  // Embree asserts on such a ray: floatTraversable() turns it away, and it is answered here by testing every
+  // triangle, in double.
   std::optional<Hit> closestHitWithoutEmbree(const Ray& ray) const {
-    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
-    std::optional<Hit> best;
-    for (std::uint32_t i = 0; i < data_.size(); ++i) {
-      if (i == ray.excludedTriangle) continue;
+    return closestHitByEveryTriangle(ray, data_.size(), [&](std::uint32_t i, glm::dvec3& a, glm::dvec3& b, glm::dvec3& c) {
       const TriangleData::Corners t = data_.corners(i);
-      TriangleHit hit;
-      const double tFar = best ? std::min(ray.tFar, tieSearchLimit(best->t)) : ray.tFar;
-      if (!intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, tFar, hit)) continue;
-      if (best && !replacesClosestHit(hit.t, i, best->t, best->triangle)) continue;
-      best = Hit{hit.t, i, hit.b1, hit.b2};
-    }
-    return best;
+      a = t.a, b = t.b, c = t.c;
+    });
   }
 
   bool occludedWithoutEmbree(const Ray& ray) const {
-    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
-    for (std::uint32_t i = 0; i < data_.size(); ++i) {
-      if (i == ray.excludedTriangle) continue;
+    return occludedByAnyTriangle(ray, data_.size(), [&](std::uint32_t i, glm::dvec3& a, glm::dvec3& b, glm::dvec3& c) {
       const TriangleData::Corners t = data_.corners(i);
-      TriangleHit hit;
-      if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit)) return true;
-    }
-    return false;
+      a = t.a, b = t.b, c = t.c;
+    });
   }
 
   // Lanes k < count of a packet, each ray's float copy with its lane as id; a ray Embree cannot take is answered
   // by `without(k)` and left out (valid[k] = 0). Returns whether any lane is left for Embree.
   // Four rays at a time in vector registers (one at a time it was ~10 % of a render): each lane gets exactly what
-  // representable(), prepareWatertightRay() and fill() give its ray alone (WatertightLanes.PreparedFourAtOnceAsOneAtATime,
+  // floatTraversable(), prepareWatertightRay() and fill() give its ray alone (WatertightLanes.PreparedFourAtOnceAsOneAtATime,
   // FloatSteps.FourWideAgreeWithTheScalarSteps, and Packets.AnswerEachRayAsItsOwnQueryDoes for the whole query).
   // Lanes from `count` on get an empty interval, as a stack packet's zeros were: Embree's packet traversal then
   // ignores them.
@@ -424,41 +407,18 @@ class EmbreeAccel final : public Accel {
     bool any = false;
     int first = 0;
     for (; first < count; first += kWatertightWidth) {
-      // Built in registers from four rays (lanes from `count` on read an empty ray): vectors assembled in memory
-      // element by element stall every load of them (no store forwarding from four stores to one load).
-      static const Ray kNone{};
-      const Ray* r[kWatertightWidth];
-      for (int j = 0; j < kWatertightWidth; ++j) r[j] = first + j < count ? &rays[first + j] : &kNone;
-      auto gather = [&](auto field) { return Double4{field(*r[0]), field(*r[1]), field(*r[2]), field(*r[3])}; };
-      Double4 o[3], d[3];
-      for (int axis = 0; axis < 3; ++axis) {
-        o[axis] = gather([axis](const Ray& ray) { return ray.origin[axis]; });
-        d[axis] = gather([axis](const Ray& ray) { return ray.direction[axis]; });
-      }
-      const Double4 near = gather([](const Ray& ray) { return ray.tNear; });
-      const Double4 far = gather([](const Ray& ray) { return ray.tFar; });
-      const Int4 inCount = Int4{first, first + 1, first + 2, first + 3} < count;
-      packed.prepareFour(first, o, d, near, far);
-      // representable(), lane by lane.
-      const Double4 limit = splat4(kEmbreeCoordinateLimit);
-      Mask4 wide = (near >= Double4{}) & (far == far);
-      for (int axis = 0; axis < 3; ++axis) wide &= (abs4(o[axis]) <= limit) & (abs4(d[axis]) <= limit);
-      const Int4 usable = __builtin_convertvector(wide, Int4) & inCount;
-      // fill(), lane by lane; a lane Embree does not take gets zeros.
-      auto toFloat = [&](Double4 v) { return usable ? __builtin_convertvector(v, Float4) : Float4{}; };
-      const Float4 zero{};
-      Float4 tNear = nextFloatDown4(toFloat(near));
-      tNear = zero < tNear ? tNear : zero;
-      const Float4 tFar = usable ? nextFloatUp4(__builtin_convertvector(far, Float4)) : zero;
+      const FloatRays4 f = prepareFourRays(rays, first, count, packed);
+      const Int4 usable = f.usable, inCount = f.inCount;
+      // A lane Embree does not take gets zeros.
       auto put = [&](float* to, Float4 v) { std::memcpy(to + first, &v, sizeof v); };
-      put(packet.org_x, toFloat(o[0]));
-      put(packet.org_y, toFloat(o[1]));
-      put(packet.org_z, toFloat(o[2]));
-      put(packet.dir_x, toFloat(d[0]));
-      put(packet.dir_y, toFloat(d[1]));
-      put(packet.dir_z, toFloat(d[2]));
-      put(packet.tnear, tNear);
-      put(packet.tfar, tFar);
+      put(packet.org_x, f.origin[0]);
+      put(packet.org_y, f.origin[1]);
+      put(packet.org_z, f.origin[2]);
+      put(packet.dir_x, f.direction[0]);
+      put(packet.dir_y, f.direction[1]);
+      put(packet.dir_z, f.direction[2]);
+      put(packet.tnear, f.tNear);
+      put(packet.tfar, f.tFar);
       for (int j = 0; j < kWatertightWidth; ++j) {
         const int k = first + j;
         valid[k] = usable[j];
@@ -482,14 +442,15 @@ class EmbreeAccel final : public Accel {
 
   // The float copy Embree traverses its boxes with; the interval rounded outward.
   static void fill(RTCRay& out, const Ray& ray) {
-    out.org_x = static_cast<float>(ray.origin.x);
-    out.org_y = static_cast<float>(ray.origin.y);
-    out.org_z = static_cast<float>(ray.origin.z);
-    out.dir_x = static_cast<float>(ray.direction.x);
-    out.dir_y = static_cast<float>(ray.direction.y);
-    out.dir_z = static_cast<float>(ray.direction.z);
-    out.tnear = std::max(0.0f, nextFloatDown(static_cast<float>(ray.tNear)));
-    out.tfar = nextFloatUp(static_cast<float>(ray.tFar));
+    const FloatRay f = floatRay(ray);
+    out.org_x = f.origin[0];
+    out.org_y = f.origin[1];
+    out.org_z = f.origin[2];
+    out.dir_x = f.direction[0];
+    out.dir_y = f.direction[1];
+    out.dir_z = f.direction[2];
+    out.tnear = f.tNear;
+    out.tfar = f.tFar;
     out.time = 0.0f;
     out.mask = std::numeric_limits<unsigned>::max();
     out.id = 0;

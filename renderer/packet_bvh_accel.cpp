@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "accel_backends.h"
+#include "float_rays.h"
 #include "float_steps.h"
 #include "watertight_lanes.h"
 #include "watertight_triangle.h"
@@ -79,7 +80,7 @@ struct LeafTriangle {
 };
 
 constexpr int kMaxDepth = 64;
-constexpr int kLeafMax = 4;
+constexpr int kLeafMax = 1;
 constexpr int kBins = 16;
 
 // A float box around the triangle, as the Embree back-end's bounds callback makes it (a relative margin, since
@@ -244,11 +245,7 @@ class PacketBvhAccel final : public Accel {
       }
     }
     leafTriangles_.reserve(build.size());
-    for (const BuildTriangle& t : build) {
-      const auto& v = scene.triangles[t.id].vertex;
-      leafTriangles_.push_back(
-          {scene.vertices[v[0]] - origin, scene.vertices[v[1]] - origin, scene.vertices[v[2]] - origin, t.id});
-    }
+    for (const BuildTriangle& t : build) leafTriangles_.push_back(t.id);
   }
 
   std::optional<Hit> closestHit(const Ray& ray) const override {
@@ -305,17 +302,9 @@ class PacketBvhAccel final : public Accel {
   AccelKind kind() const override { return AccelKind::Packet; }
 
  private:
-  // Whether the Embree back-end would hand the ray to Embree (EmbreeAccel::representable).
-  static bool representable(const Ray& ray) {
-    const double limit = kEmbreeCoordinateLimit;
-    for (int k = 0; k < 3; ++k)
-      if (!(std::fabs(ray.origin[k]) <= limit) || !(std::fabs(ray.direction[k]) <= limit)) return false;
-    return ray.tNear >= 0.0 && !std::isnan(ray.tFar);
-  }
-
-  // Lanes k < count: the representable ones set up in `p` (their bits returned), the others answered by `without`.
-  // Four rays at a time in vector registers, as the Embree back-end fills its packets (the same prepared lanes, the
-  // same float rays); lanes without a ray get an empty interval and pass no box.
+  // Lanes k < count: the float-traversable ones set up in `p` (their bits returned), the others answered by
+  // `without`. Four rays at a time, as the Embree back-end fills its packets (float_rays.h: the same prepared lanes,
+  // the same float rays); lanes without a ray get an empty interval and pass no box.
   template <class Without>
   static unsigned fill(Packet& p, const Ray* rays, int count, Without&& without) {
     unsigned lanes = 0;
@@ -329,45 +318,23 @@ class PacketBvhAccel final : public Accel {
         }
         continue;
       }
-      static const Ray kNone{};
-      const Ray* r[kWatertightWidth];
-      for (int j = 0; j < kWatertightWidth; ++j) r[j] = first + j < count ? &rays[first + j] : &kNone;
-      auto gather = [&](auto field) { return Double4{field(*r[0]), field(*r[1]), field(*r[2]), field(*r[3])}; };
-      Double4 o[3], d[3];
-      for (int axis = 0; axis < 3; ++axis) {
-        o[axis] = gather([axis](const Ray& ray) { return ray.origin[axis]; });
-        d[axis] = gather([axis](const Ray& ray) { return ray.direction[axis]; });
-      }
-      const Double4 near = gather([](const Ray& ray) { return ray.tNear; });
-      const Double4 far = gather([](const Ray& ray) { return ray.tFar; });
-      const Int4 inCount = Int4{first, first + 1, first + 2, first + 3} < count;
-      p.packed.prepareFour(first, o, d, near, far);
-      const Double4 limit = splat4(kEmbreeCoordinateLimit);
-      Mask4 wide = (near >= Double4{}) & (far == far);
-      for (int axis = 0; axis < 3; ++axis) wide &= (abs4(o[axis]) <= limit) & (abs4(d[axis]) <= limit);
-      const Int4 usable = __builtin_convertvector(wide, Int4) & inCount;
-      auto toFloat = [&](Double4 v) { return usable ? __builtin_convertvector(v, Float4) : Float4{}; };
-      const Float4 zero{};
-      Float4 tNear = nextFloatDown4(toFloat(near));
-      tNear = zero < tNear ? tNear : zero;
-      const Float4 tFar = usable ? nextFloatUp4(__builtin_convertvector(far, Float4)) : zero - 1.0f;
+      const FloatRays4 f = prepareFourRays(rays, first, count, p.packed);
       auto put = [&](float* to, Float4 v) { std::memcpy(to + first, &v, sizeof v); };
+      const Float4 zero{}, tiny = splat4(1e-18f);
       for (int axis = 0; axis < 3; ++axis) {
-        put(p.org[axis], toFloat(o[axis]));
+        put(p.org[axis], f.origin[axis]);
         // A zero (or tiny) component would give 0 * inf in the slab test: a tiny one instead, as Embree does.
-        Float4 dir = toFloat(d[axis]);
-        const Float4 tiny = splat4(1e-18f);
-        dir = (dir < tiny) & (dir > -tiny) ? (dir < zero ? -tiny : tiny) : dir;
-        put(p.inv[axis], splat4(1.0f) / dir);
+        const Float4 d = f.direction[axis];
+        put(p.inv[axis], splat4(1.0f) / ((d < tiny) & (d > -tiny) ? (d < zero ? -tiny : tiny) : d));
       }
-      put(p.tNear, tNear);
-      put(p.tFar, tFar);
+      put(p.tNear, f.tNear);
+      put(p.tFar, f.tFar);
       for (int j = 0; j < kWatertightWidth; ++j) {
         const int k = first + j;
-        if (usable[j]) {
+        if (f.usable[j]) {
           lanes |= 1u << k;
           p.rays[k] = &rays[k];
-        } else if (inCount[j]) {
+        } else if (f.inCount[j]) {
           without(k);
         }
       }
@@ -421,7 +388,7 @@ class PacketBvhAccel final : public Accel {
       if (!lanes) continue;
       if (!(n.countOrAxis & kInner)) {
         for (std::uint32_t i = n.first; i < n.first + n.countOrAxis; ++i) {
-          const LeafTriangle& t = leafTriangles_[i];
+          const LeafTriangle t = corners(leafTriangles_[i]);
           testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { onHit(k, t, hit, active); });
         }
         continue;
@@ -469,46 +436,33 @@ class PacketBvhAccel final : public Accel {
     }
   }
 
-  // A triangle's corners relative to the origin, as the build computed them.
+  // A triangle's corners relative to the origin, as the Embree back-end computes them.
   LeafTriangle corners(std::uint32_t i) const {
     const auto& v = scene_.triangles[i].vertex;
     const glm::dvec3& o = origin();
     return {scene_.vertices[v[0]] - o, scene_.vertices[v[1]] - o, scene_.vertices[v[2]] - o, i};
   }
 
-  // A ray beyond the float range (the viewer's camera moved far from the build origin) against every triangle, in
+  // A ray the float traversal turns away (the viewer's camera moved far from the build origin): every triangle, in
   // double, as the Embree back-end answers it.
-  std::optional<Hit> closestHitByEveryTriangle(const Ray& ray) const {
-    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
-    std::optional<Hit> best;
-    for (std::uint32_t i = 0; i < scene_.triangles.size(); ++i) {
-      const LeafTriangle t = corners(i);
-      if (t.id == ray.excludedTriangle) continue;
-      TriangleHit hit;
-      const double tFar = best ? std::min(ray.tFar, tieSearchLimit(best->t)) : ray.tFar;
-      if (!intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, tFar, hit)) continue;
-      if (best && !replacesClosestHit(hit.t, t.id, best->t, best->triangle)) continue;
-      best = Hit{hit.t, t.id, hit.b1, hit.b2};
-    }
-    return best;
+  void cornersOf(std::uint32_t i, glm::dvec3& a, glm::dvec3& b, glm::dvec3& c) const {
+    const LeafTriangle t = corners(i);
+    a = t.a, b = t.b, c = t.c;
   }
-
+  std::optional<Hit> closestHitByEveryTriangle(const Ray& ray) const {
+    return rayview::closestHitByEveryTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()),
+                                              [this](std::uint32_t i, auto& a, auto& b, auto& c) { cornersOf(i, a, b, c); });
+  }
   bool occludedByAnyTriangle(const Ray& ray) const {
-    const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
-    for (std::uint32_t i = 0; i < scene_.triangles.size(); ++i) {
-      const LeafTriangle t = corners(i);
-      if (t.id == ray.excludedTriangle) continue;
-      TriangleHit hit;
-      if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit)) return true;
-    }
-    return false;
+    return rayview::occludedByAnyTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()),
+                                          [this](std::uint32_t i, auto& a, auto& b, auto& c) { cornersOf(i, a, b, c); });
   }
 
   struct Free {
     void operator()(Node* p) const { std::free(p); }
   };
   std::unique_ptr<Node[], Free> nodes_;  // nodes_[1] is the root (nodes_[0] unused); null without triangles
-  std::vector<LeafTriangle> leafTriangles_;  // in leaf order
+  std::vector<std::uint32_t> leafTriangles_;  // in leaf order
   const SceneGeometry& scene_;               // outlives the accel (buildAccel's contract)
 };
 
