@@ -2,11 +2,14 @@
 
 #include <charconv>
 
+#include "accel_backends.h"
+
 namespace rayview {
 namespace {
 
 constexpr KnobChoice kTriangularLightModels[] = {{"area", "area"}, {"directional", "directional"}};
 constexpr KnobChoice kAccelKinds[] = {{"embree", "Embree"}, {"reference", "reference BVH"}, {"packet", "packet BVH"}};
+static_assert(kPacketBvhTriangles == 5000, "the accel row's help below names prepareGeometry's limit");
 constexpr KnobChoice kRayStarts[] = {{"offset", "offset off the surface"},
                                      {"exclude-hit", "at the hit, skip its triangle"}};
 
