@@ -122,6 +122,12 @@ class Builder {
     for (int k = 0; k < 3; ++k) n.lower[k] = box.lower[k], n.upper[k] = box.upper[k];
   }
 
+  // The bin of a centroid coordinate: 0 to bins - 1, whatever the float arithmetic gives (a NaN goes to bin 0).
+  static int binOf(float value, float lo, float scale, int bins) {
+    const float f = (value - lo) * scale;
+    return f >= 1.0f ? (f < static_cast<float>(bins) ? static_cast<int>(f) : bins - 1) : 0;
+  }
+
   void split(std::size_t node, std::size_t begin, std::size_t end, int depth) {
     Box box, centroids;
     for (std::size_t i = begin; i < end; ++i) {
@@ -131,35 +137,46 @@ class Builder {
     const std::size_t count = end - begin;
     if (count <= kLeafMax || depth >= kMaxDepth - 2) return makeLeaf(node, begin, end, box);
 
-    // Binned SAH over the three axes.
+    // Binned SAH over the three axes, binned in one pass. An axis whose centroids span nothing a float bin width
+    // can resolve (zero, or so small that bins / extent overflows) is not split along. Small nodes get fewer bins:
+    // the sweep over the bins, not the binning, was most of the build (callgrind: ~2000 instructions a node).
+    const int binCount = static_cast<int>(std::clamp<std::size_t>(2 * count, 4, kBins));
+    float scale[3], lo[3];
+    for (int axis = 0; axis < 3; ++axis) {
+      lo[axis] = centroids.lower[axis];
+      const float extent = centroids.upper[axis] - lo[axis];
+      scale[axis] = extent > 0.0f ? static_cast<float>(binCount) / extent : 0.0f;
+      if (!std::isfinite(scale[axis])) scale[axis] = 0.0f;
+    }
+    Box bins[3][kBins];
+    std::size_t counts[3][kBins] = {};
+    for (std::size_t i = begin; i < end; ++i) {
+      const BuildTriangle& t = triangles_[i];
+      for (int axis = 0; axis < 3; ++axis) {
+        const int b = binOf(t.centroid[axis], lo[axis], scale[axis], binCount);
+        bins[axis][b].grow(t.box);
+        ++counts[axis][b];
+      }
+    }
     float bestCost = INFINITY;
     int bestAxis = -1, bestBin = 0;
     for (int axis = 0; axis < 3; ++axis) {
-      const float lo = centroids.lower[axis], extent = centroids.upper[axis] - lo;
-      if (!(extent > 0.0f)) continue;
-      Box bins[kBins];
-      std::size_t counts[kBins] = {};
-      const float scale = kBins / extent;
-      for (std::size_t i = begin; i < end; ++i) {
-        const int b = std::min(kBins - 1, static_cast<int>((triangles_[i].centroid[axis] - lo) * scale));
-        bins[b].grow(triangles_[i].box);
-        ++counts[b];
-      }
+      if (scale[axis] == 0.0f) continue;
       float rightArea[kBins];
       std::size_t rightCount[kBins];
       Box right;
       std::size_t n = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        right.grow(bins[b]);
-        n += counts[b];
+      for (int b = binCount - 1; b > 0; --b) {
+        right.grow(bins[axis][b]);
+        n += counts[axis][b];
         rightArea[b] = right.halfArea();
         rightCount[b] = n;
       }
       Box left;
       n = 0;
-      for (int b = 0; b < kBins - 1; ++b) {
-        left.grow(bins[b]);
-        n += counts[b];
+      for (int b = 0; b < binCount - 1; ++b) {
+        left.grow(bins[axis][b]);
+        n += counts[axis][b];
         if (n == 0 || rightCount[b + 1] == 0) continue;
         const float cost = left.halfArea() * static_cast<float>(n) + rightArea[b + 1] * static_cast<float>(rightCount[b + 1]);
         if (cost < bestCost) bestCost = cost, bestAxis = axis, bestBin = b;
@@ -168,16 +185,15 @@ class Builder {
     std::size_t middle;
     int axis = bestAxis;
     if (bestAxis >= 0) {
-      const float lo = centroids.lower[axis], scale = kBins / (centroids.upper[axis] - lo);
       middle = static_cast<std::size_t>(
           std::partition(triangles_.begin() + static_cast<std::ptrdiff_t>(begin),
                          triangles_.begin() + static_cast<std::ptrdiff_t>(end),
                          [&](const BuildTriangle& t) {
-                           return std::min(kBins - 1, static_cast<int>((t.centroid[axis] - lo) * scale)) <= bestBin;
+                           return binOf(t.centroid[axis], lo[axis], scale[axis], binCount) <= bestBin;
                          }) -
           triangles_.begin());
     } else {
-      // Every centroid in one point: halves by index.
+      // Every centroid in one point (or as good as): halves by index.
       axis = 0;
       middle = begin + count / 2;
     }
