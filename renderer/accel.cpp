@@ -91,8 +91,8 @@ std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, co
 
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
                                          BuildProgress progress, void* progressUser) {
-#ifdef RAYVIEW_HAVE_EMBREE
   if (kind == AccelKind::Packet) return makePacketBvhAccel(scene, origin);
+#ifdef RAYVIEW_HAVE_EMBREE
   if (kind == AccelKind::Embree)
     return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size()), progress, progressUser);
 #endif

@@ -10,8 +10,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Builds with `kind` as given: the caller has made Embree's range check (buildCheckedAccel). `buildMs` counts
-// from `start`, which includes that check.
+// Builds with `kind` as given, except that Embree asked for a scene of up to kPacketBvhTriangles triangles gets the
+// packet BVH (the same answers, none of Embree's start-up): the caller has made Embree's range check
+// (buildCheckedAccel). `buildMs` counts from `start`, which includes that check.
 std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry, const glm::dvec3& origin,
                                           AccelKind kind, BuildProgress progress, void* progressUser,
                                           Clock::time_point start) {
