@@ -23,6 +23,7 @@ bool chunkLengthsFit(std::string_view bytes) {
     const auto* p = reinterpret_cast<const unsigned char*>(bytes.data() + at);
     const std::size_t length = (std::size_t{p[0]} << 24) | (std::size_t{p[1]} << 16) | (std::size_t{p[2]} << 8) | p[3];
     if (length > bytes.size() - at - 8) return false;
+    if (bytes.substr(at + 4, 4) == "IEND") return true;  // what follows the image is not libpng's to read
     at += 8 + length + 4;  // length, type, data, CRC
   }
   return true;
