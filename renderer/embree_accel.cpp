@@ -381,17 +381,11 @@ class EmbreeAccel final : public Accel {
   // Embree asserts on such a ray: floatTraversable() turns it away, and it is answered here by testing every
   // triangle, in double.
   std::optional<Hit> closestHitWithoutEmbree(const Ray& ray) const {
-    return closestHitByEveryTriangle(ray, data_.size(), [&](std::uint32_t i, glm::dvec3& a, glm::dvec3& b, glm::dvec3& c) {
-      const TriangleData::Corners t = data_.corners(i);
-      a = t.a, b = t.b, c = t.c;
-    });
+    return closestHitByEveryTriangle(ray, data_.size(), [&](std::uint32_t i) { return data_.corners(i); });
   }
 
   bool occludedWithoutEmbree(const Ray& ray) const {
-    return occludedByAnyTriangle(ray, data_.size(), [&](std::uint32_t i, glm::dvec3& a, glm::dvec3& b, glm::dvec3& c) {
-      const TriangleData::Corners t = data_.corners(i);
-      a = t.a, b = t.b, c = t.c;
-    });
+    return occludedByAnyTriangle(ray, data_.size(), [&](std::uint32_t i) { return data_.corners(i); });
   }
 
   // Lanes k < count of a packet, each ray's float copy with its lane as id; a ray Embree cannot take is answered

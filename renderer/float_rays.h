@@ -87,19 +87,18 @@ template <int kLanes>
   return f;
 }
 
-// A ray floatTraversable turns away, answered by testing every triangle in double: `corners(i, a, b, c)` sets
-// triangle i's corners relative to the accel's origin, for i < count.
+// A ray floatTraversable turns away, answered by testing every triangle in double: `corners(i)` gives triangle i's
+// corners relative to the accel's origin (members a, b, c), for i < count.
 template <class Corners>
 std::optional<Hit> closestHitByEveryTriangle(const Ray& ray, std::uint32_t count, Corners&& corners) {
   const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
   std::optional<Hit> best;
   for (std::uint32_t i = 0; i < count; ++i) {
     if (i == ray.excludedTriangle) continue;
-    glm::dvec3 a, b, c;
-    corners(i, a, b, c);
+    const auto t = corners(i);
     TriangleHit hit;
     const double tFar = best ? std::min(ray.tFar, tieSearchLimit(best->t)) : ray.tFar;
-    if (!intersectWatertight(prepared, a, b, c, ray.tNear, tFar, hit)) continue;
+    if (!intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, tFar, hit)) continue;
     if (best && !replacesClosestHit(hit.t, i, best->t, best->triangle)) continue;
     best = Hit{hit.t, i, hit.b1, hit.b2};
   }
@@ -111,10 +110,9 @@ bool occludedByAnyTriangle(const Ray& ray, std::uint32_t count, Corners&& corner
   const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
   for (std::uint32_t i = 0; i < count; ++i) {
     if (i == ray.excludedTriangle) continue;
-    glm::dvec3 a, b, c;
-    corners(i, a, b, c);
+    const auto t = corners(i);
     TriangleHit hit;
-    if (intersectWatertight(prepared, a, b, c, ray.tNear, ray.tFar, hit)) return true;
+    if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit)) return true;
   }
   return false;
 }

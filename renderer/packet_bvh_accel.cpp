@@ -4,12 +4,10 @@
 // and first build, which cost a small scene's process more than its render (docs/PERFORMANCE.md, "2026-11-24,
 // seventh session").
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
-#include <limits>
 #include <memory>
 #include <new>
 #include <optional>
@@ -320,20 +318,12 @@ class PacketBvhAccel final : public Accel {
  private:
   // Lanes k < count: the float-traversable ones set up in `p` (their bits returned), the others answered by
   // `without`. Four rays at a time, as the Embree back-end fills its packets (float_rays.h: the same prepared lanes,
-  // the same float rays); lanes without a ray get an empty interval and pass no box.
+  // the same float rays). Lanes without a ray keep what an earlier query left: the returned bits, which every box
+  // test is masked with, leave them out.
   template <class Without>
   static unsigned fill(Packet& p, const Ray* rays, int count, Without&& without) {
     unsigned lanes = 0;
-    for (int first = 0; first < kRayPacket; first += kWatertightWidth) {
-      if (first >= count) {
-        std::memset(p.tNear + first, 0x7f, kWatertightWidth * sizeof(float));  // 3.4e38: nothing is that far
-        std::memset(p.tFar + first, 0, kWatertightWidth * sizeof(float));
-        for (int axis = 0; axis < 3; ++axis) {
-          std::memset(p.org[axis] + first, 0, kWatertightWidth * sizeof(float));
-          std::memset(p.inv[axis] + first, 0, kWatertightWidth * sizeof(float));
-        }
-        continue;
-      }
+    for (int first = 0; first < count; first += kWatertightWidth) {
       const FloatRays4 f = prepareFourRays(rays, first, count, p.packed);
       auto put = [&](float* to, Float4 v) { std::memcpy(to + first, &v, sizeof v); };
       const Float4 zero{}, tiny = splat4(1e-18f);
@@ -461,17 +451,13 @@ class PacketBvhAccel final : public Accel {
 
   // A ray the float traversal turns away (the viewer's camera moved far from the build origin): every triangle, in
   // double, as the Embree back-end answers it.
-  void cornersOf(std::uint32_t i, glm::dvec3& a, glm::dvec3& b, glm::dvec3& c) const {
-    const LeafTriangle t = corners(i);
-    a = t.a, b = t.b, c = t.c;
-  }
   std::optional<Hit> closestHitByEveryTriangle(const Ray& ray) const {
     return rayview::closestHitByEveryTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()),
-                                              [this](std::uint32_t i, auto& a, auto& b, auto& c) { cornersOf(i, a, b, c); });
+                                              [this](std::uint32_t i) { return corners(i); });
   }
   bool occludedByAnyTriangle(const Ray& ray) const {
     return rayview::occludedByAnyTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()),
-                                          [this](std::uint32_t i, auto& a, auto& b, auto& c) { cornersOf(i, a, b, c); });
+                                          [this](std::uint32_t i) { return corners(i); });
   }
 
   struct Free {
