@@ -220,7 +220,10 @@ struct Packet {
   alignas(32) float tNear[kRayPacket];
   alignas(32) float tFar[kRayPacket];
   WatertightLanes<kRayPacket> packed;
-  const Ray* rays[kRayPacket];
+  const Ray* rays;  // lane k's ray is rays[k]
+  // A block of four lanes' shared axis permutation, or -1 when its usable lanes do not share one: decided once
+  // per packet, not at every leaf.
+  int blockPermutation[kRayPacket / kWatertightWidth];
   TriangleHit hit[kRayPacket];
   std::uint32_t triangle[kRayPacket];
 };
@@ -284,7 +287,7 @@ class PacketBvhAccel final : public Accel {
         if (p.triangle[k] != kNoTriangle && !replacesClosestHit(hit.t, t.id, p.hit[k].t, p.triangle[k])) return;
         p.hit[k] = hit;
         p.triangle[k] = t.id;
-        p.packed.tFar[k] = std::min(p.rays[k]->tFar, tieSearchLimit(hit.t));
+        p.packed.tFar[k] = std::min(p.rays[k].tFar, tieSearchLimit(hit.t));
         p.tFar[k] = nextFloatUp(static_cast<float>(p.packed.tFar[k]));
       });
     for (int k = 0; k < count; ++k) {
@@ -323,6 +326,7 @@ class PacketBvhAccel final : public Accel {
   template <class Without>
   static unsigned fill(Packet& p, const Ray* rays, int count, Without&& without) {
     unsigned lanes = 0;
+    p.rays = rays;
     for (int first = 0; first < count; first += kWatertightWidth) {
       const FloatRays4 f = prepareFourRays(rays, first, count, p.packed);
       auto put = [&](float* to, Float4 v) { std::memcpy(to + first, &v, sizeof v); };
@@ -335,15 +339,21 @@ class PacketBvhAccel final : public Accel {
       }
       put(p.tNear, f.tNear);
       put(p.tFar, f.tFar);
+      unsigned usable = 0, unanswered = 0;
       for (int j = 0; j < kWatertightWidth; ++j) {
-        const int k = first + j;
-        if (f.usable[j]) {
-          lanes |= 1u << k;
-          p.rays[k] = &rays[k];
-        } else if (f.inCount[j]) {
-          without(k);
-        }
+        usable |= f.usable[j] ? 1u << j : 0u;
+        unanswered |= f.inCount[j] && !f.usable[j] ? 1u << j : 0u;
       }
+      lanes |= usable << first;
+      for (; unanswered; unanswered &= unanswered - 1) without(first + __builtin_ctz(unanswered));
+      int shared = -1;
+      if (usable) {
+        const int* permutation = p.packed.permutation + first;
+        shared = permutation[__builtin_ctz(usable)];
+        for (int j = 0; j < kWatertightWidth; ++j)
+          if ((usable >> j) & 1u && permutation[j] != shared) shared = -1;
+      }
+      p.blockPermutation[first / kWatertightWidth] = shared;
     }
     return lanes;
   }
@@ -415,29 +425,25 @@ class PacketBvhAccel final : public Accel {
   // share their axis permutation (as the Embree back-end's callbacks test them), else one at a time.
   template <class OnHit>
   static void testLanes(const Packet& p, const LeafTriangle& t, unsigned lanes, OnHit&& onHit) {
-    for (int first = 0; first < kRayPacket; first += kWatertightWidth) {
+    while (lanes) {
+      const int first = __builtin_ctz(lanes) & ~(kWatertightWidth - 1);
       const unsigned block = (lanes >> first) & 0xFu;
-      if (!block) continue;
-      bool vector = (block & (block - 1)) != 0;
-      int permutation = -1;
-      for (int j = 0; j < kWatertightWidth && vector; ++j) {
-        if (!(block & (1u << j))) continue;
-        if (permutation < 0) permutation = p.packed.permutation[first + j];
-        vector = p.packed.permutation[first + j] == permutation;
-      }
-      if (vector) {
+      lanes &= ~(0xFu << first);
+      const int permutation = p.blockPermutation[first / kWatertightWidth];
+      if (permutation >= 0 && (block & (block - 1)) != 0) {
         TriangleHits4 hits;
-        const unsigned hit = block & intersectWatertight4(p.packed, first, permutation, t.a, t.b, t.c, hits);
-        for (int j = 0; j < kWatertightWidth; ++j)
-          if ((hit & (1u << j)) && t.id != p.rays[first + j]->excludedTriangle) onHit(first + j, hits[j]);
+        for (unsigned hit = block & intersectWatertight4(p.packed, first, permutation, t.a, t.b, t.c, hits); hit;
+             hit &= hit - 1) {
+          const int j = __builtin_ctz(hit);
+          if (t.id != p.rays[first + j].excludedTriangle) onHit(first + j, hits[j]);
+        }
         continue;
       }
-      for (int j = 0; j < kWatertightWidth; ++j) {
-        if (!(block & (1u << j))) continue;
-        const int k = first + j;
-        if (t.id == p.rays[k]->excludedTriangle) continue;
+      for (unsigned rest = block; rest; rest &= rest - 1) {
+        const int k = first + __builtin_ctz(rest);
+        if (t.id == p.rays[k].excludedTriangle) continue;
         TriangleHit hit;
-        if (intersectWatertight(p.packed.ray(k), t.a, t.b, t.c, p.rays[k]->tNear, p.packed.tFar[k], hit)) onHit(k, hit);
+        if (intersectWatertight(p.packed.ray(k), t.a, t.b, t.c, p.rays[k].tNear, p.packed.tFar[k], hit)) onHit(k, hit);
       }
     }
   }
