@@ -119,7 +119,7 @@ struct ViewerStats {
   std::size_t triangles = 0;
   double readMs = 0.0;
   double bvhBuildMs = 0.0;
-  AccelKind accel = AccelKind::Embree;
+  AccelKind accel = AccelKind::Embree;  // the back-end built for the scene (the packet BVH for a small one)
   int threads = 0;
 };
 

@@ -65,7 +65,7 @@ bool ViewerApp::pollLoader() {
     if (session_) {
       session_->replaceGeometry(outcome->parts.geometry, outcome->parts.accel);
       stats_.bvhBuildMs = outcome->buildMs;
-      stats_.accel = outcome->parts.accel;
+      stats_.accel = session_->geometry().accel->kind();
       restartRender(session_->currentSource());
     }
     return true;
@@ -116,7 +116,7 @@ void ViewerApp::adoptScene(LoadOutcome& outcome) {
   stats_.triangles = session_->loaded().triangles.size();
   stats_.readMs = outcome.readMs;
   stats_.bvhBuildMs = outcome.buildMs;
-  stats_.accel = session_->settings().accel;
+  stats_.accel = session_->geometry().accel->kind();
 
   // The same file again (a reload) keeps its watch: the stamp it took when it saw the change predates this
   // read, so a change made while the file was being read still triggers another reload.
@@ -277,6 +277,7 @@ std::string ViewerApp::stateLine() const {
   line += timings;
   line += " exposure=" + formatNumber(display_.mapping.exposureStops) +
           " gamma=" + formatNumber(display_.mapping.gamma);
+  if (session_) line += " traversal=" + std::string(toString(stats_.accel));
   line += " error=" + std::string(loadError_.empty() ? "0" : "1");
   line += " scene=" + describe(scenePath_);
   return line;

@@ -143,6 +143,9 @@ set light-samples 128
 set tri-light directional
 open {other}
 print-state
+set accel reference
+wait-final
+print-state
 quit
 """)
     viewer = run_script(args.rayview, [scene, "--threads", "2", "--script", script], work)
@@ -151,8 +154,13 @@ quit
     if not state or "error=1" not in state[0] or not state[0].endswith("scene=" + scene):
         raise Failure("print-state should show the error and the first scene still open\n" + viewer.output())
     # Another scene: the light samples go back to the command line's (here the default, 1); the model stays.
-    if len(state) != 2 or "light_samples=1 " not in state[1] or "tri_light=directional" not in state[1]:
+    if len(state) != 3 or "light_samples=1 " not in state[1] or "tri_light=directional" not in state[1]:
         raise Failure("after opening another scene the light samples should be 1 again\n" + viewer.output())
+    # The traversal shown is the back-end built, not the setting: Embree is asked for, and a scene this small
+    # gets rayview's packet BVH; asking for the reference BVH rebuilds with it.
+    if " traversal=packet " not in state[1] or " traversal=reference " not in state[2]:
+        raise Failure("print-state should show the packet BVH built for the small scene, then the reference BVH\n" +
+                      viewer.output())
     if not any("broken.xml:" in line and "error" in line for line in viewer.stderr):
         raise Failure("the located load error should also be on stderr\n" + viewer.output())
     expect_same(f"{work}/before.png", render_headless(args.rayview, scene, f"{work}/before_reference.png"), 0)
