@@ -1,5 +1,5 @@
 // Fuzz target "scene": the scene loader (tolerant or strict) on any text, then a tiny render of what it
-// accepted with each traversal back-end. Nothing may crash, hang or touch memory it does not own, and the
+// accepted with each traversal back-end (on a small scene, the packet BVH and Embree must agree bit for bit). Nothing may crash, hang or touch memory it does not own, and the
 // loader's two readings (the big blocks as a stream, or all through tinyxml2's DOM) must agree exactly.
 //
 // Input: byte 0 chooses the options, the rest is the XML text.
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fuzz_input.h"
+#include "rayview/accel.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/scene_loader.h"
 #include "rayview/tracer.h"
@@ -102,14 +103,35 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   settings.triangularLightModel = (flags & 8) ? TriangularLightModel::Directional : TriangularLightModel::Area;
   settings.secondaryRayStart = (flags & 16) ? SecondaryRayStart::ExcludeHitTriangle : SecondaryRayStart::Offset;
 
+  // The pixels each back-end gives: Embree asked for (the packet BVH on a small scene), the reference BVH, and
+  // Embree itself when the scene is in its range, which must give the packet BVH's pixels bit for bit.
+  auto render = [&](const Accel& accel, const ShadingGeometry& shading) {
+    const Tracer tracer(scene, accel, shading, settings);
+    RayCounts counts;
+    std::vector<glm::vec3> pixels;
+    for (int j = 0; j < scene.camera.height; ++j)
+      for (int i = 0; i < scene.camera.width; ++i) {
+        pixels.push_back(tracer.tracePixel(i, j, counts));
+        (void)quantizeChannel(pixels.back().x);
+      }
+    return pixels;
+  };
+  std::vector<glm::vec3> packetPixels;
   for (const AccelKind kind : {AccelKind::Embree, AccelKind::Reference}) {
     settings.accel = availableAccel(kind);
     const auto geometry = prepareGeometry(scene, settings.accel);
     if (!geometry) fuzz::fail("prepareGeometry returned nothing without being cancelled");
-    const Tracer tracer(scene, *geometry, settings);
-    RayCounts counts;
-    for (int j = 0; j < scene.camera.height; ++j)
-      for (int i = 0; i < scene.camera.width; ++i) (void)quantizeChannel(tracer.tracePixel(i, j, counts).x);
+    std::vector<glm::vec3> pixels = render(*geometry->accel, geometry->shading);
+    if (geometry->accel->kind() == AccelKind::Packet) packetPixels = std::move(pixels);
+  }
+  const glm::dvec3 origin = scene.camera.position;
+  if (!packetPixels.empty() && availableAccel(AccelKind::Embree) == AccelKind::Embree &&
+      embreeRangeProblem(scene, scene.geometry(), origin).empty()) {
+    settings.accel = AccelKind::Embree;
+    const std::unique_ptr<Accel> embree = buildAccel(scene.geometry(), AccelKind::Embree, origin);
+    if (!embree || embree->kind() != AccelKind::Embree) fuzz::fail("Embree was not built for a scene in its range");
+    if (!sameBits(render(*embree, prepareShadingGeometry(scene.geometry(), origin)), packetPixels))
+      fuzz::fail("the packet BVH and Embree give different pixels");
   }
   return 0;
 }
