@@ -3,8 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <mutex>
+#include <string>
 
 #include "accel_backends.h"
+#ifdef RAYVIEW_HAVE_EMBREE
+#include "embree_library.h"
+#endif
 
 namespace rayview {
 
@@ -93,8 +98,18 @@ std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind k
                                          BuildProgress progress, void* progressUser) {
   if (kind == AccelKind::Packet) return makePacketBvhAccel(scene, origin);
 #ifdef RAYVIEW_HAVE_EMBREE
-  if (kind == AccelKind::Embree)
-    return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size()), progress, progressUser);
+  if (kind == AccelKind::Embree) {
+    std::string why;
+    if (embreeLibrary(&why))
+      return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size()), progress, progressUser);
+    // Built with Embree, run where it cannot be loaded: the packet BVH gives the same answers, more slowly on
+    // big scenes. Said once a process.
+    static std::once_flag once;
+    std::call_once(once, [&] {
+      std::fprintf(stderr, "rayview: cannot load Embree (%s): using rayview's packet BVH instead\n", why.c_str());
+    });
+    return makePacketBvhAccel(scene, origin);
+  }
 #endif
   (void)kind;
   return makeReferenceAccel(scene, origin, progress, progressUser);

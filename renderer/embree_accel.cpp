@@ -1,4 +1,5 @@
-// Embree 3 back-end: one triangle geometry holding every scene triangle, in float, relative to origin().
+// Embree 3 back-end: one triangle geometry holding every scene triangle, in float, relative to origin(). Embree's
+// functions come from the library loaded when first needed (embree_library.h).
 #include <embree3/rtcore.h>
 
 #include <cstdio>
@@ -17,6 +18,7 @@
 #include <glm/common.hpp>
 
 #include "accel_backends.h"
+#include "embree_library.h"
 #include "float_rays.h"
 #include "float_steps.h"
 #include "watertight_lanes.h"
@@ -25,15 +27,18 @@
 namespace rayview {
 namespace {
 
+// Loaded before any back-end is made (buildCheckedAccel, makeEmbreeAccelForIsa check it).
+const EmbreeLibrary& embree() { return *embreeLibrary(); }
+
 void reportDeviceError(void*, RTCError code, const char* message) {
   if (code == RTC_ERROR_CANCELLED) return;  // a build we cancelled on purpose
   std::fprintf(stderr, "rayview: Embree error %d: %s\n", static_cast<int>(code), message ? message : "");
 }
 
 RTCDevice newDevice(const char* config) {
-  RTCDevice d = rtcNewDevice(config);
+  RTCDevice d = embree().NewDevice(config);
   if (!d) throw std::runtime_error("Embree: cannot create a device");
-  rtcSetDeviceErrorFunction(d, reportDeviceError, nullptr);
+  embree().SetDeviceErrorFunction(d, reportDeviceError, nullptr);
   return d;
 }
 
@@ -254,39 +259,39 @@ class EmbreeAccel final : public Accel {
  public:
   EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, RTCDevice device, EmbreeLayout layout,
               BuildProgress progress, void* progressUser)
-      : Accel(origin) {
-    scene_ = rtcNewScene(device);
+      : Accel(origin), rtc_(embree()) {
+    scene_ = rtc_.NewScene(device);
     // ROBUST: watertight triangle tests (SPEC section 6). MEDIUM build quality: the viewer must show
     // a freshly loaded 1M-triangle scene quickly; HIGH builds take several times longer for ~10 % faster rays.
     // The compact layout (embreeLayoutFor) adds COMPACT: a smaller BVH for ~3 % slower rays.
-    rtcSetSceneFlags(scene_, layout == EmbreeLayout::Compact ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
-                                                             : RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    rtc_.SetSceneFlags(scene_, layout == EmbreeLayout::Compact ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
+                                                               : RTC_SCENE_FLAG_ROBUST);
+    rtc_.SetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
     ProgressRelay relay{progress, progressUser};
-    if (progress) rtcSetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
+    if (progress) rtc_.SetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
 
     data_ = {&scene.vertices, &scene.triangles, origin};
     if (!scene.triangles.empty()) {
-      RTCGeometry geometry = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
-      rtcSetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(scene.triangles.size()));
-      rtcSetGeometryUserData(geometry, &data_);
-      rtcSetGeometryBoundsFunction(geometry, triangleBounds, nullptr);
-      rtcSetGeometryIntersectFunction(geometry, intersectTriangle);
-      rtcSetGeometryOccludedFunction(geometry, occludeTriangle);
-      rtcCommitGeometry(geometry);
-      rtcAttachGeometry(scene_, geometry);
-      rtcReleaseGeometry(geometry);
+      RTCGeometry geometry = rtc_.NewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+      rtc_.SetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(scene.triangles.size()));
+      rtc_.SetGeometryUserData(geometry, &data_);
+      rtc_.SetGeometryBoundsFunction(geometry, triangleBounds, nullptr);
+      rtc_.SetGeometryIntersectFunction(geometry, intersectTriangle);
+      rtc_.SetGeometryOccludedFunction(geometry, occludeTriangle);
+      rtc_.CommitGeometry(geometry);
+      rtc_.AttachGeometry(scene_, geometry);
+      rtc_.ReleaseGeometry(geometry);
     }
-    rtcCommitScene(scene_);
-    if (progress) rtcSetSceneProgressMonitorFunction(scene_, nullptr, nullptr);
-    if (rtcGetDeviceError(device) != RTC_ERROR_NONE) {
-      rtcReleaseScene(scene_);
+    rtc_.CommitScene(scene_);
+    if (progress) rtc_.SetSceneProgressMonitorFunction(scene_, nullptr, nullptr);
+    if (rtc_.GetDeviceError(device) != RTC_ERROR_NONE) {
+      rtc_.ReleaseScene(scene_);
       scene_ = nullptr;
     }
   }
 
   ~EmbreeAccel() override {
-    if (scene_) rtcReleaseScene(scene_);
+    if (scene_) rtc_.ReleaseScene(scene_);
   }
 
   bool valid() const { return scene_ != nullptr; }
@@ -302,7 +307,7 @@ class EmbreeAccel final : public Accel {
     fill(rayHit.ray, ray);
     rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rayHit.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_, &query.context, &rayHit);
+    rtc_.Intersect1(scene_, &query.context, &rayHit);
     return hitOf(lane);
   }
 
@@ -321,7 +326,7 @@ class EmbreeAccel final : public Accel {
     QueryContext query{{}, lanes, scratch.packed.tFar, &scratch.packed};
     rtcInitIntersectContext(&query.context);
     query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcIntersect16(valid, scene_, &query.context, &packet);
+    rtc_.Intersect16(valid, scene_, &query.context, &packet);
     // Each hit constructed in place: assigned from a returned optional, it went through the stack and its wide
     // loads of narrow stores missed store forwarding.
     for (int k = 0; k < count; ++k) {
@@ -350,7 +355,7 @@ class EmbreeAccel final : public Accel {
     QueryContext query{{}, lanes, scratch.packed.tFar, &scratch.packed};
     rtcInitIntersectContext(&query.context);
     query.context.flags = RTC_INTERSECT_CONTEXT_FLAG_COHERENT;
-    rtcOccluded16(valid, scene_, &query.context, &packet);
+    rtc_.Occluded16(valid, scene_, &query.context, &packet);
     for (int k = 0; k < count; ++k)
       if (valid[k]) answers[k] = packet.tfar[k] < 0.0f;  // Embree sets tfar to -inf on a hit
   }
@@ -364,7 +369,7 @@ class EmbreeAccel final : public Accel {
     rtcInitIntersectContext(&query.context);
     RTCRay r;
     fill(r, ray);
-    rtcOccluded1(scene_, &query.context, &r);
+    rtc_.Occluded1(scene_, &query.context, &r);
     return r.tfar < 0.0f;  // Embree sets tfar to -inf on a hit
   }
 
@@ -451,6 +456,7 @@ class EmbreeAccel final : public Accel {
     out.flags = 0;
   }
 
+  const EmbreeLibrary& rtc_;  // the loaded library's functions, read on every query
   RTCScene scene_ = nullptr;
   TriangleData data_;
 };
@@ -469,6 +475,8 @@ std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dv
 }
 
 std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin, const std::string& isa) {
+  std::string why;
+  if (!embreeLibrary(&why)) throw std::runtime_error("Embree: " + why);
   auto accel = std::make_unique<EmbreeAccel>(scene, origin, isaDevice(isa), EmbreeLayout::Fast, nullptr, nullptr);
   if (!accel->valid()) return nullptr;
   return accel;
