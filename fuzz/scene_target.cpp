@@ -1,6 +1,7 @@
 // Fuzz target "scene": the scene loader (tolerant or strict) on any text, then a tiny render of what it
-// accepted with each traversal back-end (on a small scene, the packet BVH and Embree must agree bit for bit). Nothing may crash, hang or touch memory it does not own, and the
-// loader's two readings (the big blocks as a stream, or all through tinyxml2's DOM) must agree exactly.
+// accepted with each traversal back-end. Nothing may crash, hang or touch memory it does not own; the loader's
+// two readings (the big blocks as a stream, or all through tinyxml2's DOM) must agree exactly, and so must the
+// pixels of the packet BVH and of Embree on a small scene.
 //
 // Input: byte 0 chooses the options, the rest is the XML text.
 //   bit 0: strict mode; bits 1-2: light samples - 1 (1..4); bit 3: directional triangular lights;
