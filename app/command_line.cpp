@@ -323,8 +323,10 @@ std::string helpText(CommandKind kind) {
 
 std::string versionText() {
   std::string text = std::string("rayview ") + RAYVIEW_VERSION;
-#ifdef RAYVIEW_HAVE_EMBREE
-  text += " (Embree 3 traversal and the reference BVH)";
+#if defined(RAYVIEW_HAVE_EMBREE) && defined(RAYVIEW_EMBREE_LINKED)
+  text += " (Embree 3 traversal, linked; rayview's packet BVH; the reference BVH)";
+#elif defined(RAYVIEW_HAVE_EMBREE)
+  text += " (Embree 3 traversal, loaded when a scene needs it; rayview's packet BVH; the reference BVH)";
 #else
   text += " (reference BVH only: built without Embree)";
 #endif

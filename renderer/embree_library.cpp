@@ -7,6 +7,12 @@
 namespace rayview {
 namespace {
 
+#ifdef RAYVIEW_EMBREE_LINKED
+// Sanitizer builds link Embree (renderer/CMakeLists.txt): one reference keeps the linker from dropping it, and the
+// dlopen below then returns the library already loaded.
+[[maybe_unused]] const volatile auto kLinkedEmbree = &::rtcNewDevice;
+#endif
+
 struct Loaded {
   EmbreeLibrary functions{};
   bool ok = false;
