@@ -112,35 +112,19 @@ struct TriangleData {
   const std::vector<Triangle>* triangles = nullptr;
   glm::dvec3 origin{0.0};
 
-  struct Corners {
-    glm::dvec3 a, b, c;
-  };
-  Corners corners(std::uint32_t triangle) const {
-    const auto& v = (*triangles)[triangle].vertex;
-    return {(*vertices)[v[0]] - origin, (*vertices)[v[1]] - origin, (*vertices)[v[2]] - origin};
-  }
+  TriangleCorners corners(std::uint32_t triangle) const { return cornersOf(*vertices, (*triangles)[triangle], origin); }
   std::uint32_t size() const { return triangles ? static_cast<std::uint32_t>(triangles->size()) : 0; }
 };
 
 void triangleBounds(const RTCBoundsFunctionArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
-  const TriangleData::Corners t = data.corners(args->primID);
-  glm::vec3 lower(INFINITY), upper(-INFINITY);
-  for (const glm::dvec3* corner : {&t.a, &t.b, &t.c}) {
-    lower = glm::min(lower, glm::vec3(*corner));
-    upper = glm::max(upper, glm::vec3(*corner));
-  }
-  // Embree's traversal of user geometry is not conservative at box corners; a margin keeps every ray
-  // through a vertex.
-  const float margin = 0x1p-20f * std::max({std::fabs(lower.x), std::fabs(lower.y), std::fabs(lower.z),
-                                           std::fabs(upper.x), std::fabs(upper.y), std::fabs(upper.z)});
-  lower -= margin;
-  upper += margin;
-  *args->bounds_o = RTCBounds{lower.x, lower.y, lower.z, 0.0f, upper.x, upper.y, upper.z, 0.0f};
+  const FloatBox box = floatBoxOf(data.corners(args->primID));
+  *args->bounds_o =
+      RTCBounds{box.lower.x, box.lower.y, box.lower.z, 0.0f, box.upper.x, box.upper.y, box.upper.z, 0.0f};
 }
 
 // Query lane `id` against the triangle, by the scalar test.
-bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryContext& query, unsigned id,
+bool testTriangle(const TriangleCorners& t, unsigned primID, const QueryContext& query, unsigned id,
                   TriangleHit& hit) {
   const QueryLane& lane = query.lanes[id];
   if (primID == lane.ray->excludedTriangle) return false;
@@ -155,7 +139,7 @@ bool testTriangle(const TriangleData::Corners& t, unsigned primID, const QueryCo
 // AVX-512 machine, in halves or quarters on others: all line up), two or more of them valid and sharing their
 // axis permutation, go through the four-wide test; every other lane through the scalar one.
 template <class OnHit>
-void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN* rays, const TriangleData::Corners& t,
+void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN* rays, const TriangleCorners& t,
                unsigned primID, OnHit&& onHit) {
   const WatertightLanes<kRayPacket>* packed = query.packed;
   const QueryLane* lanes = query.lanes;
@@ -202,7 +186,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   QueryLane* lanes = query.lanes;
   RTCRayN* rays = RTCRayHitN_RayN(args->rayhit, args->N);
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
-  const TriangleData::Corners corners = data.corners(args->primID);  // once for every lane
+  const TriangleCorners corners = data.corners(args->primID);  // once for every lane
   // Lane i of Embree's arguments (lane `id` of the query) hits at `hit`: the closest so far?
   testLanes(query, args->valid, args->N, rays, corners, args->primID,
             [&](unsigned i, unsigned id, const TriangleHit& hit) {

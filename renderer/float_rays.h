@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <vector>
+
+#include <glm/common.hpp>
 
 #include "float_steps.h"
 #include "rayview/accel.h"
@@ -15,6 +18,37 @@
 #include "watertight_triangle.h"
 
 namespace rayview {
+
+// A triangle's corners relative to the accel's origin, in double: what both fast back-ends test and bound.
+struct TriangleCorners {
+  glm::dvec3 a, b, c;
+};
+
+inline TriangleCorners cornersOf(const std::vector<glm::dvec3>& vertices, const Triangle& triangle,
+                                 const glm::dvec3& origin) {
+  const auto& v = triangle.vertex;
+  return {vertices[v[0]] - origin, vertices[v[1]] - origin, vertices[v[2]] - origin};
+}
+
+// The float box both fast back-ends bound a triangle with, so that they meet the same triangles: the corners
+// rounded to float, widened by 2^-20 of the largest coordinate (the rounding may cut a vertex off, and Embree's
+// traversal of user geometry is not conservative at box corners).
+struct FloatBox {
+  glm::vec3 lower, upper;
+};
+
+inline FloatBox floatBoxOf(const TriangleCorners& t) {
+  FloatBox box{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
+  for (const glm::dvec3* corner : {&t.a, &t.b, &t.c}) {
+    box.lower = glm::min(box.lower, glm::vec3(*corner));
+    box.upper = glm::max(box.upper, glm::vec3(*corner));
+  }
+  const float margin = 0x1p-20f * std::max({std::fabs(box.lower.x), std::fabs(box.lower.y), std::fabs(box.lower.z),
+                                           std::fabs(box.upper.x), std::fabs(box.upper.y), std::fabs(box.upper.z)});
+  box.lower -= margin;
+  box.upper += margin;
+  return box;
+}
 
 // Whether a ray goes to the float traversal: within kEmbreeCoordinateLimit, an interval starting at or after 0 and
 // ending somewhere. The others are answered by testing every triangle in double.

@@ -81,18 +81,6 @@ constexpr int kMaxDepth = 64;
 constexpr int kLeafMax = 1;
 constexpr int kBins = 16;
 
-// A float box around the triangle, as the Embree back-end's bounds callback makes it (a relative margin, since
-// the float rounding of the corners may cut a vertex off).
-Box triangleBox(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
-  Box box;
-  for (const glm::dvec3* corner : {&a, &b, &c}) box.grow(glm::vec3(*corner));
-  const float margin = 0x1p-20f * std::max({std::fabs(box.lower.x), std::fabs(box.lower.y), std::fabs(box.lower.z),
-                                           std::fabs(box.upper.x), std::fabs(box.upper.y), std::fabs(box.upper.z)});
-  box.lower -= margin;
-  box.upper += margin;
-  return box;
-}
-
 struct BuildTriangle {
   Box box;
   glm::vec3 centroid;
@@ -239,9 +227,10 @@ class PacketBvhAccel final : public Accel {
     std::vector<BuildTriangle> build;
     build.reserve(scene.triangles.size());
     for (std::uint32_t i = 0; i < scene.triangles.size(); ++i) {
-      const auto& v = scene.triangles[i].vertex;
-      const Box box = triangleBox(scene.vertices[v[0]] - origin, scene.vertices[v[1]] - origin,
-                                  scene.vertices[v[2]] - origin);
+      // The Embree back-end's box for the triangle (float_rays.h).
+      const FloatBox floatBox = floatBoxOf(cornersOf(scene.vertices, scene.triangles[i], origin));
+      Box box;
+      box.lower = floatBox.lower, box.upper = floatBox.upper;
       // Embree skips a primitive whose box is not finite: so does this.
       bool finite = true;
       for (int k = 0; k < 3; ++k) finite &= std::isfinite(box.lower[k]) && std::isfinite(box.upper[k]);
@@ -448,11 +437,10 @@ class PacketBvhAccel final : public Accel {
     }
   }
 
-  // A triangle's corners relative to the origin, as the Embree back-end computes them.
+  // A triangle's corners relative to the origin, as the Embree back-end takes them (float_rays.h).
   LeafTriangle corners(std::uint32_t i) const {
-    const auto& v = scene_.triangles[i].vertex;
-    const glm::dvec3& o = origin();
-    return {scene_.vertices[v[0]] - o, scene_.vertices[v[1]] - o, scene_.vertices[v[2]] - o, i};
+    const TriangleCorners t = cornersOf(scene_.vertices, scene_.triangles[i], origin());
+    return {t.a, t.b, t.c, i};
   }
 
   // A ray the float traversal turns away (the viewer's camera moved far from the build origin): every triangle, in
