@@ -21,6 +21,12 @@ double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
+std::string fixed1(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", value);
+  return text;
+}
+
 // SIGINT / SIGTERM during a render: remove the image's temporary file if it is being written, exit
 // 130 / 143 as a shell would report the signal. The existing output is never touched before the rename.
 extern "C" void onInterrupt(int signal) {
@@ -74,22 +80,45 @@ int runRenderCommand(const CommandLine& command) {
   Scene& scene = loaded.scene;
   RenderSettings settings;
   applyKnobs(command.knobs, {&scene.parameters(), &settings});
-  // Shared, not copied: the geometry is the largest thing a big scene holds.
-  const auto shared = std::make_shared<const Scene>(std::move(scene));
-  const Scene& view = *shared;
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, settings.accel);
-  if (!geometry->accelFallback.empty()) {
-    std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName(command).c_str(),
-                 geometry->accelFallback.c_str());
-    settings.accel = AccelKind::Reference;
-  }
-  ThreadPool pool(command.threads);
-  const Tracer tracer(view.parameters(), *geometry, settings);
   Image image;
   FrameStats stats;
-  // Start-up as issue 8 defines it: process start to the first ray, less load and build.
-  const double startupMs = msSinceProcessStart() - loadMs - geometry->buildMs;
-  renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
+  std::string sceneLine, settingsLine, timeLine;
+  double startupMs = 0.0;
+  // The scene, its BVH and the render threads live only in this block: they are released before the image is
+  // written, so the write's own memory (stb_image_write's filtered copy of the image, the PNG) comes in their place
+  // instead of on top of them (docs/PERFORMANCE.md, issue 8 item 4).
+  {
+    // Shared, not copied: the geometry is the largest thing a big scene holds.
+    const auto shared = std::make_shared<const Scene>(std::move(scene));
+    const Scene& view = *shared;
+    std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, settings.accel);
+    if (!geometry->accelFallback.empty()) {
+      std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName(command).c_str(),
+                   geometry->accelFallback.c_str());
+      settings.accel = AccelKind::Reference;
+    }
+      ThreadPool pool(command.threads);
+    const Tracer tracer(view.parameters(), *geometry, settings);
+    // Start-up as issue 8 defines it: process start to the first ray, less load and build.
+    startupMs = msSinceProcessStart() - loadMs - geometry->buildMs;
+    renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
+
+    std::string lights;
+    view.lights.forEachType([&](const auto& list) {
+      lights += ", " + counted(list.size(), std::string(LightOf<decltype(list)>::kType.noun));
+    });
+    sceneLine = std::string(command.scenePath.empty() ? "default (embedded)" : command.scenePath) + ": " +
+                counted(view.triangles.size(), "triangle") + lights + ", " + std::to_string(view.camera.width) + "x" +
+                std::to_string(view.camera.height);
+    const RenderSettings& s = settings;
+    settingsLine = "depth " + std::to_string(tracer.maxDepth()) + ", triangular lights " +
+                   std::string(toString(s.triangularLightModel)) + " (" +
+                   counted(static_cast<std::size_t>(s.lightSamples), "sample") + "), accel " +
+                   std::string(toString(geometry->accel->kind())) + ", " +
+                   counted(static_cast<std::size_t>(pool.size()), "thread");
+    timeLine = "load " + fixed1(loadMs) + " ms, BVH build " + fixed1(geometry->buildMs) + " ms, render " +
+               fixed1(stats.renderMs) + " ms";
+  }
 
   const auto writeStart = std::chrono::steady_clock::now();
   try {
@@ -101,20 +130,9 @@ int runRenderCommand(const CommandLine& command) {
   const double writeMs = msSince(writeStart);
 
   if (!command.quiet) {
-    const RenderSettings& s = settings;
-    std::string lights;
-    view.lights.forEachType([&](const auto& list) {
-      lights += ", " + counted(list.size(), std::string(LightOf<decltype(list)>::kType.noun));
-    });
-    std::printf("scene      %s: %s%s, %dx%d\n", command.scenePath.empty() ? "default (embedded)" : command.scenePath.c_str(),
-                counted(view.triangles.size(), "triangle").c_str(), lights.c_str(), view.camera.width,
-                view.camera.height);
-    std::printf("settings   depth %d, triangular lights %s (%s), accel %s, %s\n", tracer.maxDepth(),
-                std::string(toString(s.triangularLightModel)).c_str(), counted(static_cast<std::size_t>(s.lightSamples), "sample").c_str(),
-                std::string(toString(geometry->accel->kind())).c_str(),
-                counted(static_cast<std::size_t>(pool.size()), "thread").c_str());
-    std::printf("time       load %.1f ms, BVH build %.1f ms, render %.1f ms, write %.1f ms\n", loadMs, geometry->buildMs,
-                stats.renderMs, writeMs);
+    std::printf("scene      %s\n", sceneLine.c_str());
+    std::printf("settings   %s\n", settingsLine.c_str());
+    std::printf("time       %s, write %.1f ms\n", timeLine.c_str(), writeMs);
     std::printf("start-up   %.1f ms: %s to the first ray, less load and BVH build\n", startupMs,
                 processStartIsLaunch() ? "process start" : "main()");
     std::printf("rays       camera %llu, shadow %llu, reflection %llu, total %llu, %.2f Mrays/s\n",
