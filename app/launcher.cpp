@@ -8,7 +8,9 @@
 // thousands of pages (the scene file's text, the arrays, Embree's BVH, the image, the PNG's rows). With these
 // settings every malloc arena is advised onto huge pages (hugetlb=1), grows 16 MiB at a time (top_pad), and
 // keeps what is freed for reuse instead of giving it back (trim_threshold, mmap_threshold): killeroo_2020's
-// whole process ~195 -> ~133 ms (bench/stage_times.py).
+// whole process ~195 -> ~133 ms (bench/stage_times.py). All threads share the one arena (arena_max=1): on huge pages
+// every thread's own arena held 2-6 MB for the few allocations a render or deflate thread makes (at 1e5 triangles
+// four of them, 14 MB), and no render was slower for it (docs/PERFORMANCE.md, "2026-11-25, ninth session").
 //
 // The launcher is a static executable with no libraries to load: it adds about a millisecond.
 #include <cerrno>
@@ -23,7 +25,7 @@ namespace {
 
 constexpr char kTunables[] =
     "glibc.malloc.hugetlb=1:glibc.malloc.top_pad=16777216:glibc.malloc.mmap_threshold=33554432:"
-    "glibc.malloc.trim_threshold=268435456";
+    "glibc.malloc.trim_threshold=268435456:glibc.malloc.arena_max=1";
 
 }  // namespace
 
