@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
+#include <string>
 
 #include "rayview/plot.h"
 #include "rayview/tradeoff.h"
@@ -30,9 +31,16 @@ std::vector<std::string> uniqueNames(const std::vector<std::string>& paths) {
 }
 
 void printTable(const TradeoffReport& report) {
-  std::printf("%s: %dx%d, %d threads, measured in %.1f s (BVH build: embree %.1f ms, reference %.1f ms)\n",
-              report.sceneName.c_str(), report.width, report.height, report.threads, report.totalMs / 1000.0,
-              report.embreeBuildMs, report.referenceBuildMs);
+  std::string builds;
+  for (int kind = 0; kind < kAccelKindCount; ++kind) {
+    if (report.buildMs[kind] <= 0.0) continue;
+    char text[64];
+    std::snprintf(text, sizeof text, "%s%s %.1f ms", builds.empty() ? "" : ", ",
+                  std::string(toString(static_cast<AccelKind>(kind))).c_str(), report.buildMs[kind]);
+    builds += text;
+  }
+  std::printf("%s: %dx%d, %d threads, measured in %.1f s (BVH build: %s)\n", report.sceneName.c_str(), report.width,
+              report.height, report.threads, report.totalMs / 1000.0, builds.c_str());
   std::printf("  best image: %s\n  baseline: %s\n", report.bestText.c_str(), report.baselineText.c_str());
   for (const std::string& note : report.notes) std::printf("  note: %s\n", note.c_str());
   const double bestMs = report.points.empty() ? 0.0 : report.points.front().timeMs;

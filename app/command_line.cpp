@@ -328,7 +328,7 @@ std::string versionText() {
 #elif defined(RAYVIEW_HAVE_EMBREE)
   text += " (Embree 3 traversal, loaded when a scene needs it; rayview's packet BVH; the reference BVH)";
 #else
-  text += " (reference BVH only: built without Embree)";
+  text += " (built without Embree: rayview's packet BVH in its place; the reference BVH)";
 #endif
   // The launcher's malloc settings (app/launcher.cpp) change speed, not images: say whether they are in force.
   const char* tunables = std::getenv("GLIBC_TUNABLES");

@@ -110,8 +110,10 @@ std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind k
     });
     return makePacketBvhAccel(scene, origin);
   }
+#else
+  // Built without Embree: the packet BVH in its place (availableAccel).
+  if (kind == AccelKind::Embree) return makePacketBvhAccel(scene, origin);
 #endif
-  (void)kind;
   return makeReferenceAccel(scene, origin, progress, progressUser);
 }
 

@@ -13,12 +13,6 @@ static_assert(kPacketBvhTriangles == 5000, "the accel row's help below names pre
 constexpr KnobChoice kRayStarts[] = {{"offset", "offset off the surface"},
                                      {"exclude-hit", "at the hit, skip its triangle"}};
 
-#ifdef RAYVIEW_HAVE_EMBREE
-constexpr std::string_view kAccelLocked = "";
-#else
-constexpr std::string_view kAccelLocked = "built without Embree";
-#endif
-
 bool always(const SceneParameters&, const RenderSettings&) { return true; }
 
 const Knob kKnobs[] = {
@@ -59,7 +53,6 @@ const Knob kKnobs[] = {
      .home = KnobHome::Settings,
      .choices = kAccelKinds,
      .measuredByTradeoff = true,
-     .lockedReason = kAccelLocked,
      .get = [](const SceneParameters&, const RenderSettings& s) { return static_cast<int>(s.accel); },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.accel = availableAccel(static_cast<AccelKind>(v)); },
      .matters = always},

@@ -33,7 +33,8 @@ AccelKind availableAccel(AccelKind requested) {
 #ifdef RAYVIEW_HAVE_EMBREE
   return requested;
 #else
-  return requested == AccelKind::Packet ? requested : AccelKind::Reference;
+  // Without Embree its place as the fast traversal is the packet BVH's, which gives Embree's answers.
+  return requested == AccelKind::Embree ? AccelKind::Packet : requested;
 #endif
 }
 

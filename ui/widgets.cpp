@@ -63,13 +63,6 @@ void hintText(const char* text) {
 bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& settings) {
   const std::string label(knob.label);
   const int value = knob.get(parameters, settings);
-  if (!knob.lockedReason.empty()) {
-    const std::string text = label + ": " +
-                             (knob.isChoice() ? std::string(knob.choices[value].label) : std::to_string(value)) + " (" +
-                             std::string(knob.lockedReason) + ")";
-    ImGui::TextUnformatted(text.c_str());
-    return false;
-  }
   ImGui::BeginDisabled(!knob.matters(parameters, settings));
   int edited = value;
   bool changed = false;

@@ -13,7 +13,7 @@
 //   depth         0 .. the scene's maximum (every value up to kMaxDepthsListed, then powers of two and the
 //                 maximum). Without mirrors depth changes nothing: only 0 and the maximum are listed.
 //   light_samples 1, 2, 4 .. maxLightSamples, area model; only when the scene has triangular lights.
-//   accel         Embree and the reference BVH (only the reference BVH when built without Embree).
+//   accel         Embree (the packet BVH in its place when built without Embree) and the reference BVH.
 //   samples       anti-aliasing, 1, 2, 4 .. maxPixelSamples camera rays per pixel. The best image keeps the
 //                 baseline's count (1 by default, the course's convention): the error shown is how far
 //                 anti-aliasing moves the image from it.
@@ -64,7 +64,7 @@ struct TradeoffOptions {
   int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
   int referenceLightSamples = 256;  // samples per triangular light in the best image (at least)
   int maxPixelSamples = 16;         // the samples knob goes 1, 2, 4 .. this
-  // What every setting starts from (its accel falls back to the reference BVH when built without Embree).
+  // What every setting starts from (its accel becomes the packet BVH when built without Embree).
   // Each knob row varies one of its fields; the knobs not measured here (the triangular-light model, the ray
   // start) are kept for every setting, the best image included.
   RenderSettings baseline;
@@ -118,7 +118,7 @@ struct TradeoffReport {
   std::string sceneName;     // the file's stem ("default" for the embedded scene)
   int width = 0, height = 0; // the resolution rendered (after resolutionScale)
   int threads = 0;
-  double embreeBuildMs = 0.0, referenceBuildMs = 0.0;  // 0 when that accelerator was not built
+  double buildMs[kAccelKindCount] = {};  // by AccelKind: each accelerator's build, 0 for one not built
   double totalMs = 0.0;      // the whole measurement, builds included
   KnobSetting baseline;      // what every knob was varied from (the stride-1 preview)
   std::string baselineText;  // describeKnobs of the baseline: "Max ray depth 3, Light samples 4, ..."

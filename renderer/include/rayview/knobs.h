@@ -40,7 +40,6 @@ struct Knob {
   int min = 0, max = 0;        // integer knobs; choice knobs take 0 .. choices.size() - 1
   std::span<const KnobChoice> choices = {};  // empty for an integer knob
   bool measuredByTradeoff = false;      // the trade-off bench varies it: `bench` takes no option for it
-  std::string_view lockedReason = {};   // non-empty: this build offers one value only (says why)
   int (*get)(const SceneParameters&, const RenderSettings&) = nullptr;
   void (*set)(SceneParameters&, RenderSettings&, int) = nullptr;
   // Whether the knob changes anything for this scene and these settings (the panel greys it out otherwise).

@@ -12,6 +12,8 @@ namespace rayview {
 // BVH instead: the same answers without Embree's start-up). Reference: the double-precision reference BVH.
 // Packet: rayview's packet BVH whatever the scene's size. Embree and Packet answer every ray identically.
 enum class AccelKind { Embree, Reference, Packet };
+inline constexpr int kAccelKindCount = 3;  // for arrays indexed by AccelKind
+static_assert(static_cast<int>(AccelKind::Packet) + 1 == kAccelKindCount);
 
 // Where shadow and mirror rays start. Offset: off the surface (by <shadowrayepsilon> when the scene sets
 // it, else by the robust relative offset). ExcludeHitTriangle: at the hit point itself, ignoring the
@@ -23,7 +25,7 @@ inline constexpr int kMaxPixelSamples = 256;
 struct RenderSettings {
   TriangularLightModel triangularLightModel = TriangularLightModel::Area;
   int lightSamples = 1;       // samples per triangular light (area model); 1 = the centroid
-  AccelKind accel = AccelKind::Embree;  // falls back to Reference when built without Embree
+  AccelKind accel = AccelKind::Embree;  // the packet BVH in its place when built without Embree (availableAccel)
   SecondaryRayStart secondaryRayStart = SecondaryRayStart::Offset;
   int pixelSamples = 1;       // anti-aliasing: stratified camera rays per pixel; 1 = the pixel's centre
 
