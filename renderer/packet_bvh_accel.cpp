@@ -87,15 +87,15 @@ struct BuildTriangle {
   std::uint32_t id;
 };
 
+// Builds into `nodes`, which has room for 2 * triangles + 2: the root at 1 and each pair of children (first,
+// first + 1) from an even index (the array is 64-byte aligned, so the two boxes a visit tests share one cache line).
+// Leaves of one triangle make 2 * triangles - 1 nodes. Written in place: a vector copied into the aligned array
+// held 64 bytes a triangle twice at the build's peak.
 class Builder {
  public:
-  Builder(std::vector<BuildTriangle>& triangles, std::vector<Node>& nodes) : triangles_(triangles), nodes_(nodes) {}
+  Builder(std::vector<BuildTriangle>& triangles, Node* nodes) : triangles_(triangles), nodes_(nodes) {}
 
-  void build() {
-    nodes_.reserve(2 * triangles_.size() + 1);
-    nodes_.push_back({});
-    split(0, 0, triangles_.size(), 0);
-  }
+  void build() { split(1, 0, triangles_.size(), 0); }
 
  private:
   void makeLeaf(std::size_t node, std::size_t begin, std::size_t end, const Box& box) {
@@ -185,9 +185,8 @@ class Builder {
     }
     if (middle == begin || middle == end) middle = begin + count / 2;
 
-    const std::size_t left = nodes_.size();
-    nodes_.push_back({});
-    nodes_.push_back({});
+    const std::size_t left = size_;
+    size_ += 2;
     Node& n = nodes_[node];
     store(n, box);
     n.first = static_cast<std::uint32_t>(left);
@@ -197,7 +196,8 @@ class Builder {
   }
 
   std::vector<BuildTriangle>& triangles_;
-  std::vector<Node>& nodes_;
+  Node* nodes_;
+  std::size_t size_ = 2;  // nodes 0 (unused) and 1 (the root)
 };
 
 // A packet's rays as the traversal reads them: float copies for the boxes (as the Embree back-end hands Embree),
@@ -238,17 +238,10 @@ class PacketBvhAccel final : public Accel {
       build.push_back({box, 0.5f * (box.lower + box.upper), i});
     }
     if (!build.empty()) {
-      std::vector<Node> nodes;
-      Builder(build, nodes).build();
-      // Root at 1 and each pair of children (first, first + 1) from an even index of a 64-byte aligned array: the two
-      // boxes a visit tests share one cache line.
-      const std::size_t bytes = (nodes.size() + 1) * sizeof(Node);
+      const std::size_t bytes = (2 * build.size() + 2) * sizeof(Node);
       nodes_.reset(static_cast<Node*>(std::aligned_alloc(64, (bytes + 63) / 64 * 64)));
       if (!nodes_) throw std::bad_alloc();
-      for (std::size_t i = 0; i < nodes.size(); ++i) {
-        nodes_[i + 1] = nodes[i];
-        if (nodes[i].countOrAxis & kInner) nodes_[i + 1].first += 1;
-      }
+      Builder(build, nodes_.get()).build();
     }
     leafTriangles_.reserve(build.size());
     for (const BuildTriangle& t : build) leafTriangles_.push_back(t.id);
