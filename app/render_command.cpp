@@ -97,7 +97,7 @@ int runRenderCommand(const CommandLine& command) {
                    geometry->accelFallback.c_str());
       settings.accel = AccelKind::Reference;
     }
-      ThreadPool pool(command.threads);
+    ThreadPool pool(command.threads);
     const Tracer tracer(view.parameters(), *geometry, settings);
     // Start-up as issue 8 defines it: process start to the first ray, less load and build.
     startupMs = msSinceProcessStart() - loadMs - geometry->buildMs;
