@@ -21,12 +21,6 @@ double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 }
 
-std::string fixed1(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.1f", value);
-  return text;
-}
-
 // SIGINT / SIGTERM during a render: remove the image's temporary file if it is being written, exit
 // 130 / 143 as a shell would report the signal. The existing output is never touched before the rename.
 extern "C" void onInterrupt(int signal) {
@@ -82,8 +76,8 @@ int runRenderCommand(const CommandLine& command) {
   applyKnobs(command.knobs, {&scene.parameters(), &settings});
   Image image;
   FrameStats stats;
-  std::string sceneLine, settingsLine, timeLine;
-  double startupMs = 0.0;
+  std::string sceneLine, settingsLine;
+  double buildMs = 0.0, startupMs = 0.0;
   // The scene, its BVH and the render threads live only in this block: they are released before the image is
   // written, so the write's own memory (stb_image_write's filtered copy of the image, the PNG) comes in their place
   // instead of on top of them (docs/PERFORMANCE.md, issue 8 item 4).
@@ -116,8 +110,7 @@ int runRenderCommand(const CommandLine& command) {
                    counted(static_cast<std::size_t>(s.lightSamples), "sample") + "), accel " +
                    std::string(toString(geometry->accel->kind())) + ", " +
                    counted(static_cast<std::size_t>(pool.size()), "thread");
-    timeLine = "load " + fixed1(loadMs) + " ms, BVH build " + fixed1(geometry->buildMs) + " ms, render " +
-               fixed1(stats.renderMs) + " ms";
+    buildMs = geometry->buildMs;
   }
 
   const auto writeStart = std::chrono::steady_clock::now();
@@ -132,7 +125,8 @@ int runRenderCommand(const CommandLine& command) {
   if (!command.quiet) {
     std::printf("scene      %s\n", sceneLine.c_str());
     std::printf("settings   %s\n", settingsLine.c_str());
-    std::printf("time       %s, write %.1f ms\n", timeLine.c_str(), writeMs);
+    std::printf("time       load %.1f ms, BVH build %.1f ms, render %.1f ms, write %.1f ms\n", loadMs, buildMs,
+                stats.renderMs, writeMs);
     std::printf("start-up   %.1f ms: %s to the first ray, less load and BVH build\n", startupMs,
                 processStartIsLaunch() ? "process start" : "main()");
     std::printf("rays       camera %llu, shadow %llu, reflection %llu, total %llu, %.2f Mrays/s\n",
