@@ -118,4 +118,22 @@ int countNewlines(const char* begin, const char* end) {
   return static_cast<int>(std::count(begin, end, '\n'));
 }
 
+std::size_t estimatedItems(std::string_view sample, std::uint64_t totalBytes, std::size_t tokensPerItem) {
+  std::uint64_t tokens = 0;
+  bool inToken = false;
+  for (const char c : sample) {
+    const bool space = isXmlSpace(c);
+    tokens += !space && !inToken;
+    inToken = !space;
+  }
+  if (sample.empty() || tokensPerItem == 0) return 1;
+  if (sample.size() >= totalBytes) return static_cast<std::size_t>(tokens / tokensPerItem + 1);
+  // The sample's density over the whole block, 1/16 more; a token needs a byte and a separator, so never more
+  // than half the bytes are tokens (a bound on the reserve however odd the sample).
+  const double perByte = static_cast<double>(tokens) / static_cast<double>(sample.size());
+  const double items = static_cast<double>(totalBytes) * std::min(perByte, 0.5) * (17.0 / 16.0) /
+                       static_cast<double>(tokensPerItem);
+  return static_cast<std::size_t>(items) + 16;
+}
+
 }  // namespace rayview::detail

@@ -1,6 +1,7 @@
 #pragma once
 // Whitespace-separated numbers straight from an element's text: std::from_chars, no streams, no allocation.
 
+#include <cstddef>
 #include <cstdint>
 #include <string_view>
 
@@ -51,5 +52,16 @@ NumberStatus parseInteger(std::string_view token, std::int64_t& value);
 
 // Number of '\n' in [begin, end).
 int countNewlines(const char* begin, const char* end);
+
+// The bytes of a block's text the loader judges its length by (estimatedItems): enough for thousands of items.
+inline constexpr std::size_t kEstimateSample = std::size_t{1} << 16;
+
+// How many items of `tokensPerItem` tokens a block of `totalBytes` bytes of text holds, judged by the tokens of
+// `sample`, its first bytes (all of it when `totalBytes` fits): what the loader reserves before it reads the
+// block. At least the items the sample's density gives, and slightly more (long blocks write their later indices
+// with more digits, which only lowers the density): never a multiple of what is needed, as a bound from the
+// shortest possible token would be ("1 2 3" against "50000//50000 ...": six times the faces, docs/PERFORMANCE.md,
+// "2026-11-25, tenth session"). An estimate only: arrays still grow when a block holds more.
+std::size_t estimatedItems(std::string_view sample, std::uint64_t totalBytes, std::size_t tokensPerItem);
 
 }  // namespace rayview::detail

@@ -336,10 +336,10 @@ class Loader {
   // ---------------------------------------------------------------- geometry
   // The numbers of a big block, `Stride` per item, each item handed to `item(const double*)` as soon as it is
   // read: no array of every number in between (at 1e7 triangles it held 12-72 B per triangle at the load's peak).
-  // `reserve(n)` is told an upper estimate of the items first.
+  // `reserve(n)` is told an estimate of the items first (detail::estimatedItems).
   template <std::size_t Stride, typename Reserve, typename Item>
   void readBlock(const XMLElement* e, const char* itemName, bool asFloat, Reserve&& reserve, Item&& item) {
-    reserve(blockTextSize(e) / (8 * Stride) + 1);
+    reserve(estimatedBlockItems(e, Stride));
     double values[Stride];
     std::size_t k = 0, count = 0;
     readNumbers(e, asFloat, [&](double v) {
@@ -352,7 +352,8 @@ class Loader {
     });
     checkBlockCount(e, Stride, itemName, count);
   }
-  static std::size_t blockTextSize(const XMLElement* e);
+  // detail::estimatedItems for an element's text: its text nodes together, judged by the start of the first.
+  static std::size_t estimatedBlockItems(const XMLElement* e, std::size_t tokensPerItem);
   void checkBlockCount(const XMLElement* e, std::size_t stride, const char* itemName, std::size_t count);
 
   void readVertices(const XMLElement* e);

@@ -251,6 +251,22 @@ void forEachToken(const ReadAt& read, std::uint64_t begin, std::uint64_t end, in
   }
 }
 
+// Up to detail::kEstimateSample bytes from the start of each block in turn, a space between blocks: the sample
+// detail::estimatedItems judges the blocks' items by.
+std::string sampleOf(const ReadAt& read, const std::vector<const StreamedBlock*>& blocks) {
+  std::string sample;
+  for (const StreamedBlock* block : blocks) {
+    if (sample.size() >= detail::kEstimateSample) break;
+    const std::size_t want = static_cast<std::size_t>(
+        std::min<std::uint64_t>(block->end - block->begin, detail::kEstimateSample - sample.size()));
+    const std::size_t at = sample.size();
+    sample.resize(at + want);
+    if (read(block->begin, sample.data() + at, want) != static_cast<long>(want)) abandon();  // the file changed
+    sample += ' ';
+  }
+  return sample;
+}
+
 // A block of numbers, `Stride` per item, where readBlock would read them without a message: every token a
 // whole finite number (in float range for `asFloat`), and whole items.
 template <std::size_t Stride, class Item>
@@ -275,30 +291,34 @@ void parseNumbers(const ReadAt& read, const StreamedBlock& block, bool asFloat, 
 StreamedBlocks streamSkeleton(const ReadAt& read, std::uint64_t size) { return SkeletonReader(read, size).run(); }
 
 void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read) {
-  std::uint64_t faceBytes = 0, faceBlocks = 0, longest = 0;
+  std::uint64_t faceBytes = 0, longest = 0;
+  std::vector<const StreamedBlock*> faceBlocks;
   for (const StreamedBlock& block : streamed.blocks) {
-    if (block.tag == Tag::Faces) faceBytes += block.end - block.begin, ++faceBlocks;
+    if (block.tag == Tag::Faces) faceBytes += block.end - block.begin, faceBlocks.push_back(&block);
     longest = std::max(longest, block.end - block.begin);
   }
   Buffer buffer(longest);
   std::vector<Triangle>& triangles = streamed.triangles;
-  triangles.reserve(static_cast<std::size_t>(faceBytes / 8 + faceBlocks));  // readFaces' estimate
+  triangles.reserve(detail::estimatedItems(sampleOf(read, faceBlocks), faceBytes, 3) + faceBlocks.size());
 
   for (StreamedBlock& block : streamed.blocks) {
     const std::uint64_t bytes = block.end - block.begin;
+    const auto estimated = [&](std::size_t stride) {
+      return detail::estimatedItems(sampleOf(read, {&block}), bytes, stride);
+    };
     switch (block.tag) {
       case Tag::VertexData:
-        block.vertices.reserve(static_cast<std::size_t>(bytes / (8 * 3) + 1));  // readBlock's estimate
+        block.vertices.reserve(estimated(3));
         parseNumbers<3>(read, block, false, buffer, [&](const double* v) { block.vertices.emplace_back(v[0], v[1], v[2]); });
         break;
       case Tag::TextureData:
-        block.texCoords.reserve(static_cast<std::size_t>(bytes / (8 * 2) + 1));
+        block.texCoords.reserve(estimated(2));
         parseNumbers<2>(read, block, true, buffer, [&](const double* v) {
           block.texCoords.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1]));
         });
         break;
       case Tag::NormalData:
-        block.normals.reserve(static_cast<std::size_t>(bytes / (8 * 3) + 1));
+        block.normals.reserve(estimated(3));
         parseNumbers<3>(read, block, true, buffer, [&](const double* v) {
           block.normals.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
         });

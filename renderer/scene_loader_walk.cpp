@@ -207,11 +207,16 @@ void Loader::readMaterials(const XMLElement* materials) {
   });
 }
 
-std::size_t Loader::blockTextSize(const XMLElement* e) {
+std::size_t Loader::estimatedBlockItems(const XMLElement* e, std::size_t tokensPerItem) {
   std::size_t textSize = 0;
-  for (const XMLNode* node = e->FirstChild(); node; node = node->NextSibling())
-    if (node->ToText()) textSize += std::strlen(node->Value());
-  return textSize;
+  std::string_view sample;
+  for (const XMLNode* node = e->FirstChild(); node; node = node->NextSibling()) {
+    if (!node->ToText()) continue;
+    const std::string_view text = node->Value();
+    if (sample.empty()) sample = text.substr(0, detail::kEstimateSample);
+    textSize += text.size();
+  }
+  return detail::estimatedItems(sample, textSize, tokensPerItem);
 }
 
 void Loader::checkBlockCount(const XMLElement* e, std::size_t stride, const char* itemName, std::size_t count) {
@@ -317,7 +322,9 @@ void Loader::readFaces(PendingMesh& mesh) {
   const std::vector<Piece> pieces = textOf(e);
   std::size_t textSize = 0;
   for (const Piece& piece : pieces) textSize += piece.text.size();
-  triangles.reserve(triangles.size() + textSize / 8 + 1);
+  const std::string_view sample =
+      pieces.empty() ? std::string_view() : pieces.front().text.substr(0, detail::kEstimateSample);
+  triangles.reserve(triangles.size() + detail::estimatedItems(sample, textSize, 3));
 
   FaceCorner corners[3];
   int cornerCount = 0;

@@ -197,6 +197,46 @@ TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
   expectSame(streamed, loadFile(file, false), "long file");
 }
 
+TEST(SceneStream, ArraysHoldAboutWhatTheBlocksGive) {
+  // A big scene's arrays are reserved from its text before it is read. Faces written "v//n" with five-digit
+  // indices are ~40 bytes each: an estimate from the shortest possible face ("1 2 3") reserved six times the
+  // faces, 16 MB of a 1e5-triangle scene's 20 MB budget (docs/PERFORMANCE.md, "2026-11-25, tenth session").
+  // Either way of reading, every array may hold at most half again what it has (here the estimate, from the
+  // first faces with their shorter indices, reserves a third more).
+  const int n = 60000;
+  std::string vertices, normals, faces;
+  char line[128];
+  for (int i = 0; i < n; ++i) {
+    std::snprintf(line, sizeof line, "%.9g %.9g -2\n", i * 1e-3, (1LL * i * i % 1009) * 1e-3);  // no three in a line
+    vertices += line;
+    std::snprintf(line, sizeof line, "0 %.6g 1\n", (i % 13) * 1e-2);
+    normals += line;
+    if (i + 2 < n) {
+      std::snprintf(line, sizeof line, "%d//%d %d//%d %d//%d\n", i + 1, i + 1, i + 2, i + 2, i + 3, i + 3);
+      faces += line;
+    }
+  }
+  std::string xml = with("-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n</vertexdata>\n",
+                         vertices + "</vertexdata>\n<normaldata>\n" + normals + "</normaldata>\n");
+  xml = with("1 2 3\n1 3 4\n", faces, xml);
+  ASSERT_TRUE(streams(xml));
+  for (const bool stream : {true, false}) {
+    SCOPED_TRACE(stream ? "streamed" : "from the DOM");
+    const Outcome out = loadText(xml, stream);
+    ASSERT_TRUE(out.ok) << out.error;
+    const Scene& scene = out.scene;
+    ASSERT_EQ(scene.vertices.size(), static_cast<std::size_t>(n));
+    ASSERT_EQ(scene.normals.size(), static_cast<std::size_t>(n));
+    ASSERT_EQ(scene.triangles.size(), static_cast<std::size_t>(n - 2));
+    ASSERT_EQ(scene.faceAttributes.size(), scene.triangles.size());
+    const auto atMostHalfMore = [](std::size_t capacity, std::size_t size) { return capacity * 2 <= size * 3; };
+    EXPECT_PRED2(atMostHalfMore, scene.vertices.capacity(), scene.vertices.size());
+    EXPECT_PRED2(atMostHalfMore, scene.normals.capacity(), scene.normals.size());
+    EXPECT_PRED2(atMostHalfMore, scene.triangles.capacity(), scene.triangles.size());
+    EXPECT_PRED2(atMostHalfMore, scene.faceAttributes.capacity(), scene.faceAttributes.size());
+  }
+}
+
 // ---------------------------------------------------------------- what it leaves to the ordinary reading
 
 TEST(SceneStream, WhatOnlyTheDomCanReadIsReadTheSame) {
