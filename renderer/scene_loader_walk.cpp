@@ -324,7 +324,9 @@ void Loader::readFaces(PendingMesh& mesh) {
   for (const Piece& piece : pieces) textSize += piece.text.size();
   const std::string_view sample =
       pieces.empty() ? std::string_view() : pieces.front().text.substr(0, detail::kEstimateSample);
-  triangles.reserve(triangles.size() + detail::estimatedItems(sample, textSize, 3));
+  // At least doubling when it grows: a scene of many small meshes must not copy its triangles once per mesh.
+  const std::size_t wanted = triangles.size() + detail::estimatedItems(sample, textSize, 3);
+  if (wanted > triangles.capacity()) triangles.reserve(std::max(wanted, 2 * triangles.size()));
 
   FaceCorner corners[3];
   int cornerCount = 0;
