@@ -11,6 +11,8 @@
 #include <memory>
 #include <new>
 #include <optional>
+#include <system_error>
+#include <thread>
 #include <vector>
 
 #include "accel_backends.h"
@@ -91,11 +93,20 @@ struct BuildTriangle {
 // first + 1) from an even index (the array is 64-byte aligned, so the two boxes a visit tests share one cache line).
 // Leaves of one triangle make 2 * triangles - 1 nodes. Written in place: a vector copied into the aligned array
 // held 64 bytes a triangle twice at the build's peak.
+//
+// Each subtree owns a fixed range of slots: the descendants of a node over m triangles take at most 2 (m - 1) slots
+// from the one it is given, so its left child's from there and its right child's after the left's 2 (m_left - 1).
+// Where a subtree lands depends on its triangles alone, not on the order or the thread its parts are built in: the
+// two subtrees under the top nodes of a big scene are built at once, with the same array as one thread builds.
 class Builder {
  public:
-  Builder(std::vector<BuildTriangle>& triangles, Node* nodes) : triangles_(triangles), nodes_(nodes) {}
+  Builder(std::vector<BuildTriangle>& triangles, Node* nodes, unsigned threads)
+      : triangles_(triangles), nodes_(nodes) {
+    if (threads == 0) threads = std::thread::hardware_concurrency();
+    for (; threads > 1; threads /= 2) ++parallelDepth_;
+  }
 
-  void build() { split(1, 0, triangles_.size(), 0); }
+  void build() { split(1, 0, triangles_.size(), 0, 2); }
 
  private:
   void makeLeaf(std::size_t node, std::size_t begin, std::size_t end, const Box& box) {
@@ -114,7 +125,8 @@ class Builder {
     return f >= 1.0f ? (f < static_cast<float>(bins) ? static_cast<int>(f) : bins - 1) : 0;
   }
 
-  void split(std::size_t node, std::size_t begin, std::size_t end, int depth) {
+  // Builds the subtree of `node` over triangles [begin, end); its descendants go in the slots from `slot` on.
+  void split(std::size_t node, std::size_t begin, std::size_t end, int depth, std::size_t slot) {
     Box box, centroids;
     for (std::size_t i = begin; i < end; ++i) {
       box.grow(triangles_[i].box);
@@ -185,19 +197,34 @@ class Builder {
     }
     if (middle == begin || middle == end) middle = begin + count / 2;
 
-    const std::size_t left = size_;
-    size_ += 2;
+    const std::size_t left = slot;
     Node& n = nodes_[node];
     store(n, box);
     n.first = static_cast<std::uint32_t>(left);
     n.countOrAxis = kInner | static_cast<std::uint32_t>(axis);
-    split(left, begin, middle, depth + 1);
-    split(left + 1, middle, end, depth + 1);
+    const auto buildLeft = [&] { split(left, begin, middle, depth + 1, slot + 2); };
+    const auto buildRight = [&] { split(left + 1, middle, end, depth + 1, slot + 2 * (middle - begin)); };
+    // The two halves touch disjoint triangles and slots. A thread is worth starting only for big halves.
+    if (depth < parallelDepth_ && count >= kParallelMin) {
+      std::thread right;
+      try {
+        right = std::thread(buildRight);
+      } catch (const std::system_error&) {  // no thread to be had: this one builds both
+      }
+      buildLeft();
+      if (right.joinable()) right.join();
+      else buildRight();
+      return;
+    }
+    buildLeft();
+    buildRight();
   }
+
+  static constexpr std::size_t kParallelMin = std::size_t{1} << 15;
 
   std::vector<BuildTriangle>& triangles_;
   Node* nodes_;
-  std::size_t size_ = 2;  // nodes 0 (unused) and 1 (the root)
+  int parallelDepth_ = 0;  // nodes above this depth build their two halves at once: log2 of the hardware threads
 };
 
 // A packet's rays as the traversal reads them: float copies for the boxes (as the Embree back-end hands Embree),
@@ -223,7 +250,8 @@ Packet& packetScratch() {
 
 class PacketBvhAccel final : public Accel {
  public:
-  PacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin) : Accel(origin), scene_(scene) {
+  PacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads)
+      : Accel(origin), scene_(scene) {
     std::vector<BuildTriangle> build;
     build.reserve(scene.triangles.size());
     for (std::uint32_t i = 0; i < scene.triangles.size(); ++i) {
@@ -241,7 +269,7 @@ class PacketBvhAccel final : public Accel {
       const std::size_t bytes = (2 * build.size() + 2) * sizeof(Node);
       nodes_.reset(static_cast<Node*>(std::aligned_alloc(64, (bytes + 63) / 64 * 64)));
       if (!nodes_) throw std::bad_alloc();
-      Builder(build, nodes_.get()).build();
+      Builder(build, nodes_.get(), buildThreads).build();
     }
     leafTriangles_.reserve(build.size());
     for (const BuildTriangle& t : build) leafTriangles_.push_back(t.id);
@@ -457,8 +485,8 @@ class PacketBvhAccel final : public Accel {
 
 }  // namespace
 
-std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin) {
-  return std::make_unique<PacketBvhAccel>(scene, origin);
+std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads) {
+  return std::make_unique<PacketBvhAccel>(scene, origin, buildThreads);
 }
 
 }  // namespace rayview
