@@ -120,12 +120,8 @@ int countNewlines(const char* begin, const char* end) {
 
 std::size_t estimatedItems(std::string_view sample, std::uint64_t totalBytes, std::size_t tokensPerItem) {
   std::uint64_t tokens = 0;
-  bool inToken = false;
-  for (const char c : sample) {
-    const bool space = isXmlSpace(c);
-    tokens += !space && !inToken;
-    inToken = !space;
-  }
+  TokenScanner scanner(sample);
+  while (!scanner.nextToken().empty()) ++tokens;
   if (sample.empty() || tokensPerItem == 0) return 1;
   if (sample.size() >= totalBytes) return static_cast<std::size_t>(tokens / tokensPerItem + 1);
   // The sample's density over the whole block, 1/16 more; a token needs a byte and a separator, so never more
