@@ -3,10 +3,13 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 
+#include "process_memory.h"
 #include "process_start.h"
 #include "rayview/accel.h"
 #include "rayview/camera_rays.h"
@@ -36,6 +39,22 @@ void removeTemporaryOnInterrupt() {
   sigaction(SIGTERM, &action, nullptr);
 }
 
+// The summary's memory line: the process's peak, per triangle (issue 8 item 4's measure), and the peak as it stood
+// after each stage, which says where it was reached.
+std::string memoryLine(const std::uint64_t (&peaks)[4], std::size_t triangles) {
+  if (peaks[3] == 0) return "not reported here (no /proc/self/status)";
+  auto mib = [](std::uint64_t bytes) { return static_cast<double>(bytes) / (1024.0 * 1024.0); };
+  char line[256];
+  int at = std::snprintf(line, sizeof line, "peak %.1f MiB", mib(peaks[3]));
+  if (triangles > 0)
+    at += std::snprintf(line + at, sizeof line - static_cast<std::size_t>(at), ", %.0f B/triangle",
+                        static_cast<double>(peaks[3]) / static_cast<double>(triangles));
+  std::snprintf(line + at, sizeof line - static_cast<std::size_t>(at),
+                "; peak after load %.1f, BVH build %.1f, render %.1f, write %.1f MiB", mib(peaks[0]), mib(peaks[1]),
+                mib(peaks[2]), mib(peaks[3]));
+  return line;
+}
+
 std::string sceneName(const CommandLine& command) {
   return command.scenePath.empty() ? std::string("default scene") : command.scenePath;
 }
@@ -62,6 +81,7 @@ int runRenderCommand(const CommandLine& command) {
     return kExitBadInput;
   }
   const double loadMs = msSince(loadStart);
+  std::uint64_t peaks[4] = {peakResidentBytes(), 0, 0, 0};  // after load, build, render, write
   if (const std::string problem = outputOverwritesInput(output, command.scenePath, &loaded.scene); !problem.empty()) {
     std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
@@ -78,6 +98,7 @@ int runRenderCommand(const CommandLine& command) {
   FrameStats stats;
   std::string sceneLine, settingsLine;
   double buildMs = 0.0, startupMs = 0.0;
+  std::size_t triangles = 0;
   // The scene, its BVH and the render threads live only in this block: they are released before the image is
   // written, so the write's own memory (stb_image_write's filtered copy of the image, the PNG) comes in their place
   // instead of on top of them (docs/PERFORMANCE.md, issue 8 item 4).
@@ -91,11 +112,14 @@ int runRenderCommand(const CommandLine& command) {
                    geometry->accelFallback.c_str());
       settings.accel = AccelKind::Reference;
     }
+    peaks[1] = std::max(peaks[0], peakResidentBytes());
     ThreadPool pool(command.threads);
     const Tracer tracer(view.parameters(), *geometry, settings);
     // Start-up as issue 8 defines it: process start to the first ray, less load and build.
     startupMs = msSinceProcessStart() - loadMs - geometry->buildMs;
     renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
+    peaks[2] = std::max(peaks[1], peakResidentBytes());
+    triangles = view.triangles.size();
 
     std::string lights;
     view.lights.forEachType([&](const auto& list) {
@@ -121,6 +145,7 @@ int runRenderCommand(const CommandLine& command) {
     return kExitIoFailure;
   }
   const double writeMs = msSince(writeStart);
+  peaks[3] = std::max(peaks[2], peakResidentBytes());
 
   if (!command.quiet) {
     std::printf("scene      %s\n", sceneLine.c_str());
@@ -133,6 +158,7 @@ int runRenderCommand(const CommandLine& command) {
                 static_cast<unsigned long long>(stats.rays.camera), static_cast<unsigned long long>(stats.rays.shadow),
                 static_cast<unsigned long long>(stats.rays.reflection),
                 static_cast<unsigned long long>(stats.rays.total()), stats.megaRaysPerSecond());
+    std::printf("memory     %s\n", memoryLine(peaks, triangles).c_str());
     std::printf("wrote      %s\n", std::filesystem::absolute(output).c_str());
   }
   return kExitOk;

@@ -6,6 +6,7 @@ Each check prints one line; the script exits 1 on the first failure.
 """
 import argparse
 import os
+import re
 import shutil
 import signal
 import subprocess
@@ -62,6 +63,7 @@ def main():
     for word in ("load", "BVH build", "render", "camera", "shadow", "reflection", "Mrays/s", "wrote"):
         check(word in r.stdout, f"the summary mentions '{word}'")
     check_startup_line(r.stdout, "process start", "through the launcher")
+    check_memory_line(r.stdout, peak_of_children_kib())
     # rayview-cli started directly (and a stale stamp in the environment): start-up counts from main().
     cli = os.path.join(os.path.dirname(a.rayview), "rayview-cli")
     env = dict(os.environ, RAYVIEW_LAUNCH_NS="1")
@@ -211,6 +213,36 @@ def check_embree_loaded_only_when_needed(a):
         same = f.read() == g.read()
     check(r.returncode == 0 and len(warnings) == 1 and "packet BVH instead" in warnings[0] and "accel packet" in r.stdout
           and same, "without a loadable Embree, car warns once and renders the same image with the packet BVH")
+
+
+def peak_of_children_kib():
+    """The largest peak resident set of any child this script has waited for (ru_maxrss, KiB): at least the
+    last render's, whose process was one of them."""
+    import resource
+    return resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss
+
+
+def check_memory_line(stdout, children_kib):
+    """Issue 8 item 4: the summary reports the process's peak memory, per triangle, and the peak as it stood after
+    each stage (load, build, render, write). The stages' figures never fall, the last is the peak, the per-triangle
+    figure is the peak over the scene line's triangle count, and the peak is no more than the kernel's own count
+    for the process (ru_maxrss, which also covers the fork before the exec). A unit slip (KiB taken for bytes
+    or bytes for KiB) fails one of these."""
+    line = next((line for line in stdout.splitlines() if line.startswith("memory ")), "")
+    scene = next((line for line in stdout.splitlines() if line.startswith("scene ")), "")
+    m = re.match(r"memory +peak ([\d.]+) MiB, (\d+) B/triangle; peak after load ([\d.]+), BVH build ([\d.]+), "
+                 r"render ([\d.]+), write ([\d.]+) MiB$", line)
+    t = re.search(r": (\d+) triangles?,", scene)
+    check(m is not None and t is not None, f"the summary has a memory line ({line!r})")
+    peak, per_triangle = float(m.group(1)), int(m.group(2))
+    stages = [float(m.group(k)) for k in range(3, 7)]
+    check(stages == sorted(stages) and stages[-1] == peak and peak >= 1.0,
+          f"the stages' peaks never fall and the last is the peak ({line})")
+    expected = peak * 1024 * 1024 / int(t.group(1))
+    check(abs(per_triangle - expected) <= 0.001 * expected + 60, "B/triangle is the peak over the triangles")
+    # Within 1 MiB: the kernel adds each thread's page faults to the process's count in batches
+    # (app/process_memory.h), and the line's figures are rounded to 0.1 MiB.
+    check(peak * 1024 <= children_kib + 1024, f"the peak is no more than ru_maxrss ({children_kib} KiB) and 1 MiB")
 
 
 def check_startup_line(stdout, origin, how):
