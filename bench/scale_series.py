@@ -3,7 +3,8 @@
 sphere, heightfield and random-soup scenes of 1e3..1e7 triangles at 1920x1080.
 
 Writes the scenes (once) to --work, runs `rayview render SCENE -o out.png --threads T` for each, reads the
-summary's times and its peak resident memory (bench/peak_rss: ru_maxrss from a small parent), prints a Markdown table,
+summary's times and its peak resident memory (bench/peak_rss: ru_maxrss from a small parent) and, from the
+summary's memory line, the stage that reached it, prints a Markdown table,
 writes RESULTS.csv and the log-log plot, and with --breakdown runs `scale_series breakdown` on the scenes
 of at least 1e5 triangles. The 1e7 scenes take minutes and ~2 GB of XML each: scripts only, never CI.
 
@@ -17,6 +18,19 @@ import subprocess
 import sys
 
 TIME_LINE = re.compile(r"time\s+load ([\d.]+) ms, BVH build ([\d.]+) ms, render ([\d.]+) ms")
+# The summary's own memory line: the peak as it stood after each stage.
+MEMORY_LINE = re.compile(r"peak after load ([\d.]+), BVH build ([\d.]+), render ([\d.]+), write ([\d.]+) MiB")
+STAGES = ("load", "build", "render", "write")
+
+
+def peak_stage(stdout):
+    """The first stage after which the process's peak stood within 1 % of its final value, by the summary's memory
+    line ("?" without one): a stage that adds only its last few hundred KiB does not count as setting the peak."""
+    m = MEMORY_LINE.search(stdout)
+    if not m:
+        return "?"
+    peaks = [float(v) for v in m.groups()]
+    return next(stage for stage, peak in zip(STAGES, peaks) if peak >= 0.99 * peaks[-1])
 
 
 def measure(peak_rss, rayview, scene, threads, out_png):
@@ -28,7 +42,8 @@ def measure(peak_rss, rayview, scene, threads, out_png):
     times = TIME_LINE.search(result.stdout)
     if result.returncode != 0 or not times or not peak:
         raise RuntimeError(f"{scene}: rayview failed: {result.stderr.strip()[-300:]}")
-    return float(times.group(1)), float(times.group(2)), float(times.group(3)), int(peak.group(1)) * 1024
+    return (float(times.group(1)), float(times.group(2)), float(times.group(3)), int(peak.group(1)) * 1024,
+            peak_stage(result.stdout))
 
 
 def main():
@@ -50,19 +65,19 @@ def main():
     kinds = args.kinds.split(",")
     csv_path = os.path.join(args.work, "results.csv")
     rows = []
-    print("| scene | triangles | XML MB | load ms | build ms | render ms | peak RSS MB | B/triangle |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|")
+    print("| scene | triangles | XML MB | load ms | build ms | render ms | peak RSS MB | B/triangle | peak in |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---|")
     for kind in kinds:
         for n in sizes:
             scene = os.path.join(args.work, f"{kind}_{n}.xml")
             if not os.path.exists(scene):
                 subprocess.run([tool, "write", kind, str(n), scene], check=True, stdout=subprocess.DEVNULL)
-            load, build, render, peak = measure(peak_rss, rayview, scene, args.threads, os.path.join(args.work, "out.png"))
+            load, build, render, peak, stage = measure(peak_rss, rayview, scene, args.threads, os.path.join(args.work, "out.png"))
             triangles = n
             xml_mb = os.path.getsize(scene) / 1e6
             rows.append((kind, triangles, load, build, render, peak))
             print(f"| {kind} | {triangles:.0e} | {xml_mb:.1f} | {load:.0f} | {build:.0f} | {render:.0f} | "
-                  f"{peak / 1e6:.0f} | {peak / triangles:.0f} |")
+                  f"{peak / 1e6:.0f} | {peak / triangles:.0f} | {stage} |")
             sys.stdout.flush()
             with open(csv_path, "w") as f:
                 f.write("kind,triangles,load_ms,build_ms,render_ms,peak_bytes\n")
