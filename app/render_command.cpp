@@ -9,12 +9,12 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "process_memory.h"
 #include "process_start.h"
 #include "rayview/accel.h"
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
+#include "rayview/process_memory.h"
 #include "rayview/scene_source.h"
 
 namespace rayview {
@@ -81,7 +81,7 @@ int runRenderCommand(const CommandLine& command) {
     return kExitBadInput;
   }
   const double loadMs = msSince(loadStart);
-  std::uint64_t peaks[4] = {peakResidentBytes(), 0, 0, 0};  // after load, build, render, write
+  std::uint64_t peaks[4] = {processMemory().peak, 0, 0, 0};  // after load, build, render, write
   if (const std::string problem = outputOverwritesInput(output, command.scenePath, &loaded.scene); !problem.empty()) {
     std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
@@ -112,13 +112,13 @@ int runRenderCommand(const CommandLine& command) {
                    geometry->accelFallback.c_str());
       settings.accel = AccelKind::Reference;
     }
-    peaks[1] = std::max(peaks[0], peakResidentBytes());
+    peaks[1] = std::max(peaks[0], processMemory().peak);
     ThreadPool pool(command.threads);
     const Tracer tracer(view.parameters(), *geometry, settings);
     // Start-up as issue 8 defines it: process start to the first ray, less load and build.
     startupMs = msSinceProcessStart() - loadMs - geometry->buildMs;
     renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
-    peaks[2] = std::max(peaks[1], peakResidentBytes());
+    peaks[2] = std::max(peaks[1], processMemory().peak);
     triangles = view.triangles.size();
 
     std::string lights;
@@ -145,7 +145,7 @@ int runRenderCommand(const CommandLine& command) {
     return kExitIoFailure;
   }
   const double writeMs = msSince(writeStart);
-  peaks[3] = std::max(peaks[2], peakResidentBytes());
+  peaks[3] = std::max(peaks[2], processMemory().peak);
 
   if (!command.quiet) {
     std::printf("scene      %s\n", sceneLine.c_str());

@@ -21,6 +21,7 @@
 #include "rayview/plot_canvas.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
+#include "rayview/process_memory.h"
 #include "rayview/scene_loader.h"
 #include "rayview/scene_writer.h"
 
@@ -48,19 +49,13 @@ int write(const std::string& kind, long long triangles, const std::string& out, 
   return 0;
 }
 
-// Resident and peak resident memory of this process (VmRSS, VmHWM), in bytes.
+// Resident and peak resident memory of this process, in bytes (rayview/process_memory.h).
 struct Memory {
   double rss = 0.0, peak = 0.0;
 };
 Memory memoryNow() {
-  std::ifstream status("/proc/self/status");
-  Memory m;
-  std::string line;
-  while (std::getline(status, line)) {
-    if (line.rfind("VmRSS:", 0) == 0) m.rss = 1024.0 * std::atof(line.c_str() + 6);
-    if (line.rfind("VmHWM:", 0) == 0) m.peak = 1024.0 * std::atof(line.c_str() + 6);
-  }
-  return m;
+  const ProcessMemory m = processMemory();
+  return {static_cast<double>(m.resident), static_cast<double>(m.peak)};
 }
 // Resets VmHWM to the current RSS (Linux 4.0+), so each step's own transient peak can be read.
 void resetPeak() {
