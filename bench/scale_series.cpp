@@ -83,7 +83,9 @@ int breakdown(const std::string& path, int threads) {
   LoadedScene loaded = loadSceneFile(path, LoadOptions{false, true});
   const double loadMs = std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
   const Memory afterLoad = memoryNow();
-  const Scene& scene = loaded.scene;
+  // Shared, not copied, as `rayview render` does (app/render_command.cpp).
+  const auto shared = std::make_shared<const Scene>(std::move(loaded.scene));
+  const Scene& scene = *shared;
   const double n = static_cast<double>(scene.triangles.size());
   std::printf("%s: %zu triangles, %zu vertices, %zu normals; load %.0f ms\n", path.c_str(), scene.triangles.size(),
               scene.vertices.size(), scene.normals.size(), loadMs);
@@ -93,12 +95,12 @@ int breakdown(const std::string& path, int threads) {
     std::printf("| %s | %.0f (+%.0f) | %.0f | %.0f | %.0f |\n", step, after.rss / 1e6, (after.rss - before.rss) / 1e6,
                 (after.rss - before.rss) / n, (after.peak - before.rss) / 1e6, (after.peak - before.rss) / n);
   };
-  row("load (file text, repair, tinyxml2 DOM, Scene)", start, afterLoad);
+  row("load (file text, the big blocks read as a stream, the rest as a tinyxml2 DOM; Scene)", start, afterLoad);
 
   resetPeak();
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, AccelKind::Embree);
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, AccelKind::Embree);
   const Memory afterBuild = memoryNow();
-  row("prepareGeometry (Scene copy, Embree data + BVH, shading geometry)", afterLoad, afterBuild);
+  row("prepareGeometry (Embree's BVH, shading geometry)", afterLoad, afterBuild);
 
   resetPeak();
   Image image;
@@ -111,20 +113,17 @@ int breakdown(const std::string& path, int threads) {
   const Memory afterRender = memoryNow();
   row("render (image, thread stacks)", afterBuild, afterRender);
 
-  // What the arrays themselves take, from their sizes; the Embree part is the rest of the build step.
+  // What the arrays themselves take, from their sizes; Embree's part is the build step's growth.
   const double sceneBytes = sceneArrayBytes(scene);
-  const double copyBytes = sceneArrayBytes(*geometry->source);
   // Shading and the Embree back-end's TriangleData hold nothing per triangle: they read the scene's arrays.
-  const double buildDelta = afterBuild.rss - afterLoad.rss;
-  const double embreeBytes = buildDelta - copyBytes;
+  const double embreeBytes = afterBuild.rss - afterLoad.rss;
   std::printf("\n| where the bytes go (held during the render) | MB | B/triangle |\n|---|---:|---:|\n");
   auto part = [&](const char* what, double bytes) { std::printf("| %s | %.0f | %.0f |\n", what, bytes / 1e6, bytes / n); };
   part("Scene arrays (vertices dvec3 24 B, Triangle 12 B, face attributes 24 B when a face has them, normals, meshes)",
        sceneBytes);
-  part("the same arrays again: prepareGeometry(const Scene&) copies the scene into PreparedGeometry::source", copyBytes);
-  part("Embree BVH and the rest of the build step (measured: step's resident growth minus the above)", embreeBytes);
+  part("Embree's BVH and the rest of the build step (measured: the step's resident growth)", embreeBytes);
   part("image and the rest of the render step", afterRender.rss - afterBuild.rss);
-  part("transient peak of the load above what it keeps (XML text, repaired copy, tinyxml2 DOM)", afterLoad.peak - afterLoad.rss);
+  part("transient peak of the load above what it keeps (file text, tinyxml2 DOM)", afterLoad.peak - afterLoad.rss);
   std::printf("\nprocess peak (the highest of the steps' peaks; each step's VmHWM was reset at its start): "
               "%.0f MB = %.0f B/triangle\n",
               std::max({afterLoad.peak, afterBuild.peak, afterRender.peak}) / 1e6,
