@@ -27,6 +27,15 @@ std::string formatted(const char* format, double value) {
   return text;
 }
 
+// "412 MiB (peak 530 MiB)", or "-" where the kernel does not say.
+std::string memoryText(std::uint64_t resident, std::uint64_t peak) {
+  if (resident == 0) return "-";
+  char text[64];
+  std::snprintf(text, sizeof text, "%.0f MiB (peak %.0f MiB)", static_cast<double>(resident) / (1 << 20),
+                static_cast<double>(peak) / (1 << 20));
+  return text;
+}
+
 std::string millisecondsOrPending(double ms) {
   if (ms < 0.0) return "...";
   char text[32];
@@ -135,6 +144,7 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneL
       {"BVH build", formatted("%.1f ms", s.bvhBuildMs)},
       {"Traversal", std::string(toString(s.accel))},
       {"Threads", std::to_string(s.threads)},
+      {"Memory", memoryText(s.residentBytes, s.peakResidentBytes)},
       {"Generation", std::to_string(s.generation)},
   };
   const ImGuiStyle& style = ImGui::GetStyle();

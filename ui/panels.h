@@ -121,6 +121,8 @@ struct ViewerStats {
   double bvhBuildMs = 0.0;
   AccelKind accel = AccelKind::Embree;  // the back-end built for the scene (the packet BVH for a small one)
   int threads = 0;
+  // The process's resident memory and its peak, in bytes, read at each pass shown (0: not known).
+  std::uint64_t residentBytes = 0, peakResidentBytes = 0;
 };
 
 struct SceneInfo {

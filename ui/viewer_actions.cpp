@@ -275,6 +275,10 @@ std::string ViewerApp::stateLine() const {
   std::snprintf(timings, sizeof timings, " first_pass_ms=%.1f final_pass_ms=%.1f", stats_.editToFirstPassMs,
                 stats_.editToFinalPassMs);
   line += timings;
+  char memory[64];
+  std::snprintf(memory, sizeof memory, " memory_mib=%.1f peak_mib=%.1f", static_cast<double>(stats_.residentBytes) / (1 << 20),
+                static_cast<double>(stats_.peakResidentBytes) / (1 << 20));
+  line += memory;
   line += " exposure=" + formatNumber(display_.mapping.exposureStops) +
           " gamma=" + formatNumber(display_.mapping.gamma);
   if (session_) line += " traversal=" + std::string(toString(stats_.accel));

@@ -145,6 +145,11 @@ quit
     if exposures != [("0", "1"), ("1", "1"), ("0", "2")]:
         raise Failure(f"print-state should show the exposure and gamma set: {exposures}")
     print(f"  generation {generations[0]} throughout, one final pass; exposure, gamma: {exposures}")
+    # The process's memory as the stats overlay shows it, read with each pass shown: resident and its peak.
+    memory = [(float(field(s, "memory_mib")), float(field(s, "peak_mib"))) for s in states]
+    if not all(1.0 < resident <= peak < 1 << 20 for resident, peak in memory):
+        raise Failure(f"print-state should give the viewer's resident memory and its peak in MiB: {memory}")
+    print(f"  memory (MiB, resident / peak): {memory[0]}")
 
     # The screen: brighter as the mapping says, the reference alike under Space, the difference raw.
     expect_screen("before.png (exposure 0: the render as computed)", files["before"], width, raw)
