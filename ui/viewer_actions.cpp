@@ -276,7 +276,8 @@ std::string ViewerApp::stateLine() const {
                 stats_.editToFinalPassMs);
   line += timings;
   char memory[64];
-  std::snprintf(memory, sizeof memory, " memory_mib=%.1f peak_mib=%.1f", static_cast<double>(stats_.residentBytes) / (1 << 20),
+  std::snprintf(memory, sizeof memory, " memory_mib=%.1f peak_mib=%.1f",
+                static_cast<double>(stats_.residentBytes) / (1 << 20),
                 static_cast<double>(stats_.peakResidentBytes) / (1 << 20));
   line += memory;
   line += " exposure=" + formatNumber(display_.mapping.exposureStops) +
