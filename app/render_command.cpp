@@ -81,7 +81,9 @@ int runRenderCommand(const CommandLine& command) {
     return kExitBadInput;
   }
   const double loadMs = msSince(loadStart);
-  std::uint64_t peaks[4] = {processMemory().peak, 0, 0, 0};  // after load, build, render, write
+  // The memory line's readings, after load, build, render and write: only for a summary that prints them.
+  const auto peakNow = [&] { return command.quiet ? std::uint64_t{0} : processMemory().peak; };
+  std::uint64_t peaks[4] = {peakNow(), 0, 0, 0};
   if (const std::string problem = outputOverwritesInput(output, command.scenePath, &loaded.scene); !problem.empty()) {
     std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
@@ -112,13 +114,13 @@ int runRenderCommand(const CommandLine& command) {
                    geometry->accelFallback.c_str());
       settings.accel = AccelKind::Reference;
     }
-    peaks[1] = std::max(peaks[0], processMemory().peak);
+    peaks[1] = std::max(peaks[0], peakNow());
     ThreadPool pool(command.threads);
     const Tracer tracer(view.parameters(), *geometry, settings);
     // Start-up as issue 8 defines it: process start to the first ray, less load and build.
     startupMs = msSinceProcessStart() - loadMs - geometry->buildMs;
     renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
-    peaks[2] = std::max(peaks[1], processMemory().peak);
+    peaks[2] = std::max(peaks[1], peakNow());
     triangles = view.triangles.size();
 
     std::string lights;
@@ -145,7 +147,7 @@ int runRenderCommand(const CommandLine& command) {
     return kExitIoFailure;
   }
   const double writeMs = msSince(writeStart);
-  peaks[3] = std::max(peaks[2], processMemory().peak);
+  peaks[3] = std::max(peaks[2], peakNow());
 
   if (!command.quiet) {
     std::printf("scene      %s\n", sceneLine.c_str());
