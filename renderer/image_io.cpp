@@ -47,6 +47,10 @@ thread_local const PngOptions* currentOptions = nullptr;
 constexpr std::size_t kWindow = 32768;         // deflate's window: each part may refer this far back
 constexpr std::size_t kMinPartBytes = 1 << 18;  // smaller parts cost more in threads than they save
 
+struct FreeBytes {
+  void operator()(unsigned char* p) const { std::free(p); }
+};
+
 int partCount(std::size_t bytes, int threads) {
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const std::size_t byBytes = std::max<std::size_t>(1, bytes / kMinPartBytes);
@@ -66,7 +70,7 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
   const auto bytes = static_cast<std::size_t>(length);
   const int parts = partCount(bytes, options.threads);
   // Uninitialised buffers: zero-filling deflateBound's worth for every part showed up in perf.
-  std::vector<std::unique_ptr<unsigned char[]>> out(static_cast<std::size_t>(parts));
+  std::vector<std::unique_ptr<unsigned char, FreeBytes>> out(static_cast<std::size_t>(parts));
   std::vector<std::size_t> outBytes(static_cast<std::size_t>(parts), 0);
   std::vector<uLong> adlers(static_cast<std::size_t>(parts));
   std::vector<int> failed(static_cast<std::size_t>(parts), 0);
@@ -81,15 +85,37 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
       const std::size_t dictionary = std::min(begin, kWindow);
       deflateSetDictionary(&s, data + begin - dictionary, static_cast<uInt>(dictionary));
     }
-    const std::size_t capacity = deflateBound(&s, static_cast<uLong>(end - begin)) + 64;
-    out[k].reset(new unsigned char[capacity]);
+    // Room for an eighth of the part first, doubled while deflate fills it: a buffer of deflateBound's size (the
+    // part's own) put a fresh 2 MiB page of the launcher's huge-page heap under each part, for output that is
+    // mostly a few hundred KB (docs/PERFORMANCE.md, "twelfth session").
+    const std::size_t bound = deflateBound(&s, static_cast<uLong>(end - begin)) + 64;
+    std::size_t capacity = std::min(bound, (end - begin) / 8 + 4096);
+    out[k].reset(static_cast<unsigned char*>(std::malloc(capacity)));
     s.next_in = data + begin;
     s.avail_in = static_cast<uInt>(end - begin);
     s.next_out = out[k].get();
-    s.avail_out = static_cast<uInt>(capacity);
+    s.avail_out = out[k] ? static_cast<uInt>(capacity) : 0;
     const bool last = k + 1 == parts;
-    const int result = deflate(&s, last ? Z_FINISH : Z_SYNC_FLUSH);
-    if ((last ? result != Z_STREAM_END : result != Z_OK) || s.avail_in != 0) failed[k] = 1;
+    while (out[k]) {
+      const int result = deflate(&s, last ? Z_FINISH : Z_SYNC_FLUSH);
+      if (last ? result == Z_STREAM_END : result == Z_OK && s.avail_in == 0 && s.avail_out != 0) break;
+      if (result == Z_STREAM_ERROR || s.avail_out != 0) {
+        failed[k] = 1;
+        break;
+      }
+      // Out of room: double it (realloc keeps what is written) and go on from there.
+      capacity *= 2;
+      auto* grown = static_cast<unsigned char*>(std::realloc(out[k].get(), capacity));
+      if (!grown) {
+        failed[k] = 1;
+        break;
+      }
+      static_cast<void>(out[k].release());
+      out[k].reset(grown);
+      s.next_out = grown + s.total_out;
+      s.avail_out = static_cast<uInt>(capacity - s.total_out);
+    }
+    if (!out[k]) failed[k] = 1;  // the first malloc failed
     outBytes[k] = s.total_out;
     deflateEnd(&s);
     adlers[k] = adler32(1L, data + begin, static_cast<uInt>(end - begin));

@@ -58,6 +58,23 @@ TEST(PngWriter, RoundTripsAtEveryLevelAndPartCount) {
       }
 }
 
+// Noise does not compress: every part's output outgrows the room it starts with (an eighth of the part) and is
+// grown until it holds more than the part itself.
+TEST(PngWriter, IncompressibleImagesRoundTrip) {
+  for (auto [w, h] : {std::pair{64, 64}, std::pair{1024, 768}})
+    for (int level : {1, 9})
+      for (int threads : {1, 2, 8}) {
+        SCOPED_TRACE(std::to_string(w) + "x" + std::to_string(h) + " level " + std::to_string(level) + " threads " +
+                     std::to_string(threads));
+        Image image(w, h);
+        std::mt19937 random(static_cast<std::uint32_t>(w + level + threads));
+        for (std::uint8_t& byte : image.rgb) byte = static_cast<std::uint8_t>(random() >> 24);
+        const std::string png = encodePng(image, PngOptions{level, threads});
+        EXPECT_GT(png.size(), image.rgb.size());
+        expectDecodesTo(png, image);
+      }
+}
+
 TEST(PngWriter, SameBytesForTheSameOptions) {
   const Image image = testImage(800, 600, 5);
   EXPECT_EQ(encodePng(image, PngOptions{1, 2}), encodePng(image, PngOptions{1, 2}));
