@@ -103,8 +103,12 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
         failed[k] = 1;
         break;
       }
-      // Out of room: double it (realloc keeps what is written) and go on from there.
-      capacity *= 2;
+      // Out of room: double it, up to deflate's bound (realloc keeps what is written), and go on from there.
+      if (capacity >= bound) {  // more than the bound: never, but no endless loop if it were
+        failed[k] = 1;
+        break;
+      }
+      capacity = std::min(capacity * 2, bound);
       auto* grown = static_cast<unsigned char*>(std::realloc(out[k].get(), capacity));
       if (!grown) {
         failed[k] = 1;
