@@ -69,7 +69,8 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
   const int level = std::clamp(options.level, 1, 9);
   const auto bytes = static_cast<std::size_t>(length);
   const int parts = partCount(bytes, options.threads);
-  // Uninitialised buffers: zero-filling deflateBound's worth for every part showed up in perf.
+  // Uninitialised buffers (malloc, grown by realloc): zero-filling deflateBound's worth for every part showed up
+  // in perf.
   std::vector<std::unique_ptr<unsigned char, FreeBytes>> out(static_cast<std::size_t>(parts));
   std::vector<std::size_t> outBytes(static_cast<std::size_t>(parts), 0);
   std::vector<uLong> adlers(static_cast<std::size_t>(parts));
@@ -94,32 +95,26 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
     s.next_in = data + begin;
     s.avail_in = static_cast<uInt>(end - begin);
     s.next_out = out[k].get();
-    s.avail_out = out[k] ? static_cast<uInt>(capacity) : 0;
+    s.avail_out = static_cast<uInt>(capacity);
     const bool last = k + 1 == parts;
-    while (out[k]) {
+    bool ok = out[k] != nullptr;
+    while (ok) {
       const int result = deflate(&s, last ? Z_FINISH : Z_SYNC_FLUSH);
       if (last ? result == Z_STREAM_END : result == Z_OK && s.avail_in == 0 && s.avail_out != 0) break;
-      if (result == Z_STREAM_ERROR || s.avail_out != 0) {
-        failed[k] = 1;
-        break;
-      }
-      // Out of room: double it, up to deflate's bound (realloc keeps what is written), and go on from there.
-      if (capacity >= bound) {  // more than the bound: never, but no endless loop if it were
-        failed[k] = 1;
-        break;
-      }
+      // Only a full buffer is worth more room: doubled up to deflate's bound, which it never needs more than
+      // (realloc keeps what is written).
+      ok = result != Z_STREAM_ERROR && s.avail_out == 0 && capacity < bound;
+      if (!ok) break;
       capacity = std::min(capacity * 2, bound);
       auto* grown = static_cast<unsigned char*>(std::realloc(out[k].get(), capacity));
-      if (!grown) {
-        failed[k] = 1;
-        break;
-      }
+      ok = grown != nullptr;
+      if (!ok) break;
       static_cast<void>(out[k].release());
       out[k].reset(grown);
       s.next_out = grown + s.total_out;
       s.avail_out = static_cast<uInt>(capacity - s.total_out);
     }
-    if (!out[k]) failed[k] = 1;  // the first malloc failed
+    if (!ok) failed[k] = 1;
     outBytes[k] = s.total_out;
     deflateEnd(&s);
     adlers[k] = adler32(1L, data + begin, static_cast<uInt>(end - begin));
