@@ -10,6 +10,7 @@
 #include <random>
 #include <system_error>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include <zlib.h>
@@ -36,6 +37,9 @@ namespace png_detail {
 namespace {
 
 thread_local const PngOptions* currentOptions = nullptr;
+// An image the encoder owns (encodePng(Image&&)): its pixels are freed when the deflate starts, stb_image_write
+// having filtered every row into its own copy by then and reading the pixels no more.
+thread_local Image* currentImageToRelease = nullptr;
 
 // Rows unfiltered (PNG filter type 0). stb's default tries all five filters on every row and keeps the one
 // with the smallest sum of bytes, which cost 5-14 ms of a 1024x768 write; for rayview's images (flat shading,
@@ -66,6 +70,7 @@ int partCount(std::size_t bytes, int threads) {
 // stb_image_write frees.
 unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, int) {
   const PngOptions options = currentOptions ? *currentOptions : PngOptions{};
+  if (currentImageToRelease) std::vector<std::uint8_t>().swap(currentImageToRelease->rgb);
   const int level = std::clamp(options.level, 1, 9);
   const auto bytes = static_cast<std::size_t>(length);
   const int parts = partCount(bytes, options.threads);
@@ -132,18 +137,23 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
   }
   std::size_t total = 2 + 4;
   for (std::size_t bytesOfPart : outBytes) total += bytesOfPart;
-  auto* stream = static_cast<unsigned char*>(std::malloc(total));
+  // The stream in the first part's buffer, grown (realloc), each further part appended and freed: no second copy of
+  // the whole output beside the parts (at the write's peak, with the image and stb's filtered copy).
+  auto* stream = static_cast<unsigned char*>(std::realloc(out[0].get(), total));
   if (!stream) return nullptr;
+  static_cast<void>(out[0].release());
+  std::memmove(stream + 2, stream, outBytes[0]);
   // CMF: deflate, 32 KiB window; FLG: its check bits, no dictionary, level hint.
   const unsigned cmf = 0x78, levelHint = level == 1 ? 0 : level < 6 ? 1 : level == 6 ? 2 : 3;
   unsigned flg = levelHint << 6;
   flg += 31 - (cmf * 256 + flg) % 31;
   stream[0] = static_cast<unsigned char>(cmf);
   stream[1] = static_cast<unsigned char>(flg);
-  std::size_t at = 2;
-  for (int k = 0; k < parts; ++k) {
+  std::size_t at = 2 + outBytes[0];
+  for (int k = 1; k < parts; ++k) {
     std::memcpy(stream + at, out[k].get(), outBytes[k]);
     at += outBytes[k];
+    out[k].reset();
   }
   for (int shift = 24; shift >= 0; shift -= 8) stream[at++] = static_cast<unsigned char>(adler >> shift);
   *outLength = static_cast<int>(total);
@@ -177,6 +187,19 @@ std::atomic<bool> g_temporaryActive{false};
 }  // namespace
 
 const char* temporaryFileInProgress() { return g_temporaryActive.load() ? g_temporaryPath : nullptr; }
+
+std::string encodePng(Image&& image, const PngOptions& options) {
+  Image owned = std::move(image);
+  png_detail::currentImageToRelease = &owned;
+  try {
+    std::string bytes = encodePng(static_cast<const Image&>(owned), options);
+    png_detail::currentImageToRelease = nullptr;
+    return bytes;
+  } catch (...) {
+    png_detail::currentImageToRelease = nullptr;
+    throw;
+  }
+}
 
 std::string encodePng(const Image& image, const PngOptions& options) {
   std::string bytes;
@@ -232,6 +255,15 @@ void writeImageFile(const std::filesystem::path& path, const Image& image) {
   if (ext == ".png") writeFileAtomically(path, encodePng(image));
   else if (ext == ".ppm") writeFileAtomically(path, encodePpm(image));
   else throw ImageIoError("cannot write " + path.string() + ": the extension must be .png or .ppm");
+}
+
+void writeImageFile(const std::filesystem::path& path, Image&& image) {
+  if (lowerExtension(path) == ".png") {
+    writeFileAtomically(path, encodePng(std::move(image)));
+    return;
+  }
+  const Image owned = std::move(image);
+  writeImageFile(path, owned);
 }
 
 Image readImageFile(const std::filesystem::path& path) {

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "texture_image.h"
 
@@ -78,6 +79,26 @@ TEST(PngWriter, IncompressibleImagesRoundTrip) {
 TEST(PngWriter, SameBytesForTheSameOptions) {
   const Image image = testImage(800, 600, 5);
   EXPECT_EQ(encodePng(image, PngOptions{1, 2}), encodePng(image, PngOptions{1, 2}));
+}
+
+// The overloads that take the image (what `rayview render` uses, so that a write does not hold the image beside stb's
+// filtered copy of it): the same bytes as from a borrowed image, at every part count, and the image is consumed.
+TEST(PngWriter, AnImageGivenAwayEncodesToTheSameBytes) {
+  for (int threads : {1, 2, 8}) {
+    SCOPED_TRACE("threads " + std::to_string(threads));
+    const Image image = testImage(1024, 768, 11);
+    Image given = image;
+    EXPECT_EQ(encodePng(std::move(given), PngOptions{1, threads}), encodePng(image, PngOptions{1, threads}));
+    EXPECT_TRUE(given.rgb.empty());
+  }
+  const std::filesystem::path dir = std::filesystem::path(RAYVIEW_TEST_OUTPUT_DIR) / "png_writer";
+  std::filesystem::create_directories(dir);
+  const Image image = testImage(333, 211, 12);
+  for (const char* name : {"given.png", "given.ppm"}) {
+    Image given = image;
+    writeImageFile(dir / name, std::move(given));
+    EXPECT_EQ(readImageFile(dir / name).rgb, image.rgb) << name;
+  }
 }
 
 TEST(PngWriter, WrittenFileReadsBack) {
