@@ -8,11 +8,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <filesystem>
+#include <utility>
 
+#include "lean_heap.h"
 #include "process_start.h"
 #include "rayview/accel.h"
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
+#include "rayview/lean_memory.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/process_memory.h"
 #include "rayview/scene_source.h"
@@ -75,7 +78,10 @@ int runRenderCommand(const CommandLine& command) {
   const auto loadStart = std::chrono::steady_clock::now();
   LoadedScene loaded;
   try {
-    loaded = loadSceneOrDefault(command.scenePath, LoadOptions{command.strict, true});
+    LoadOptions options;
+    options.strict = command.strict;
+    options.beforeArrays = useLeanHeapForEstimate;
+    loaded = loadSceneOrDefault(command.scenePath, options);
   } catch (const SceneError& error) {
     std::fprintf(stderr, "%s\n", error.what());
     return kExitBadInput;
@@ -94,9 +100,14 @@ int runRenderCommand(const CommandLine& command) {
 
   // The knobs given on the command line, written once into their homes: the settings and the scene's parameters.
   Scene& scene = loaded.scene;
+  // A lean scene (rayview/lean_memory.h): its heap lean from here if the loader's estimate did not make it so, and
+  // what the load freed given back. Its image is kept deflated while the scene is held.
+  const bool lean = isLeanScene(scene.triangles.size());
+  if (lean) useLeanHeap();
   RenderSettings settings;
   applyKnobs(command.knobs, {&scene.parameters(), &settings});
   Image image;
+  DeflatedImage deflated;
   FrameStats stats;
   std::string sceneLine, settingsLine;
   double buildMs = 0.0, startupMs = 0.0;
@@ -119,7 +130,10 @@ int runRenderCommand(const CommandLine& command) {
     const Tracer tracer(view.parameters(), *geometry, settings);
     // Start-up as issue 8 defines it: process start to the first ray, less load and build.
     startupMs = msSinceProcessStart() - loadMs - geometry->buildMs;
-    renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
+    if (lean)
+      renderFrameDeflated(tracer, view.camera.width, view.camera.height, pool, deflated, stats);
+    else
+      renderFrame(tracer, view.camera.width, view.camera.height, pool, image, stats);
     peaks[2] = std::max(peaks[1], peakNow());
     triangles = view.triangles.size();
 
@@ -141,7 +155,12 @@ int runRenderCommand(const CommandLine& command) {
 
   const auto writeStart = std::chrono::steady_clock::now();
   try {
-    writeImageFile(output, image);
+    if (lean) {
+      useLeanHeap();  // what the scene and its BVH freed goes back before the image is made whole
+      image = deflated.inflate();
+      deflated = {};
+    }
+    writeImageFile(output, std::move(image));
   } catch (const ImageIoError& error) {
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
     return kExitIoFailure;

@@ -42,7 +42,8 @@ Scene baseScene(int width, int height) {
 
 Scene heightfieldScene(int triangles, int width, int height) {
   Scene scene = baseScene(width, height);
-  const int n = std::max(1, static_cast<int>(std::sqrt(triangles / 2.0)));  // quads per side
+  // Quads per side: at least `triangles` triangles (a series' "1e5" scene has 1e5 or a few hundred more).
+  const int n = std::max(1, static_cast<int>(std::ceil(std::sqrt(triangles / 2.0))));
 
   const double size = 10.0;
   for (int j = 0; j <= n; ++j)
@@ -81,9 +82,10 @@ Scene sphereScene(int triangles, int width, int height) {
   Scene scene = baseScene(width, height);
   scene.camera.position = {0.0, 1.0, 6.0};
   scene.camera.gaze = {0.0, -0.15, -1.0};
-  // rings x segments quads, the pole rows as single triangles: 2 * rings * segments - 2 * segments triangles.
+  // rings x segments quads, the pole rows as single triangles: 2 * rings * segments - 2 * segments triangles, at
+  // least `triangles`.
   const int segments = std::max(3, static_cast<int>(std::sqrt(triangles)));
-  const int rings = std::max(2, (triangles / segments + 2) / 2);
+  const int rings = std::max(2, (triangles + 2 * segments - 1) / (2 * segments) + 1);
   const double radius = 2.0, pi = 3.14159265358979323846;
   for (int r = 0; r <= rings; ++r)
     for (int s = 0; s <= segments; ++s) {

@@ -28,7 +28,9 @@ std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dv
 std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin, const std::string& isa);
 // rayview's packet BVH (packet_bvh_accel.cpp): Embree's answers for every ray within Embree's range, with no Embree.
 // A big scene's build uses up to `buildThreads` threads (0: the hardware's); the BVH is the same for any number.
-std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads = 0);
+// Leaves hold one triangle, or up to `leafTriangles` (fewer nodes: less memory, slower rays; lean_memory.h).
+std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads = 0,
+                                          std::size_t leafTriangles = 1);
 // prepareGeometry builds the packet BVH for AccelKind::Embree up to this many triangles: Embree's device, task
 // scheduler and first build cost a process ~5 ms, more than its faster traversal saves a small scene's render
 // (docs/PERFORMANCE.md, "2026-11-24, seventh session").

@@ -3,6 +3,7 @@
 #include <charconv>
 
 #include "accel_backends.h"
+#include "rayview/lean_memory.h"
 
 namespace rayview {
 namespace {
@@ -10,6 +11,7 @@ namespace {
 constexpr KnobChoice kTriangularLightModels[] = {{"area", "area"}, {"directional", "directional"}};
 constexpr KnobChoice kAccelKinds[] = {{"embree", "Embree"}, {"reference", "reference BVH"}, {"packet", "packet BVH"}};
 static_assert(kPacketBvhTriangles == 5000, "the accel row's help below names prepareGeometry's limit");
+static_assert(kLeanFromTriangles == 100'000 && kLeanUntilTriangles == 1'000'000, "and its lean scenes' sizes");
 constexpr KnobChoice kRayStarts[] = {{"offset", "offset off the surface"},
                                      {"exclude-hit", "at the hit, skip its triangle"}};
 
@@ -48,8 +50,9 @@ const Knob kKnobs[] = {
      }},
     {.name = "accel",
      .label = "Traversal",
-     .help = "ray traversal: Embree (fast; rayview's packet BVH for scenes of up to 5000 triangles), the "
-             "double-precision reference BVH, or rayview's packet BVH at any size",
+     .help = "ray traversal: Embree (fast; rayview's packet BVH for scenes of up to 5000 triangles, and with leaves "
+             "of several triangles from 100 000 to 1 000 000, to save memory), the double-precision reference BVH, "
+             "or rayview's packet BVH at any size",
      .home = KnobHome::Settings,
      .choices = kAccelKinds,
      .measuredByTradeoff = true,

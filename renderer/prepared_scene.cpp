@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "accel_backends.h"
+#include "rayview/lean_memory.h"
 
 namespace rayview {
 
@@ -11,14 +12,19 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Builds with `kind` as given, except that Embree asked for a scene of up to kPacketBvhTriangles triangles gets the
-// packet BVH (the same answers, none of Embree's start-up): the caller has made Embree's range check
+// packet BVH (the same answers, none of Embree's start-up), and for a lean scene the packet BVH with bigger leaves
+// (lean_memory.h): the caller has made Embree's range check
 // (buildCheckedAccel). `buildMs` counts from `start`, which includes that check.
 std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry, const glm::dvec3& origin,
                                           AccelKind kind, BuildProgress progress, void* progressUser,
                                           Clock::time_point start) {
   auto prepared = std::make_shared<PreparedGeometry>();
-  if (kind == AccelKind::Embree && geometry->triangles.size() <= kPacketBvhTriangles) kind = AccelKind::Packet;
-  prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser);
+  const std::size_t triangles = geometry->triangles.size();
+  if (kind == AccelKind::Embree && triangles <= kPacketBvhTriangles) kind = AccelKind::Packet;
+  if (kind == AccelKind::Embree && isLeanScene(triangles))
+    prepared->accel = makePacketBvhAccel(*geometry, origin, 0, kLeanLeafTriangles);
+  else
+    prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser);
   if (!prepared->accel) return nullptr;
   prepared->shading = prepareShadingGeometry(*geometry, origin);
   prepared->source = std::move(geometry);

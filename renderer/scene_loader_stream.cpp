@@ -290,7 +290,7 @@ void parseNumbers(const ReadAt& read, const StreamedBlock& block, bool asFloat, 
 
 StreamedBlocks streamSkeleton(const ReadAt& read, std::uint64_t size) { return SkeletonReader(read, size).run(); }
 
-void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read) {
+void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, const LoadOptions& options) {
   std::uint64_t faceBytes = 0, longest = 0;
   std::vector<const StreamedBlock*> faceBlocks;
   for (const StreamedBlock& block : streamed.blocks) {
@@ -299,7 +299,9 @@ void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read) {
   }
   Buffer buffer(longest);
   std::vector<Triangle>& triangles = streamed.triangles;
-  triangles.reserve(detail::estimatedItems(sampleOf(read, faceBlocks), faceBytes, 3) + faceBlocks.size());
+  const std::size_t estimate = detail::estimatedItems(sampleOf(read, faceBlocks), faceBytes, 3) + faceBlocks.size();
+  if (options.beforeArrays) options.beforeArrays(estimate);
+  triangles.reserve(estimate);
 
   for (StreamedBlock& block : streamed.blocks) {
     const std::uint64_t bytes = block.end - block.begin;

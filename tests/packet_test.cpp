@@ -14,7 +14,9 @@
 
 #include <glm/geometric.hpp>
 
+#include "accel_backends.h"
 #include "rayview/accel.h"
+#include "rayview/lean_memory.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/scene_loader.h"
 #include "rayview/tracer.h"
@@ -111,23 +113,19 @@ TEST_P(Packets, AnswerEachRayAsItsOwnQueryDoes) {
 // rayview's packet BVH gives every ray, in a packet or alone, exactly Embree's answer: the same closest triangle,
 // distance and barycentrics bit for bit, the same occlusion. (So prepareGeometry may build either for a small scene
 // and the image does not change.)
-TEST_P(Packets, PacketBvhAnswersEveryRayAsEmbreeDoes) {
-  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
-  const Scene scene = loadSceneFile(GetParam()).scene;
-  const glm::dvec3 origin = scene.camera.position;
+void expectAnswersAsEmbree(const Scene& scene, const glm::dvec3& origin, const Accel& packet) {
   const std::unique_ptr<Accel> embree = buildAccel(scene, AccelKind::Embree, origin);
-  const std::unique_ptr<Accel> packet = buildAccel(scene, AccelKind::Packet, origin);
-  ASSERT_TRUE(embree && packet);
+  ASSERT_TRUE(embree);
   ASSERT_EQ(embree->kind(), AccelKind::Embree);
-  ASSERT_EQ(packet->kind(), AccelKind::Packet);
+  ASSERT_EQ(packet.kind(), AccelKind::Packet);
   int hits = 0, compared = 0;
   forEachTestPacket(scene, origin, [&](const Ray* rays, int count, int p) {
     std::optional<Hit> byEmbree[kRayPacket], byPacket[kRayPacket];
     bool blockedByEmbree[kRayPacket], blockedByPacket[kRayPacket];
     embree->closestHits(rays, count, byEmbree);
-    packet->closestHits(rays, count, byPacket);
+    packet.closestHits(rays, count, byPacket);
     embree->occludedMany(rays, count, blockedByEmbree);
-    packet->occludedMany(rays, count, blockedByPacket);
+    packet.occludedMany(rays, count, blockedByPacket);
     for (int k = 0; k < count; ++k) {
       EXPECT_TRUE(sameHit(byPacket[k], byEmbree[k])) << "packet " << p << " lane " << k << " of " << count;
       EXPECT_EQ(blockedByPacket[k], blockedByEmbree[k]) << "packet " << p << " lane " << k << " of " << count;
@@ -138,6 +136,23 @@ TEST_P(Packets, PacketBvhAnswersEveryRayAsEmbreeDoes) {
   if (!scene.triangles.empty()) {
     EXPECT_GT(hits, compared / 10);
   }
+}
+
+TEST_P(Packets, PacketBvhAnswersEveryRayAsEmbreeDoes) {
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
+  const Scene scene = loadSceneFile(GetParam()).scene;
+  const std::unique_ptr<Accel> packet = buildAccel(scene, AccelKind::Packet, scene.camera.position);
+  ASSERT_TRUE(packet);
+  expectAnswersAsEmbree(scene, scene.camera.position, *packet);
+}
+
+// The same with leaves of several triangles, as a lean scene's packet BVH is built (rayview/lean_memory.h).
+TEST_P(Packets, PacketBvhWithLeanLeavesAnswersEveryRayAsEmbreeDoes) {
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
+  const Scene scene = loadSceneFile(GetParam()).scene;
+  const std::unique_ptr<Accel> packet = makePacketBvhAccel(scene, scene.camera.position, 0, kLeanLeafTriangles);
+  ASSERT_TRUE(packet);
+  expectAnswersAsEmbree(scene, scene.camera.position, *packet);
 }
 
 // Every pixel of a block traced together equals the pixel traced alone (tracePixels against tracePixel, and

@@ -2,11 +2,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <thread>
 
 #include <glm/geometric.hpp>
 
 #include "accel_backends.h"
+#include "rayview/lean_memory.h"
 #include "rayview/knobs.h"
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
@@ -326,26 +328,30 @@ TEST(Threads, APacketBvhBuiltOnSeveralThreadsAnswersAsOneBuiltOnOne) {
       addTriangle(scene, at(i, j), at(i + 1, j + 1), at(i, j + 1), 0);
     }
   ASSERT_GE(scene.triangles.size(), 32768u);  // the builder's kParallelMin: the top node's halves on two threads
-  const std::unique_ptr<Accel> one = makePacketBvhAccel(scene, glm::dvec3(0.0), 1);
-  const std::unique_ptr<Accel> several = makePacketBvhAccel(scene, glm::dvec3(0.0), 4);
-  const glm::dvec3 origin = scene.camera.position;
-  // Rays from the camera through a 200 x 200 grid over the wall, and from each hit toward a light.
-  int hits = 0;
-  for (int i = 0; i < 200; ++i)
-    for (int j = 0; j < 200; ++j) {
-      const glm::dvec3 target(-4.2 + 8.4 * i / 199, -4.2 + 8.4 * j / 199, -4.5);
-      const Ray ray{origin, glm::normalize(target - origin), 0.0, INFINITY};
-      const std::optional<Hit> a = one->closestHit(ray), b = several->closestHit(ray);
-      ASSERT_EQ(a.has_value(), b.has_value()) << i << ", " << j;
-      if (!a) continue;
-      ++hits;
-      EXPECT_EQ(a->triangle, b->triangle) << i << ", " << j;
-      EXPECT_EQ(a->t, b->t) << i << ", " << j;
-      const glm::dvec3 point = ray.origin + a->t * ray.direction, light(1, 2, 0);
-      const Ray shadow{point, glm::normalize(light - point), 1e-6, glm::length(light - point)};
-      EXPECT_EQ(one->occluded(shadow), several->occluded(shadow)) << i << ", " << j;
-    }
-  EXPECT_GT(hits, 200 * 200 / 2);
+  // Leaves of one triangle, and of several as a lean scene's (whose nodes do not fill the right half's fixed start).
+  for (const std::size_t leaves : {std::size_t{1}, kLeanLeafTriangles}) {
+    SCOPED_TRACE("leaves of up to " + std::to_string(leaves));
+    const std::unique_ptr<Accel> one = makePacketBvhAccel(scene, glm::dvec3(0.0), 1, leaves);
+    const std::unique_ptr<Accel> several = makePacketBvhAccel(scene, glm::dvec3(0.0), 4, leaves);
+    const glm::dvec3 origin = scene.camera.position;
+    // Rays from the camera through a 200 x 200 grid over the wall, and from each hit toward a light.
+    int hits = 0;
+    for (int i = 0; i < 200; ++i)
+      for (int j = 0; j < 200; ++j) {
+        const glm::dvec3 target(-4.2 + 8.4 * i / 199, -4.2 + 8.4 * j / 199, -4.5);
+        const Ray ray{origin, glm::normalize(target - origin), 0.0, INFINITY};
+        const std::optional<Hit> a = one->closestHit(ray), b = several->closestHit(ray);
+        ASSERT_EQ(a.has_value(), b.has_value()) << i << ", " << j;
+        if (!a) continue;
+        ++hits;
+        EXPECT_EQ(a->triangle, b->triangle) << i << ", " << j;
+        EXPECT_EQ(a->t, b->t) << i << ", " << j;
+        const glm::dvec3 point = ray.origin + a->t * ray.direction, light(1, 2, 0);
+        const Ray shadow{point, glm::normalize(light - point), 1e-6, glm::length(light - point)};
+        EXPECT_EQ(one->occluded(shadow), several->occluded(shadow)) << i << ", " << j;
+      }
+    EXPECT_GT(hits, 200 * 200 / 2);
+  }
 }
 
 TEST(Threads, AStopRaisedBeforeTheRenderCancelsIt) {

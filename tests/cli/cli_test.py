@@ -155,6 +155,7 @@ def main():
     check_bench_words(a, scene)
     check_far_scene_falls_back(a)
     check_embree_loaded_only_when_needed(a)
+    check_lean_scene(a)
     print("cli: all checks passed")
 
 
@@ -213,6 +214,43 @@ def check_embree_loaded_only_when_needed(a):
         same = f.read() == g.read()
     check(r.returncode == 0 and len(warnings) == 1 and "packet BVH instead" in warnings[0] and "accel packet" in r.stdout
           and same, "without a loadable Embree, car warns once and renders the same image with the packet BVH")
+
+
+def check_lean_scene(a):
+    """A scene of 1e5 to 1e6 triangles renders lean (rayview/lean_memory.h: the packet BVH with bigger leaves, the
+    image deflated in bands, the heap off huge pages): the same pixels as the packet BVH with leaves of one, to a PNG
+    and to a PPM."""
+    n = 224  # 2 * 224 * 224 = 100 352 triangles
+    vertices = "\n".join(f"{i / n * 8 - 4:.6g} {0.3 * ((i * 7 + j * 13) % 5) / 5:.6g} {j / n * 8 - 4:.6g}"
+                          for j in range(n + 1) for i in range(n + 1))
+    faces = []
+    for j in range(n):
+        for i in range(n):
+            v = j * (n + 1) + i + 1
+            faces.append(f"{v} {v + n + 1} {v + 1}\n{v + 1} {v + n + 1} {v + n + 2}")
+    lean = os.path.join(a.scratch, "lean.xml")
+    with open(lean, "w") as f:
+        f.write("<scene><maxraytracedepth>1</maxraytracedepth><background>10 20 30</background>"
+                "<camera><position>0 3 6</position><gaze>0 -0.5 -1</gaze><up>0 1 0</up>"
+                "<nearplane>-1 1 -0.75 0.75</nearplane><neardistance>1</neardistance>"
+                "<imageresolution>96 72</imageresolution></camera>"
+                "<lights><ambientlight>20 20 20</ambientlight><pointlight id=\"1\"><position>2 4 2</position>"
+                "<intensity>6000 6000 6000</intensity></pointlight></lights>"
+                "<materials><material id=\"1\"><ambient>1 1 1</ambient><diffuse>0.8 0.7 0.5</diffuse>"
+                "<specular>0.3 0.3 0.3</specular><phongexponent>20</phongexponent>"
+                "<mirrorreflectance>0.2 0.2 0.2</mirrorreflectance></material></materials>"
+                f"<vertexdata>{vertices}</vertexdata><objects><mesh id=\"1\"><materialid>1</materialid>"
+                f"<faces>{chr(10).join(faces)}</faces></mesh></objects></scene>\n")
+    outputs = {}
+    for name, extra in (("lean.png", []), ("lean_packet.png", ["--accel", "packet"]), ("lean.ppm", [])):
+        outputs[name] = os.path.join(a.scratch, name)
+        r = run(["render", lean, "-o", outputs[name], "--threads", "2"] + extra, a.rayview)
+        check(r.returncode == 0 and "100352 triangles" in r.stdout and "accel packet" in r.stdout
+              and "B/triangle" in r.stdout, f"a scene of 100 352 triangles renders to {name}")
+    with open(outputs["lean.png"], "rb") as f, open(outputs["lean_packet.png"], "rb") as g:
+        check(f.read() == g.read(), "the lean scene's image equals the one with the packet BVH's leaves of one")
+    r = run(["compare", outputs["lean.png"], outputs["lean.ppm"]], a.rayview)
+    check(r.returncode == 0 and "exact=100" in r.stdout, "its PNG and its PPM hold the same pixels")
 
 
 def peak_of_children_kib():

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 
+#include "rayview/deflated_image.h"
 #include "rayview/image.h"
 #include "rayview/thread_pool.h"
 #include "rayview/tracer.h"
@@ -21,5 +22,10 @@ struct FrameStats {
 // image was complete; the image is then partial and must not be shown or written.
 bool renderFrame(const Tracer& tracer, int width, int height, ThreadPool& pool, Image& image, FrameStats& stats,
                  const std::atomic<bool>* stop = nullptr);
+
+// The same image, rendered in bands of rows and kept deflated (lean_memory.h): the pixels are renderFrame's, bit for
+// bit, but the whole image is never held. Throws std::bad_alloc.
+void renderFrameDeflated(const Tracer& tracer, int width, int height, ThreadPool& pool, DeflatedImage& image,
+                         FrameStats& stats);
 
 }  // namespace rayview

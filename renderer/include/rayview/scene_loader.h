@@ -1,6 +1,7 @@
 #pragma once
 // Reading the handout's XML format, tolerant of its typos, located in its errors (SPEC section 2).
 
+#include <cstddef>
 #include <filesystem>
 #include <string>
 #include <string_view>
@@ -18,6 +19,10 @@ struct LoadOptions {
   // text; false reads everything through tinyxml2's DOM. Both give the same scene, messages and warnings:
   // false is for tests and the fuzz target that check so.
   bool streamBlocks = true;
+  // Called once the big blocks' text has been measured and before their arrays are allocated, with the number of
+  // triangles the faces' text holds by the density of its first 64 KiB (an estimate: detail::estimatedItems), when
+  // the blocks are read as a stream. The command line decides its heap by it (rayview/lean_memory.h).
+  void (*beforeArrays)(std::size_t estimatedTriangles) = nullptr;
 };
 
 struct LoadedScene {
