@@ -43,6 +43,11 @@ void useLeanHeap() {
   }
 }
 
+void useLeanHeapForTheWrite() {
+  useLeanHeap();
+  ::prctl(PR_SET_THP_DISABLE, 0, 0, 0, 0);
+}
+
 void useLeanHeapForEstimate(std::size_t estimatedTriangles) {
   if (isLeanScene(estimatedTriangles)) useLeanHeap();
 }

@@ -156,7 +156,7 @@ int runRenderCommand(const CommandLine& command) {
   const auto writeStart = std::chrono::steady_clock::now();
   try {
     if (lean) {
-      useLeanHeap();  // what the scene and its BVH freed goes back before the image is made whole
+      useLeanHeapForTheWrite();
       image = deflated.inflate();
       deflated = {};
     }
