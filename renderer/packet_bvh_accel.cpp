@@ -108,11 +108,11 @@ static_assert(sizeof(CentroidComputed) == 28 && sizeof(CentroidKept) == 40);
 // Leaves of one triangle make 2 * triangles - 1 nodes; leaves of up to `leafMax` fewer. Written in place: a vector
 // copied into the aligned array held 64 bytes a triangle twice at the build's peak.
 //
-// The nodes are taken pair by pair as the build goes, from the front of the array: with leaves of
-// several triangles the array's tail is never touched, so never resident. The two subtrees under the top nodes of a
-// big scene are built at once: the right one's nodes start where the left one's would end at the most (the
-// descendants of a node over m triangles take at most 2 (m - 1) slots), so where every node lands depends on the
-// triangles alone, not on the order or the thread its parts are built in.
+// The nodes are taken pair by pair as the build goes, from the front of the array: with leaves of several triangles
+// the array's tail is never touched, so never resident. The two subtrees under the top nodes of a big scene are
+// built at once: the right one's nodes start where the left one's would end at the most (the descendants of a node
+// over m triangles take at most 2 (m - 1) slots), so where every node lands depends on the triangles alone, not on
+// the order or the thread its parts are built in.
 template <class BuildTriangle>
 class Builder {
  public:
