@@ -297,10 +297,11 @@ void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, c
     if (block.tag == Tag::Faces) faceBytes += block.end - block.begin, faceBlocks.push_back(&block);
     longest = std::max(longest, block.end - block.begin);
   }
-  Buffer buffer(longest);
-  std::vector<Triangle>& triangles = streamed.triangles;
+  // The estimate before anything big is allocated: the reading's buffer too comes after the caller's say.
   const std::size_t estimate = detail::estimatedItems(sampleOf(read, faceBlocks), faceBytes, 3) + faceBlocks.size();
   if (options.beforeArrays) options.beforeArrays(estimate);
+  Buffer buffer(longest);
+  std::vector<Triangle>& triangles = streamed.triangles;
   triangles.reserve(estimate);
 
   for (StreamedBlock& block : streamed.blocks) {
