@@ -119,7 +119,8 @@ int runRenderCommand(const CommandLine& command) {
     // Shared, not copied: the geometry is the largest thing a big scene holds.
     const auto shared = std::make_shared<const Scene>(std::move(scene));
     const Scene& view = *shared;
-    std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, settings.accel);
+    // Built for memory: a lean scene gets the packet BVH with bigger leaves; any other, what it would anyway.
+    std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, settings.accel, BuildPriority::Memory);
     if (!geometry->accelFallback.empty()) {
       std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName(command).c_str(),
                    geometry->accelFallback.c_str());

@@ -51,8 +51,8 @@ const Knob kKnobs[] = {
     {.name = "accel",
      .label = "Traversal",
      .help = "ray traversal: Embree (fast; rayview's packet BVH for scenes of up to 5000 triangles, and with leaves "
-             "of several triangles from 100 000 to 1 000 000, to save memory), the double-precision reference BVH, "
-             "or rayview's packet BVH at any size",
+             "of several triangles from 100 000 to 1 000 000 in `rayview render`, to save memory), the "
+             "double-precision reference BVH, or rayview's packet BVH at any size",
      .home = KnobHome::Settings,
      .choices = kAccelKinds,
      .measuredByTradeoff = true,

@@ -12,16 +12,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Builds with `kind` as given, except that Embree asked for a scene of up to kPacketBvhTriangles triangles gets the
-// packet BVH (the same answers, none of Embree's start-up), and for a lean scene the packet BVH with bigger leaves
-// (lean_memory.h): the caller has made Embree's range check
-// (buildCheckedAccel). `buildMs` counts from `start`, which includes that check.
+// packet BVH (the same answers, none of Embree's start-up), and for a lean scene built for memory the packet BVH with
+// bigger leaves (lean_memory.h): the caller has made Embree's range check (buildCheckedAccel). `buildMs` counts from
+// `start`, which includes that check.
 std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry, const glm::dvec3& origin,
                                           AccelKind kind, BuildProgress progress, void* progressUser,
-                                          Clock::time_point start) {
+                                          Clock::time_point start, BuildPriority priority = BuildPriority::Speed) {
   auto prepared = std::make_shared<PreparedGeometry>();
   const std::size_t triangles = geometry->triangles.size();
   if (kind == AccelKind::Embree && triangles <= kPacketBvhTriangles) kind = AccelKind::Packet;
-  if (kind == AccelKind::Embree && isLeanScene(triangles))
+  if (kind == AccelKind::Embree && priority == BuildPriority::Memory && isLeanScene(triangles))
     prepared->accel = makePacketBvhAccel(*geometry, origin, 0, kLeanLeafTriangles);
   else
     prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser);
@@ -35,13 +35,14 @@ std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> g
 // Embree for a scene whose rays all stay within its range (its lights and epsilon included), else the
 // reference BVH, with the reason: one range check (it reads every corner of every face).
 std::shared_ptr<const PreparedGeometry> prepareScene(std::shared_ptr<const SceneGeometry> geometry, const Scene& scene,
-                                                     AccelKind kind, BuildProgress progress, void* progressUser) {
+                                                     AccelKind kind, BuildProgress progress, void* progressUser,
+                                                     BuildPriority priority = BuildPriority::Speed) {
   const auto start = Clock::now();
   kind = availableAccel(kind);
   std::string problem;
   if (kind != AccelKind::Reference) problem = embreeRangeProblem(scene, scene, scene.camera.position);
   auto prepared = prepare(std::move(geometry), scene.camera.position, problem.empty() ? kind : AccelKind::Reference,
-                          progress, progressUser, start);
+                          progress, progressUser, start, priority);
   if (prepared) prepared->accelFallback = std::move(problem);
   return prepared;
 }
@@ -60,6 +61,12 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
                                                         BuildProgress progress, void* progressUser) {
   std::shared_ptr<const SceneGeometry> geometry(scene, &scene->geometry());
   return prepareScene(std::move(geometry), *scene, kind, progress, progressUser);
+}
+
+std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
+                                                        BuildPriority priority) {
+  std::shared_ptr<const SceneGeometry> geometry(scene, &scene->geometry());
+  return prepareScene(std::move(geometry), *scene, kind, nullptr, nullptr, priority);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind, BuildProgress progress,
