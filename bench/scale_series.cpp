@@ -98,9 +98,10 @@ int breakdown(const std::string& path, int threads) {
   row("load (file text, the big blocks read as a stream, the rest as a tinyxml2 DOM; Scene)", start, afterLoad);
 
   resetPeak();
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, AccelKind::Embree);
+  // Built for memory, as `rayview render` builds: lean scenes (rayview/lean_memory.h) get the lean packet BVH.
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, AccelKind::Embree, BuildPriority::Memory);
   const Memory afterBuild = memoryNow();
-  row("prepareGeometry (Embree's BVH, shading geometry)", afterLoad, afterBuild);
+  row("prepareGeometry (the BVH `rayview render` builds, shading geometry)", afterLoad, afterBuild);
 
   resetPeak();
   Image image;
@@ -113,15 +114,15 @@ int breakdown(const std::string& path, int threads) {
   const Memory afterRender = memoryNow();
   row("render (image, thread stacks)", afterBuild, afterRender);
 
-  // What the arrays themselves take, from their sizes; Embree's part is the build step's growth.
+  // What the arrays themselves take, from their sizes; the BVH's part is the build step's growth.
   const double sceneBytes = sceneArrayBytes(scene);
   // Shading and the Embree back-end's TriangleData hold nothing per triangle: they read the scene's arrays.
-  const double embreeBytes = afterBuild.rss - afterLoad.rss;
+  const double bvhBytes = afterBuild.rss - afterLoad.rss;
   std::printf("\n| where the bytes go (held during the render) | MB | B/triangle |\n|---|---:|---:|\n");
   auto part = [&](const char* what, double bytes) { std::printf("| %s | %.0f | %.0f |\n", what, bytes / 1e6, bytes / n); };
   part("Scene arrays (vertices dvec3 24 B, Triangle 12 B, face attributes 24 B when a face has them, normals, meshes)",
        sceneBytes);
-  part("Embree's BVH and the rest of the build step (measured: the step's resident growth)", embreeBytes);
+  part("the BVH and the rest of the build step (measured: the step's resident growth)", bvhBytes);
   part("image and the rest of the render step", afterRender.rss - afterBuild.rss);
   part("transient peak of the load above what it keeps (file text, tinyxml2 DOM)", afterLoad.peak - afterLoad.rss);
   std::printf("\nprocess peak (the highest of the steps' peaks; each step's VmHWM was reset at its start): "
