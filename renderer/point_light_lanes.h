@@ -13,7 +13,7 @@
 
 #include "rayview/accel.h"
 #include "rayview/point_light.h"
-#include "rayview/ray_offset.h"
+#include "ray_offset.h"
 #include "rayview/scene.h"
 #include "simd4.h"
 #include "specular_power.h"

@@ -7,10 +7,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "rayview/light_samples.h"
+#include "light_samples.h"
 #include "rayview/light_types.h"
 #include "rayview/prepared_scene.h"
-#include "rayview/ray_offset.h"
+#include "ray_offset.h"
 #include "point_light_lanes.h"
 #include "specular_power.h"
 

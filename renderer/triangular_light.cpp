@@ -1,5 +1,6 @@
 #include "rayview/triangular_light.h"
 
+#include "light_samples.h"
 #include "rayview/render_settings.h"
 
 namespace rayview {
@@ -32,6 +33,19 @@ bool parseTriangularLightModel(std::string_view text, TriangularLightModel& out)
   else if (text == "directional") out = TriangularLightModel::Directional;
   else return false;
   return true;
+}
+
+glm::vec2 triangleSample(int k, int n, std::uint32_t pixelSeed) {
+  if (n <= 1) return {1.0f / 3.0f, 1.0f / 3.0f};
+  const float r1 = static_cast<float>(hash32(pixelSeed) >> 8) * (1.0f / 16777216.0f);
+  const float r2 = static_cast<float>(hash32(pixelSeed ^ 0x9e3779b9U) >> 8) * (1.0f / 16777216.0f);
+  float a = (static_cast<float>(k) + 0.5f) / static_cast<float>(n) + r1;
+  float b = radicalInverseBase2(static_cast<std::uint32_t>(k)) + r2;
+  a -= std::floor(a);
+  b -= std::floor(b);
+  // Area-preserving map of the unit square onto the triangle.
+  const float s = std::sqrt(a);
+  return {s * (1.0f - b), s * b};
 }
 
 }  // namespace rayview

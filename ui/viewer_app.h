@@ -24,7 +24,7 @@
 #include "scene_session.h"
 #include "script_runner.h"
 #include "tradeoff_task.h"
-#include "viewer.h"
+#include "rayview/viewer.h"
 #include "window.h"
 
 namespace rayview {

@@ -11,16 +11,20 @@
 #include <string_view>
 
 #include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
 #include "rayview/color.h"
 #include "rayview/light_type.h"
-#include "rayview/light_samples.h"
 
 namespace rayview {
 
 struct RenderSettings;
 struct TriangularLightShading;
+
+// Barycentric weights (of vertex 2 and vertex 3) of sample k of n for the pixel with seed `pixelSeed`
+// (renderer/light_samples.h: deterministic, stratified).
+glm::vec2 triangleSample(int k, int n, std::uint32_t pixelSeed);
 
 struct TriangularLight {
   std::string id;

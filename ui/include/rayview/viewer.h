@@ -17,8 +17,15 @@ struct ViewerOptions {
   std::string comparePath;             // a reference image to compare the render with; empty: none
 };
 
-// Opens the window and runs until it closes; returns the exit status (rayview/exit_codes.h). Without a
-// display, says so in one line (and how to render headless) and returns kExitIoFailure.
-int runViewer(const ViewerOptions& options);
+// How the viewer ended; the command line maps it onto its exit statuses.
+enum class ViewerExit {
+  Ok,        // the window was closed, or the script finished
+  BadInput,  // the script could not be read or parsed
+  Failed,    // no display, or the script failed
+};
+
+// Opens the window and runs until it closes. Without a display, says so in one line (and how to render
+// headless) and returns ViewerExit::Failed.
+ViewerExit runViewer(const ViewerOptions& options);
 
 }  // namespace rayview
