@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <functional>
 
+#include "rayview/lean_memory.h"
+
 namespace rayview {
 namespace {
 
@@ -114,7 +116,8 @@ std::string whereTag(unsigned applies) {
 // An option for each row of the knob table: --NAME VALUE. The bench varies the knobs it measures itself.
 OptionSpec knobOption(const Knob& knob) {
   const std::string option = "--" + std::string(knob.name);
-  return {option, knob.valueName(), knob.measuredByTradeoff ? kBoth : kAll, std::string(knob.help),
+  return {option, knob.valueName(), knob.measuredByTradeoff ? kBoth : kAll,
+          std::string(knob.help) + " (default: " + knob.defaultText() + ")",
           [&knob, option](CommandLine& c, const std::string& v) {
             const std::optional<int> value = knob.parse(v);
             if (!value) throw UsageError(option + " expects " + knob.expectation() + ", not '" + v + "'");
@@ -134,6 +137,13 @@ std::vector<OptionSpec> makeOptionTable() {
   const std::vector<OptionSpec> rest = {
       {"--strict", "", kAll, "treat every repaired typo and unknown element as an error",
        [](CommandLine& c, const std::string&) { c.strict = true; }},
+      {"--memory", "auto|fast|lean", kRender,
+       "fast: Embree and the whole image; lean: less memory, slower (the packet BVH with bigger leaves, the image "
+       "deflated while the scene is held); auto: lean only when the fast layout's estimated peak would not fit in "
+       "the available memory (default: auto)",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseMemoryUse(v, c.memory)) throw UsageError("--memory expects 'auto', 'fast' or 'lean', not '" + v + "'");
+       }},
       {"--quiet", "", kRender | kBench, "print only errors",
        [](CommandLine& c, const std::string&) { c.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",
@@ -330,11 +340,6 @@ std::string versionText() {
 #else
   text += " (built without Embree: rayview's packet BVH in its place; the reference BVH)";
 #endif
-  // The launcher's malloc settings (app/launcher.cpp) change speed, not images: say whether they are in force.
-  const char* tunables = std::getenv("GLIBC_TUNABLES");
-  text += "\nallocator: ";
-  text += tunables && *tunables ? std::string("GLIBC_TUNABLES=") + tunables
-                                : std::string("glibc defaults (not started through the rayview launcher)");
   return text + "\n";
 }
 

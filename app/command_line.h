@@ -7,8 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "rayview/exit_codes.h"
+#include "exit_codes.h"
 #include "rayview/knobs.h"
+#include "rayview/lean_memory.h"
 
 namespace rayview {
 
@@ -26,6 +27,7 @@ struct CommandLine {
   int threads = 0;         // 0: one per hardware thread
   bool strict = false;
   bool quiet = false;
+  MemoryUse memory = MemoryUse::Auto;  // render: --memory (rayview/lean_memory.h)
   // --depth, --tri-light, ...: one per knob given (the last wins), written into the render settings at once
   // and into the scene's parameters once it is loaded (see knobs.h).
   std::vector<KnobAssignment> knobs;

@@ -1,6 +1,5 @@
-// rayview-cli and rayview-viewer (started by the launcher `rayview`, app/launcher.cpp): the viewer by default,
-// `rayview render` headless, `rayview bench`, `rayview compare`. rayview-cli has no viewer: it hands the viewer
-// command to rayview-viewer.
+// `rayview` and `libexec/rayview-viewer`: the viewer by default, `rayview render` headless, `rayview bench`,
+// `rayview compare`. `rayview` has no viewer: it becomes `libexec/rayview-viewer` for the viewer command.
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -9,12 +8,37 @@
 #include "command_line.h"
 #include "compare_command.h"
 #include "process_start.h"
-#include "program_exec.h"
 #include "render_command.h"
 
 #ifdef RAYVIEW_HAVE_VIEWER
-#include "viewer.h"
+#include "rayview/viewer.h"
+#else
+#include "viewer_start.h"
 #endif
+
+namespace {
+
+int runViewCommand(const rayview::CommandLine& command, char** argv) {
+  using namespace rayview;
+#ifdef RAYVIEW_HAVE_VIEWER
+  static_cast<void>(argv);
+  switch (runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,
+                                  command.scriptPath, command.comparePath})) {
+    case ViewerExit::Ok: return kExitOk;
+    case ViewerExit::BadInput: return kExitBadInput;
+    case ViewerExit::Failed: return kExitIoFailure;
+  }
+  return kExitIoFailure;
+#else
+  static_cast<void>(command);
+  const std::string why = startViewerProgram(argv);
+  std::fprintf(stderr, "rayview: error: the viewer cannot start: %s; to render without a window: rayview render %s -o out.png\n",
+               why.c_str(), command.scenePath.empty() ? "SCENE" : command.scenePath.c_str());
+  return kExitIoFailure;
+#endif
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace rayview;
@@ -40,16 +64,7 @@ int main(int argc, char** argv) {
     case CommandKind::Compare:
       return runCompareCommand(command);
     case CommandKind::View:
-#ifdef RAYVIEW_HAVE_VIEWER
-      return runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,
-                                     command.scriptPath, command.comparePath});
-#else
-      execSiblingProgram("rayview-viewer", argv);
-      // Built without the viewer: render the scene headless instead and say where the image went.
-      command.kind = CommandKind::Render;
-      command.outputPath = "rayview-default.png";
-      return runRenderCommand(command);
-#endif
+      return runViewCommand(command, argv);
   }
   return kExitOk;
 }

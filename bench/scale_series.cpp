@@ -98,8 +98,8 @@ int breakdown(const std::string& path, int threads) {
   row("load (file text, the big blocks read as a stream, the rest as a tinyxml2 DOM; Scene)", start, afterLoad);
 
   resetPeak();
-  // Built for memory, as `rayview render` builds: lean scenes (rayview/lean_memory.h) get the lean packet BVH.
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, AccelKind::Embree, BuildPriority::Memory);
+  // The fast layout, which `rayview render` builds whenever it fits in the memory available.
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, AccelKind::Embree, BvhLayout::Fast);
   const Memory afterBuild = memoryNow();
   row("prepareGeometry (the BVH `rayview render` builds, shading geometry)", afterLoad, afterBuild);
 

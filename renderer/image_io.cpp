@@ -37,9 +37,6 @@ namespace png_detail {
 namespace {
 
 thread_local const PngOptions* currentOptions = nullptr;
-// An image the encoder owns (encodePng(Image&&)): its pixels are freed when the deflate starts, stb_image_write
-// having filtered every row into its own copy by then and reading the pixels no more.
-thread_local Image* currentImageToRelease = nullptr;
 
 // Rows unfiltered (PNG filter type 0). stb's default tries all five filters on every row and keeps the one
 // with the smallest sum of bytes, which cost 5-14 ms of a 1024x768 write; for rayview's images (flat shading,
@@ -70,7 +67,6 @@ int partCount(std::size_t bytes, int threads) {
 // stb_image_write frees.
 unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, int) {
   const PngOptions options = currentOptions ? *currentOptions : PngOptions{};
-  if (currentImageToRelease) std::vector<std::uint8_t>().swap(currentImageToRelease->rgb);
   const int level = std::clamp(options.level, 1, 9);
   const auto bytes = static_cast<std::size_t>(length);
   const int parts = partCount(bytes, options.threads);
@@ -188,19 +184,6 @@ std::atomic<bool> g_temporaryActive{false};
 
 const char* temporaryFileInProgress() { return g_temporaryActive.load() ? g_temporaryPath : nullptr; }
 
-std::string encodePng(Image&& image, const PngOptions& options) {
-  Image owned = std::move(image);
-  png_detail::currentImageToRelease = &owned;
-  try {
-    std::string bytes = encodePng(static_cast<const Image&>(owned), options);
-    png_detail::currentImageToRelease = nullptr;
-    return bytes;
-  } catch (...) {
-    png_detail::currentImageToRelease = nullptr;
-    throw;
-  }
-}
-
 std::string encodePng(const Image& image, const PngOptions& options) {
   std::string bytes;
   png_detail::currentOptions = &options;
@@ -258,12 +241,14 @@ void writeImageFile(const std::filesystem::path& path, const Image& image) {
 }
 
 void writeImageFile(const std::filesystem::path& path, Image&& image) {
-  if (lowerExtension(path) == ".png") {
-    writeFileAtomically(path, encodePng(std::move(image)));
-    return;
-  }
-  const Image owned = std::move(image);
-  writeImageFile(path, owned);
+  Image owned = std::move(image);
+  const std::string ext = lowerExtension(path);
+  if (ext != ".png" && ext != ".ppm")
+    throw ImageIoError("cannot write " + path.string() + ": the extension must be .png or .ppm");
+  const std::string bytes = ext == ".png" ? encodePng(owned) : encodePpm(owned);
+  // The pixels are not needed while the file is written: their memory goes back before the write's.
+  owned = Image();
+  writeFileAtomically(path, bytes);
 }
 
 Image readImageFile(const std::filesystem::path& path) {

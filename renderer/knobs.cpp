@@ -3,7 +3,6 @@
 #include <charconv>
 
 #include "accel_backends.h"
-#include "rayview/lean_memory.h"
 
 namespace rayview {
 namespace {
@@ -11,7 +10,6 @@ namespace {
 constexpr KnobChoice kTriangularLightModels[] = {{"area", "area"}, {"directional", "directional"}};
 constexpr KnobChoice kAccelKinds[] = {{"embree", "Embree"}, {"reference", "reference BVH"}, {"packet", "packet BVH"}};
 static_assert(kPacketBvhTriangles == 5000, "the accel row's help below names prepareGeometry's limit");
-static_assert(kLeanFromTriangles == 100'000 && kLeanUntilTriangles == 1'000'000, "and its lean scenes' sizes");
 constexpr KnobChoice kRayStarts[] = {{"offset", "offset off the surface"},
                                      {"exclude-hit", "at the hit, skip its triangle"}};
 
@@ -20,7 +18,8 @@ bool always(const SceneParameters&, const RenderSettings&) { return true; }
 const Knob kKnobs[] = {
     {.name = "depth",
      .label = "Max ray depth",
-     .help = "maximum mirror recursion depth (default: the scene's <maxraytracedepth>)",
+     .help = "maximum mirror recursion depth",
+     .defaultNote = "the scene's <maxraytracedepth>",
      .home = KnobHome::Parameters,
      .min = 0,
      .max = kMaxRayDepth,
@@ -30,7 +29,7 @@ const Knob kKnobs[] = {
      .matters = always},
     {.name = "tri-light",
      .label = "Tri-light model",
-     .help = "triangular-light model (default: area)",
+     .help = "triangular-light model",
      .home = KnobHome::Settings,
      .choices = kTriangularLightModels,
      .get = [](const SceneParameters&, const RenderSettings& s) { return static_cast<int>(s.triangularLightModel); },
@@ -38,7 +37,8 @@ const Knob kKnobs[] = {
      .matters = [](const SceneParameters& p, const RenderSettings&) { return !p.lights.of<TriangularLight>().empty(); }},
     {.name = "light-samples",
      .label = "Light samples",
-     .help = "samples per triangular light, area model (default: 1 = the centroid)",
+     .help = "samples per triangular light, area model",
+     .defaultNote = "the centroid",
      .home = KnobHome::Settings,
      .min = 1,
      .max = kMaxLightSamples,
@@ -50,9 +50,9 @@ const Knob kKnobs[] = {
      }},
     {.name = "accel",
      .label = "Traversal",
-     .help = "ray traversal: Embree (fast; rayview's packet BVH for scenes of up to 5000 triangles, and with leaves "
-             "of several triangles from 100 000 to 1 000 000 in `rayview render`, to save memory), the "
-             "double-precision reference BVH, or rayview's packet BVH at any size",
+     .help = "ray traversal: Embree (fast; rayview's packet BVH for scenes of up to 5000 triangles, where Embree's "
+             "start-up costs more than it saves), the double-precision reference BVH, or rayview's packet BVH at any "
+             "size",
      .home = KnobHome::Settings,
      .choices = kAccelKinds,
      .measuredByTradeoff = true,
@@ -61,7 +61,7 @@ const Knob kKnobs[] = {
      .matters = always},
     {.name = "ray-start",
      .label = "Ray start",
-     .help = "where shadow/mirror rays start: offset off the surface (default), or at the hit point ignoring its "
+     .help = "where shadow/mirror rays start: offset off the surface, or at the hit point ignoring its "
              "triangle (the 2017-19 course renderer)",
      .home = KnobHome::Settings,
      .choices = kRayStarts,
@@ -70,8 +70,8 @@ const Knob kKnobs[] = {
      .matters = always},
     {.name = "samples",
      .label = "Samples per pixel",
-     .help = "anti-aliasing: stratified camera rays per pixel, the same for any thread count (default: 1, "
-             "the pixel's centre, as the course's images)",
+     .help = "anti-aliasing: stratified camera rays per pixel, the same for any thread count",
+     .defaultNote = "the pixel's centre, as the course's images",
      .home = KnobHome::Settings,
      .min = 1,
      .max = kMaxPixelSamples,
@@ -127,6 +127,12 @@ std::string Knob::formatLabel(int value) const {
   return std::to_string(value);
 }
 
+std::string Knob::defaultText() const {
+  if (home == KnobHome::Parameters) return std::string(defaultNote);
+  const std::string value = format(get(SceneParameters{}, RenderSettings{}));
+  return defaultNote.empty() ? value : value + " = " + std::string(defaultNote);
+}
+
 std::string Knob::csvName() const {
   std::string text(name);
   for (char& c : text)
@@ -150,6 +156,17 @@ std::string describeKnobs(const SceneParameters& parameters, const RenderSetting
     text += k.label;
     text += ' ';
     text += k.formatLabel(k.get(parameters, settings));
+  }
+  return text;
+}
+
+std::string describeKnobValues(const SceneParameters& parameters, const RenderSettings& settings) {
+  std::string text;
+  for (const Knob& k : kKnobs) {
+    if (!text.empty()) text += ", ";
+    text += k.name;
+    text += ' ';
+    text += k.format(k.get(parameters, settings));
   }
   return text;
 }

@@ -12,16 +12,16 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // Builds with `kind` as given, except that Embree asked for a scene of up to kPacketBvhTriangles triangles gets the
-// packet BVH (the same answers, none of Embree's start-up), and for a lean scene built for memory the packet BVH with
-// bigger leaves (lean_memory.h): the caller has made Embree's range check (buildCheckedAccel). `buildMs` counts from
-// `start`, which includes that check.
+// packet BVH (the same answers, none of Embree's start-up), and a lean build the packet BVH with bigger leaves
+// (lean_memory.h): the caller has made Embree's range check (buildCheckedAccel). `buildMs` counts from `start`, which
+// includes that check.
 std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry, const glm::dvec3& origin,
                                           AccelKind kind, BuildProgress progress, void* progressUser,
-                                          Clock::time_point start, BuildPriority priority = BuildPriority::Speed) {
+                                          Clock::time_point start, BvhLayout layout = BvhLayout::Fast) {
   auto prepared = std::make_shared<PreparedGeometry>();
   const std::size_t triangles = geometry->triangles.size();
   if (kind == AccelKind::Embree && triangles <= kPacketBvhTriangles) kind = AccelKind::Packet;
-  if (kind == AccelKind::Embree && priority == BuildPriority::Memory && isLeanScene(triangles))
+  if (kind != AccelKind::Reference && layout == BvhLayout::Lean)
     prepared->accel = makePacketBvhAccel(*geometry, origin, 0, kLeanLeafTriangles);
   else
     prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser);
@@ -36,13 +36,13 @@ std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> g
 // reference BVH, with the reason: one range check (it reads every corner of every face).
 std::shared_ptr<const PreparedGeometry> prepareScene(std::shared_ptr<const SceneGeometry> geometry, const Scene& scene,
                                                      AccelKind kind, BuildProgress progress, void* progressUser,
-                                                     BuildPriority priority = BuildPriority::Speed) {
+                                                     BvhLayout layout = BvhLayout::Fast) {
   const auto start = Clock::now();
   kind = availableAccel(kind);
   std::string problem;
   if (kind != AccelKind::Reference) problem = embreeRangeProblem(scene, scene, scene.camera.position);
   auto prepared = prepare(std::move(geometry), scene.camera.position, problem.empty() ? kind : AccelKind::Reference,
-                          progress, progressUser, start, priority);
+                          progress, progressUser, start, layout);
   if (prepared) prepared->accelFallback = std::move(problem);
   return prepared;
 }
@@ -64,9 +64,9 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
-                                                        BuildPriority priority) {
+                                                        BvhLayout layout) {
   std::shared_ptr<const SceneGeometry> geometry(scene, &scene->geometry());
-  return prepareScene(std::move(geometry), *scene, kind, nullptr, nullptr, priority);
+  return prepareScene(std::move(geometry), *scene, kind, nullptr, nullptr, layout);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind, BuildProgress progress,

@@ -211,7 +211,7 @@ class Loader {
 
   // The second pass: each block's numbers, read again from `read` and parsed as the walk's readers would.
   // Throws StreamAbandoned where they would report or warn.
-  static void parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, const LoadOptions& options);
+  static void parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read);
 
   // Loads from the skeleton, taking each block's numbers from `streamed`. Throws StreamAbandoned, or a
   // SceneError, when the ordinary reading must decide (the caller then makes it with a new Loader).

@@ -290,16 +290,14 @@ void parseNumbers(const ReadAt& read, const StreamedBlock& block, bool asFloat, 
 
 StreamedBlocks streamSkeleton(const ReadAt& read, std::uint64_t size) { return SkeletonReader(read, size).run(); }
 
-void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, const LoadOptions& options) {
+void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read) {
   std::uint64_t faceBytes = 0, longest = 0;
   std::vector<const StreamedBlock*> faceBlocks;
   for (const StreamedBlock& block : streamed.blocks) {
     if (block.tag == Tag::Faces) faceBytes += block.end - block.begin, faceBlocks.push_back(&block);
     longest = std::max(longest, block.end - block.begin);
   }
-  // The estimate before anything big is allocated: the reading's buffer too comes after the caller's say.
   const std::size_t estimate = detail::estimatedItems(sampleOf(read, faceBlocks), faceBytes, 3) + faceBlocks.size();
-  if (options.beforeArrays) options.beforeArrays(estimate);
   Buffer buffer(longest);
   std::vector<Triangle>& triangles = streamed.triangles;
   triangles.reserve(estimate);

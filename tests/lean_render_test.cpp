@@ -1,6 +1,7 @@
-// Lean scenes (rayview/lean_memory.h) give up memory, never a pixel: the image rendered in deflated bands is the
-// image renderFrame makes, bit for bit and ray for ray, and prepareGeometry gives the lean packet BVH (whose answers
-// tests/packet_test.cpp compares with Embree's) to scenes from 1e5 to 1e6 triangles built for memory only.
+// The lean layout (rayview/lean_memory.h) gives up memory, never a pixel: the image rendered in deflated bands is
+// the image renderFrame makes, bit for bit and ray for ray, and prepareGeometry gives the lean packet BVH (whose
+// answers tests/packet_test.cpp compares with Embree's) only to a lean build. Lean is chosen on request, or when the
+// fast layout would not fit in the memory available; never by a scene's size alone.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -20,8 +21,23 @@
 namespace rayview {
 namespace {
 
-static_assert(!isLeanScene(kLeanFromTriangles - 1) && isLeanScene(kLeanFromTriangles));
-static_assert(isLeanScene(kLeanUntilTriangles - 1) && !isLeanScene(kLeanUntilTriangles));
+// Auto is fast at every size that fits, lean only where the estimate does not fit; a request always wins.
+TEST(LeanRender, AutoIsLeanOnlyWhenTheFastEstimateDoesNotFit) {
+  const std::size_t pixels = 1920 * 1080;
+  const std::uint64_t plenty = std::uint64_t{24} << 30;
+  for (std::size_t triangles : {std::size_t{1}, std::size_t{99'999}, std::size_t{100'000}, std::size_t{999'999},
+                                std::size_t{1'000'000}, std::size_t{10'000'000}})
+    EXPECT_FALSE(planMemory(MemoryUse::Auto, triangles, pixels, plenty).lean) << triangles;
+  const std::uint64_t estimate = estimatedFastPeakBytes(1'000'000, pixels);
+  EXPECT_FALSE(planMemory(MemoryUse::Auto, 1'000'000, pixels, estimate).lean);
+  const MemoryPlan tight = planMemory(MemoryUse::Auto, 1'000'000, pixels, estimate - 1);
+  EXPECT_TRUE(tight.lean);
+  EXPECT_NE(tight.reason.find("exceeds"), std::string::npos) << tight.reason;
+  EXPECT_FALSE(planMemory(MemoryUse::Auto, 1'000'000, pixels, 0).lean) << "unknown memory: fast";
+  EXPECT_TRUE(planMemory(MemoryUse::Lean, 10, pixels, plenty).lean);
+  EXPECT_FALSE(planMemory(MemoryUse::Fast, 10'000'000, pixels, 1).lean);
+  EXPECT_GT(estimatedFastPeakBytes(2'000'000, pixels), estimatedFastPeakBytes(1'000'000, pixels));
+}
 
 // The default scene (mirrors, a triangular light, every kind of ray) at a size whose last band and last chunk are
 // short, on one thread and on three (three threads' bands are not two threads' bands).
@@ -86,20 +102,17 @@ Scene planeOfQuads(int n) {
   return scene;
 }
 
-// Built for memory (`rayview render`), a scene of the lean sizes gets the lean packet BVH where Embree is asked for;
-// built for speed (the viewer, the analysis) it keeps Embree, and so does a scene under the lean sizes either way.
-TEST(LeanRender, OnlyScenesBuiltForMemoryFromOneHundredThousandTrianglesGetTheLeanPacketBvh) {
+// A lean build gets the lean packet BVH where Embree is asked for, at any size; a fast build keeps Embree (the packet
+// BVH only for small scenes), and the reference BVH asked for by name stays the reference BVH.
+TEST(LeanRender, OnlyALeanBuildGetsTheLeanPacketBvh) {
   if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
-  const auto lean = std::make_shared<const Scene>(planeOfQuads(224));  // 100 352 triangles
-  ASSERT_TRUE(isLeanScene(lean->triangles.size()));
-  EXPECT_EQ(prepareGeometry(lean, AccelKind::Embree, BuildPriority::Memory)->accel->kind(), AccelKind::Packet);
-  EXPECT_EQ(prepareGeometry(lean, AccelKind::Embree, BuildPriority::Speed)->accel->kind(), AccelKind::Embree);
-  EXPECT_EQ(prepareGeometry(lean, AccelKind::Embree)->accel->kind(), AccelKind::Embree) << "the viewer's call";
-  const auto below = std::make_shared<const Scene>(planeOfQuads(200));  // 80 000, as the largest conformance scene
-  ASSERT_FALSE(isLeanScene(below->triangles.size()));
-  EXPECT_EQ(prepareGeometry(below, AccelKind::Embree, BuildPriority::Memory)->accel->kind(), AccelKind::Embree);
-  // Asked for by name, the reference BVH is still the reference BVH.
-  EXPECT_EQ(prepareGeometry(lean, AccelKind::Reference, BuildPriority::Memory)->accel->kind(), AccelKind::Reference);
+  const auto scene = std::make_shared<const Scene>(planeOfQuads(224));  // 100 352 triangles
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree, BvhLayout::Lean)->accel->kind(), AccelKind::Packet);
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree, BvhLayout::Fast)->accel->kind(), AccelKind::Embree);
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree)->accel->kind(), AccelKind::Embree) << "the viewer's call";
+  const auto small = std::make_shared<const Scene>(planeOfQuads(20));  // 800
+  EXPECT_EQ(prepareGeometry(small, AccelKind::Embree, BvhLayout::Lean)->accel->kind(), AccelKind::Packet);
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Reference, BvhLayout::Lean)->accel->kind(), AccelKind::Reference);
 }
 
 }  // namespace

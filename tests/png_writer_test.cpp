@@ -81,16 +81,9 @@ TEST(PngWriter, SameBytesForTheSameOptions) {
   EXPECT_EQ(encodePng(image, PngOptions{1, 2}), encodePng(image, PngOptions{1, 2}));
 }
 
-// The overloads that take the image (what `rayview render` uses, so that a write does not hold the image beside stb's
-// filtered copy of it): the same bytes as from a borrowed image, at every part count, and the image is consumed.
-TEST(PngWriter, AnImageGivenAwayEncodesToTheSameBytes) {
-  for (int threads : {1, 2, 8}) {
-    SCOPED_TRACE("threads " + std::to_string(threads));
-    const Image image = testImage(1024, 768, 11);
-    Image given = image;
-    EXPECT_EQ(encodePng(std::move(given), PngOptions{1, threads}), encodePng(image, PngOptions{1, threads}));
-    EXPECT_TRUE(given.rgb.empty());
-  }
+// The overload that takes the image (what `rayview render` uses, so that the write does not hold the pixels): the
+// same file as from a borrowed image.
+TEST(PngWriter, AnImageGivenAwayWritesTheSameFile) {
   const std::filesystem::path dir = std::filesystem::path(RAYVIEW_TEST_OUTPUT_DIR) / "png_writer";
   std::filesystem::create_directories(dir);
   const Image image = testImage(333, 211, 12);

@@ -83,7 +83,7 @@ bool streams(const std::string& xml, bool strict = false) {
   options.loadTexture = false;
   try {
     StreamedBlocks streamed = streamSkeleton(read, xml.size());
-    Loader::parseStreamedBlocks(streamed, read, options);
+    Loader::parseStreamedBlocks(streamed, read);
     Loader(name, ".", options).loadStreamed(streamed);
     return true;
   } catch (const StreamAbandoned&) {
@@ -236,41 +236,6 @@ TEST(SceneStream, ArraysHoldAboutWhatTheBlocksGive) {
     EXPECT_PRED2(atMostHalfMore, scene.triangles.capacity(), scene.triangles.size());
     EXPECT_PRED2(atMostHalfMore, scene.faceAttributes.capacity(), scene.faceAttributes.size());
   }
-}
-
-std::size_t g_estimate = 0;
-int g_estimates = 0;
-void recordEstimate(std::size_t triangles) {
-  g_estimate = triangles;
-  ++g_estimates;
-}
-
-TEST(SceneStream, TheTrianglesAreEstimatedOnceBeforeTheArraysAreMade) {
-  // The command line takes its heap off huge pages by this estimate before the arrays exist (rayview/lean_memory.h):
-  // it comes once, and is about what the faces hold, if anything high.
-  const int n = 30000;
-  std::string vertices, faces;
-  char line[128];
-  for (int i = 0; i < n; ++i) {
-    std::snprintf(line, sizeof line, "%.9g %.9g -2\n", i * 1e-3, (1LL * i * i % 1009) * 1e-3);
-    vertices += line;
-    if (i + 2 < n) {
-      std::snprintf(line, sizeof line, "%d %d %d\n", i + 1, i + 2, i + 3);
-      faces += line;
-    }
-  }
-  std::string xml = with("-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n</vertexdata>\n", vertices + "</vertexdata>\n");
-  xml = with("1 2 3\n1 3 4\n", faces, xml);
-  ASSERT_TRUE(streams(xml));
-  LoadOptions options;
-  options.loadTexture = false;
-  options.beforeArrays = recordEstimate;
-  g_estimates = 0;
-  const LoadedScene loaded = loadSceneText(xml, "s.xml", ".", options);
-  ASSERT_EQ(loaded.scene.triangles.size(), static_cast<std::size_t>(n - 2));
-  EXPECT_EQ(g_estimates, 1);
-  EXPECT_GE(g_estimate, loaded.scene.triangles.size());
-  EXPECT_LE(g_estimate * 2, loaded.scene.triangles.size() * 3);
 }
 
 // ---------------------------------------------------------------- what it leaves to the ordinary reading

@@ -37,15 +37,11 @@ struct PngOptions {
 
 // The whole PNG file (8-bit RGB). Throws ImageIoError.
 std::string encodePng(const Image& image, const PngOptions& options = {});
-// The same, taking the image: its pixels are freed as soon as the encoder reads them no more (stb_image_write has
-// filtered them into its own copy before the deflate), so a write does not hold the image and that copy at once
-// beside the deflate's buffers (docs/PERFORMANCE.md, "thirteenth session").
-std::string encodePng(Image&& image, const PngOptions& options = {});
 
 // Writes to a temporary file beside `path` and renames it into place, so an existing file is never left
 // half-written. Format from the extension: .png or .ppm (binary P6). Throws ImageIoError.
 void writeImageFile(const std::filesystem::path& path, const Image& image);
-// The same, taking the image (a PNG's pixels are freed once encodePng(Image&&) reads them no more).
+// The same, taking the image: its pixels are freed once encoded, before the file is written.
 void writeImageFile(const std::filesystem::path& path, Image&& image);
 
 // Reads PNG, PPM, JPEG... as 8-bit RGB. Throws ImageIoError.

@@ -36,6 +36,9 @@ struct Knob {
   std::string_view name;       // --NAME, `set NAME`, the trade-off CSV (with '_' for '-')
   std::string_view label;      // the panel's label
   std::string_view help;       // --help and the panel's tooltip
+  // What the default means, after its value in --help ("the centroid"); for a Parameters knob, where the
+  // default comes from ("the scene's <maxraytracedepth>").
+  std::string_view defaultNote = {};
   KnobHome home = KnobHome::Settings;
   int min = 0, max = 0;        // integer knobs; choice knobs take 0 .. choices.size() - 1
   std::span<const KnobChoice> choices = {};  // empty for an integer knob
@@ -56,6 +59,9 @@ struct Knob {
   std::string format(int value) const;
   // The text of `value` in the panel: the number, or the choice's label ("reference BVH").
   std::string formatLabel(int value) const;
+  // "1 = the centroid", "area", "the scene's <maxraytracedepth>": the default, from RenderSettings{} and the
+  // row's note, for --help.
+  std::string defaultText() const;
   // The trade-off CSV's name: `name` with '_' for '-'.
   std::string csvName() const;
 };
@@ -68,6 +74,10 @@ const Knob* findKnob(std::string_view name);
 // "Max ray depth 3, Light samples 4, Traversal Embree, ...": every knob that matters for these parameters and
 // settings, by its panel label and value, in the table's order.
 std::string describeKnobs(const SceneParameters& parameters, const RenderSettings& settings);
+
+// "depth 3, tri-light area, light-samples 1, ...": every knob's option name and value, in the table's order, as
+// `rayview render`'s summary prints them.
+std::string describeKnobValues(const SceneParameters& parameters, const RenderSettings& settings);
 
 // The depth knob's row, and the others the trade-off bench refers to.
 const Knob& depthKnob();

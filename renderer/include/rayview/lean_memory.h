@@ -1,29 +1,37 @@
 #pragma once
-// Scenes rendered lean: where a render's fixed costs would dominate its memory (issue 8 item 4: at most 200 bytes a
-// triangle from 100 000 triangles up). From 1e5 to 1e6 triangles the libraries (~4 MB), a 1920x1080 image (6.2 MB,
-// and stb_image_write's filtered copy of it) and the heap's 2 MiB pages are as large as the scene itself
-// (docs/PERFORMANCE.md, "2026-11-25, thirteenth session"). Rendered by `rayview render`, such a scene gets, at the
-// cost of some speed (the viewer and the analysis, whose memory nothing bounds, keep Embree's speed):
-// - rayview's packet BVH with leaves of up to kLeanLeafTriangles where Embree was asked for (prepareGeometry with
-//   BuildPriority::Memory): its build adds ~40 bytes a triangle to the 1e5 soup's peak, Embree's ~120. Three, not
-//   two or four: leaves of two took the 1e5 soup to 200 bytes a triangle, leaves of four cost its rays another 1.3x;
-// - its image kept deflated in bands while it renders (renderFrameDeflated), made whole only
-//   to be written, once the scene and its BVH are released;
-// - a heap off huge pages from the moment the loader knows the scene's size
-//   (LoadOptions::beforeArrays).
-// From 1e6 triangles up the triangles' own memory dominates: Embree's compact layout keeps them under the limit at
-// full speed.
+// The lean layout: a render that holds less memory at some cost in speed, for a machine where the fast one would
+// not fit. Lean is rayview's packet BVH with leaves of up to kLeanLeafTriangles (its build adds ~40 bytes a triangle
+// at its peak where Embree's adds ~120; rays 1.3-1.5x slower) and, in `rayview render`, the image kept deflated in
+// bands while the scene is held (renderFrameDeflated). Fast is Embree (or the packet BVH for small scenes) and the
+// whole image. `rayview render` chooses lean only on request or when the fast layout's estimated peak would not fit
+// in the memory the kernel says is available; everything else is always fast.
 
 #include <cstddef>
+#include <cstdint>
+#include <string>
 
 namespace rayview {
 
-inline constexpr std::size_t kLeanFromTriangles = 100'000;
-inline constexpr std::size_t kLeanUntilTriangles = 1'000'000;
 inline constexpr std::size_t kLeanLeafTriangles = 3;
 
-constexpr bool isLeanScene(std::size_t triangles) {
-  return triangles >= kLeanFromTriangles && triangles < kLeanUntilTriangles;
-}
+enum class MemoryUse { Auto, Fast, Lean };
+
+struct MemoryPlan {
+  bool lean = false;
+  std::string reason;  // for the summary: "requested", "estimated peak 2.1 GiB fits in 18.3 GiB available", ...
+};
+
+// A generous estimate of the fast layout's peak for a render of `triangles` into `pixels` pixels: the scene's
+// arrays, Embree's BVH and its build, the image and its PNG, the libraries.
+std::uint64_t estimatedFastPeakBytes(std::size_t triangles, std::size_t pixels);
+
+// The kernel's estimate of the memory available to a new process (MemAvailable in /proc/meminfo); 0 if unknown.
+std::uint64_t availableMemoryBytes();
+
+// Lean when asked for, or (Auto) when the fast estimate exceeds `available` (unknown: fast).
+MemoryPlan planMemory(MemoryUse use, std::size_t triangles, std::size_t pixels, std::uint64_t available);
+
+std::string_view toString(MemoryUse use);
+bool parseMemoryUse(std::string_view text, MemoryUse& out);
 
 }  // namespace rayview

@@ -33,13 +33,11 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
 // `accelFallback` says why.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
-// What a build of a lean scene (rayview/lean_memory.h: 1e5 to 1e6 triangles) spends to save memory where Embree is
-// asked for. Speed: Embree's BVH, as for any scene (the viewer, the analysis, the benches). Memory: rayview's packet
-// BVH with leaves of up to kLeanLeafTriangles, the same answers, ~80 bytes a triangle less at the build's peak and
-// rays 1.3-1.5x slower (`rayview render`, whose peak memory issue 8 bounds). Scenes of other sizes are built alike.
-enum class BuildPriority { Speed, Memory };
+// Which BVH a fast back-end builds. Fast: Embree (the packet BVH for small scenes). Lean (rayview/lean_memory.h):
+// rayview's packet BVH with leaves of up to kLeanLeafTriangles, the same answers in less memory, slower rays.
+enum class BvhLayout { Fast, Lean };
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
-                                                        BuildPriority priority);
+                                                        BvhLayout layout);
 // Same, on a copy of the scene's geometry.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);

@@ -19,10 +19,6 @@ struct LoadOptions {
   // text; false reads everything through tinyxml2's DOM. Both give the same scene, messages and warnings:
   // false is for tests and the fuzz target that check so.
   bool streamBlocks = true;
-  // Called once the big blocks' text has been measured and before their arrays are allocated, with the number of
-  // triangles the faces' text holds by the density of its first 64 KiB (an estimate: detail::estimatedItems), when
-  // the blocks are read as a stream. The command line decides its heap by it (rayview/lean_memory.h).
-  void (*beforeArrays)(std::size_t estimatedTriangles) = nullptr;
 };
 
 struct LoadedScene {
