@@ -78,7 +78,7 @@ TEST(LeanHeap, HandingMemoryBackKeepsEveryLiveBlock) {
     }
 }
 
-// An estimate under the lean sizes leaves the heap alone (the seven scenes of issue 8 keep their huge pages).
+// An estimate under the lean sizes leaves the heap alone (the seven bench scenes keep their huge pages).
 TEST(LeanHeap, SmallScenesKeepTheirHeap) {
   void* p = std::malloc(100);
   static_cast<unsigned char*>(p)[0] = 7;

@@ -39,7 +39,7 @@ struct PngOptions {
 std::string encodePng(const Image& image, const PngOptions& options = {});
 // The same, taking the image: its pixels are freed as soon as the encoder reads them no more (stb_image_write has
 // filtered them into its own copy before the deflate), so a write does not hold the image and that copy at once
-// beside the deflate's buffers (docs/PERFORMANCE.md, "thirteenth session").
+// beside the deflate's buffers: 6.2 MB less at the peak of a 1920x1080 write.
 std::string encodePng(Image&& image, const PngOptions& options = {});
 
 // Writes to a temporary file beside `path` and renames it into place, so an existing file is never left

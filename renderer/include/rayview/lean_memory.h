@@ -1,8 +1,8 @@
 #pragma once
-// Scenes rendered lean: where a render's fixed costs would dominate its memory (issue 8 item 4: at most 200 bytes a
-// triangle from 100 000 triangles up). From 1e5 to 1e6 triangles the libraries (~4 MB), a 1920x1080 image (6.2 MB,
+// Scenes rendered lean: where a render's fixed costs would dominate its memory (the aim: at most 200 bytes a triangle
+// from 100 000 triangles up). From 1e5 to 1e6 triangles the libraries (~4 MB), a 1920x1080 image (6.2 MB,
 // and stb_image_write's filtered copy of it) and the heap's 2 MiB pages are as large as the scene itself
-// (docs/PERFORMANCE.md, "2026-11-25, thirteenth session"). Rendered by `rayview render`, such a scene gets, at the
+// (docs/PERFORMANCE.md, "The lean layout (opt-in)"). Rendered by `rayview render`, such a scene gets, at the
 // cost of some speed (the viewer and the analysis, whose memory nothing bounds, keep Embree's speed):
 // - rayview's packet BVH with leaves of up to kLeanLeafTriangles where Embree was asked for (prepareGeometry with
 //   BuildPriority::Memory): its build adds ~40 bytes a triangle to the 1e5 soup's peak, Embree's ~120. Three, not

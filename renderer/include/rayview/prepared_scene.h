@@ -35,8 +35,8 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
 // What a build of a lean scene (rayview/lean_memory.h: 1e5 to 1e6 triangles) spends to save memory where Embree is
 // asked for. Speed: Embree's BVH, as for any scene (the viewer, the analysis, the benches). Memory: rayview's packet
-// BVH with leaves of up to kLeanLeafTriangles, the same answers, ~80 bytes a triangle less at the build's peak and
-// rays 1.3-1.5x slower (`rayview render`, whose peak memory issue 8 bounds). Scenes of other sizes are built alike.
+// BVH with leaves of up to kLeanLeafTriangles, the same answers, ~80 bytes a triangle less at the build's peak and rays
+// 1.3-1.5x slower (`rayview render`, whose peak memory per triangle has an aim). Scenes of other sizes are built alike.
 enum class BuildPriority { Speed, Memory };
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BuildPriority priority);
