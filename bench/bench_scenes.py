@@ -1,6 +1,7 @@
-"""The scenes the bench scripts measure by default, for `import bench_scenes` from bench/*.py: the seven of
-issue 8 (bunny, car, killeroo_2020, dragon_lowres, monkey of the conformance set; grid_large and mirror_scene of
-the peer scenes). RAYVIEW_SHARED_DIR overrides where shared/ is (default: beside the repository)."""
+"""The scenes the bench scripts measure by default, for `import bench_scenes` from bench/*.py: the seven whose
+speed docs/PERFORMANCE.md tracks (bunny, car, killeroo_2020, dragon_lowres, monkey of the conformance set;
+grid_large and mirror_scene of the peer scenes). RAYVIEW_SHARED_DIR overrides where shared/ is (default: beside the
+repository)."""
 import os
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))

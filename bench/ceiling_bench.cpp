@@ -1,4 +1,5 @@
-// The ceiling: how long plain Embree needs just to cast the rays rayview's render casts (issue 8).
+// The ceiling: how long plain Embree needs just to cast the rays rayview's render casts: the bound on what any renderer
+// using Embree's traversal could reach.
 //
 // For every scene given, in one process, interleaved over --repeat rounds (medians reported):
 //   rayview  the render exactly as `rayview render` does it (renderFrame on a ThreadPool), render time only;

@@ -1,11 +1,12 @@
-// Edit-to-first-pass and edit-to-final-pass latency of the progressive renderer (issue 3, item 10), and the
-// preview level and latency of each move of a drag (issue 10, item 2).
+// Edit-to-first-pass and edit-to-final-pass latency of the progressive renderer, and the
+// preview level and latency of each move of a drag: what a viewer user waits for.
 //
 // EditLatency: each iteration is one edit as the viewer makes it: change a material, take a new scene
 // snapshot, restart. Reported per scene: first_ms (edit to the first, coarse pass on screen) and final_ms
 // (edit to the final pass), the median over the iterations; headless_ms, the same image rendered as `rayview
 // render` does (renderFrame, 2 threads), alternating with the edits, and final_over_headless, the ratio of the
-// medians. Goals: first_ms <= 16 on every scene; final_ms at most headless_ms + 10 % (issue 8 item 5).
+// medians. Goals: first_ms <= 16 on every scene; final_ms at most headless_ms + 10 %, so that interactivity
+// costs the final image little (docs/PERFORMANCE.md, "Current figures").
 //
 // DragLatency: each iteration is one move of a drag as the viewer makes it, after the scene's final pass was
 // on screen: the renderer holds one pass per move (setInteractive), the move pans the camera by 1% of the
@@ -211,7 +212,8 @@ void registerScenes() {
   // area light is what a user judges while dragging).
   for (const auto& file : sceneFiles(std::filesystem::path(RAYVIEW_SOURCE_DIR) / "scenes"))
     registerDrag("own_" + file.stem().string(), std::make_shared<const Scene>(loadSceneFile(file).scene));
-  // The huge image of issue 10: a light scene, a heavy one, and a million triangles.
+  // A huge image, where publishing full-size passes once dominated: a light scene, a heavy one, and a million
+  // triangles.
   for (const auto& [name, scene] : scenes)
     if (name == "bunny" || name == "car" || name == "generated_1M_triangles")
       registerDrag(name + "_6400x4000", resized(*scene, 6400, 4000));

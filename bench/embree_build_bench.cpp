@@ -1,6 +1,6 @@
-// What an Embree build of user geometry costs on its own, as rayview builds its BVH (docs/PERFORMANCE.md,
-// "2026-11-24, sixth session"): a fresh device, the first build in the process (Embree's and TBB's start-up
-// included), then further builds of the same boxes, each timed.
+// What an Embree build of user geometry costs on its own, as rayview builds its BVH (it explained why small scenes got
+// rayview's own packet BVH, docs/PERFORMANCE.md): a fresh device, the first build in the process (Embree's and TBB's
+// start-up included), then further builds of the same boxes, each timed.
 //
 //     embree_build_bench [--primitives N] [--builds K] [--quality low|medium|high] [--config DEVICE_CONFIG]
 //                        (default: 4968 primitives, bunny's count; 50 builds; medium; Embree's default device)

@@ -8,7 +8,7 @@ load hits both alike. Prints a Markdown table with the ratio old/new.
 --stage compares one stage instead, as each process's summary reports it ("time  load X ms, BVH build Y ms,
 render Z ms"), from the same alternating runs.
 
-Default scenes: the seven of issue 8 (bench_scenes.py). docs/PERFORMANCE.md records runs against 7f2ad53."""
+Default scenes: the seven of bench_scenes.py. docs/PERFORMANCE.md records runs against 7f2ad53."""
 import argparse
 import re
 import statistics

@@ -1,4 +1,4 @@
-// What a first touch of fresh memory costs on this machine (docs/PERFORMANCE.md, "Page faults and start-up"):
+// What a first touch of fresh memory costs on this machine (docs/PERFORMANCE.md, "Current figures"):
 // the reason the `rayview` launcher sets glibc's malloc tunables (app/launcher.cpp).
 //
 // For each way of getting memory, maps a fresh anonymous region of --megabytes (2 MiB-aligned), touches one

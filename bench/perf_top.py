@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Top functions of `rayview render` by self time, as a Markdown table (docs/PERFORMANCE.md, issue 8).
+"""Top functions of `rayview render` by self time, as a Markdown table (docs/PERFORMANCE.md, "How to measure").
 
 Records `perf record -F FREQ rayview render SCENE -o OUT.png --threads 1` and prints the top --top entries
 of `perf report --no-children --sort sym,dso`. Debian's libembree3 has no symbols: its addresses are summed

@@ -1,5 +1,6 @@
-// PNG writing against render time (issue 8): rayview's encoder (zlib in parallel parts, through
-// stb_image_write) against stb_image_write's own deflate, on the images the scenes render to, in one run.
+// PNG writing against render time, so that the write stays a small part of a render: rayview's encoder (zlib in
+// parallel parts, through stb_image_write) against stb_image_write's own deflate, on the images the scenes render to,
+// in one run.
 //
 // Usage: png_bench [--threads N] [--repeat R] SCENE.xml...
 // For each scene: render it (renderFrame, N threads), then encode the image with each variant R times

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Resident memory of one process over its life: runs COMMAND, samples its VmRSS every 20 ms, prints the
-samples (about 40 of them) and the largest, in MiB. Where in a run the peak is (docs/PERFORMANCE.md, issue 8
-item 4), which ru_maxrss alone does not say.
+samples (about 40 of them) and the largest, in MiB. Where in a run the peak is (docs/PERFORMANCE.md, "Memory per
+triangle"), which ru_maxrss alone does not say.
 
     bench/rss_trace.py build/release/app/rayview render build/scale/soup_1000000.xml -o /tmp/s.png --threads 2
 """

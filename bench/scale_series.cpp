@@ -1,4 +1,4 @@
-// The scale series of docs/PERFORMANCE.md (issue 8): generated scenes from 1e3 to 1e7 triangles, where the
+// The scale series of docs/PERFORMANCE.md ("How to measure"): generated scenes from 1e3 to 1e7 triangles, where the
 // memory goes, and the log-log plot. bench/scale_series.py drives it and times `rayview render` itself.
 //
 //   scale_series write KIND TRIANGLES OUT.xml [WIDTH HEIGHT]  KIND: sphere, heightfield or soup (1920x1080)

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
-"""Scale series (issue 8): load, build and render time and peak memory of `rayview render` on generated
-sphere, heightfield and random-soup scenes of 1e3..1e7 triangles at 1920x1080.
+"""Scale series (how time and memory grow with the scene): load, build and render time and peak memory of
+`rayview render` on generated sphere, heightfield and random-soup scenes of 1e3..1e7 triangles at 1920x1080.
 
 Writes the scenes (once) to --work, runs `rayview render SCENE -o out.png --threads T` for each, reads the
 summary's times and its peak resident memory (bench/peak_rss: ru_maxrss from a small parent) and, from the

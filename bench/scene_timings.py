@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Load, BVH build and render time of every conformance and peer scene at 1 and 2 threads.
 
-Runs `rayview render` on each scene and prints a Markdown table (the one in docs/PERFORMANCE.md).
+Runs `rayview render` on each scene and prints a Markdown table (docs/PERFORMANCE.md, "How to measure").
 Each cell is the median of --repeat runs. Usage:
     bench/scene_timings.py --rayview build/release/app/rayview [--shared ../shared] [--repeat 3]
 """

@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
 """Stage times of whole `rayview render` processes, with glibc's defaults and with the launcher's malloc
-settings, alternating (docs/PERFORMANCE.md, "Page faults and start-up").
+settings, alternating (docs/PERFORMANCE.md, "How to measure").
 
     bench/stage_times.py [--build build/release] [--runs 9] [--threads 2] [--variant NAME=TUNABLES]... [--spread]
                          [SCENE...]
-                                                       (default: the seven scenes of issue 8)
+                                                       (default: the seven of bench_scenes.py)
 
 Runs rayview-cli itself with GLIBC_TUNABLES set for each settings row (--variant adds a row, e.g. the
 launcher's without top_pad) and with this script's CLOCK_MONOTONIC start in RAYVIEW_LAUNCH_NS, as the launcher

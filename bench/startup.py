@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""Start-up cost of `rayview render` on small scenes (issue 8): process start to first ray, less load and build.
+"""Start-up cost of `rayview render` on small scenes, where it is most of the time: process start to first ray,
+less load and build.
 
 For each scene, runs `rayview render SCENE -o out.ppm --threads T` --repeat times and takes medians of:
 wall time of the whole process (fork to exit, measured here), the load / build / render times it prints,

@@ -7,7 +7,7 @@
 
 namespace rayview::bench {
 
-// The PNG as rayview wrote it before issue 8: stb's filter choice (`filter` -1: best of five per row) and
+// The PNG as rayview wrote it before its own encoder: stb's filter choice (`filter` -1: best of five per row) and
 // stb's deflate at `level` (stb treats anything below 5 as 5; its default is 8).
 std::string stbNativePng(const Image& image, int level, int filter);
 

@@ -12,7 +12,7 @@ namespace rayview {
 // Embree's BVH layouts. Fast: the default flags, one triangle per leaf. Compact: Embree's COMPACT flag and up to
 // two triangles per leaf: at 1e6 triangles the BVH is ~72 -> ~57 B per triangle and the build's peak lower by as
 // much; rays through a random soup of triangles are 9-28 % slower, through a sphere or height field no slower
-// (docs/PERFORMANCE.md, "2026-11-24, evening"). The answers are the same either way: every hit is the closest by
+// (docs/PERFORMANCE.md, "Memory per triangle"). The answers are the same either way: every hit is the closest by
 // the watertight test and the tie rule, whatever order the BVH visits the triangles in.
 enum class EmbreeLayout { Fast, Compact };
 
@@ -33,7 +33,7 @@ std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm:
                                           std::size_t leafTriangles = 1);
 // prepareGeometry builds the packet BVH for AccelKind::Embree up to this many triangles: Embree's device, task
 // scheduler and first build cost a process ~5 ms, more than its faster traversal saves a small scene's render
-// (docs/PERFORMANCE.md, "2026-11-24, seventh session").
+// (docs/PERFORMANCE.md, "The packet BVH for small scenes").
 inline constexpr std::size_t kPacketBvhTriangles = 5000;
 std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin,
                                           BuildProgress progress, void* progressUser);

@@ -104,9 +104,9 @@ bool relayProgress(void* ptr, double fraction) {
 // Triangles as user primitives: Embree's BVH and traversal, the watertight test of watertight_triangle.h
 // in double on the camera-relative double vertices (Embree 3's own robust test misses some rays through
 // shared vertices; see docs/numerics.md).
-// The scene's own arrays, borrowed (the scene outlives the accel: buildAccel's contract): no copy of the vertices
-// or the indices, 24-84 B per triangle less (docs/PERFORMANCE.md). A triangle's corners relative to the origin are
-// computed per test, in double, exactly as a stored relative copy held them.
+// The scene's own arrays, borrowed (the scene outlives the accel: buildAccel's contract): no copy of the vertices or
+// the indices, 24-84 B per triangle less (docs/PERFORMANCE.md, "Memory per triangle"). A triangle's corners relative to
+// the origin are computed per test, in double, exactly as a stored relative copy held them.
 struct TriangleData {
   const std::vector<glm::dvec3>* vertices = nullptr;  // world positions
   const std::vector<Triangle>* triangles = nullptr;

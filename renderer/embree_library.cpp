@@ -23,7 +23,7 @@ Loaded load() {
   Loaded result;
   // RAYVIEW_EMBREE_LIBRARY: the soname CMake found (libembree3.so.3 on Debian 12). RTLD_GLOBAL, as if it had
   // been linked: with RTLD_LOCAL, car's render at 2 threads was 3-5 % slower in four runs of 11-21 pairs (the
-  // cause not found), with RTLD_GLOBAL as fast as linked (docs/PERFORMANCE.md, "2026-11-25, eighth session").
+  // cause not found), with RTLD_GLOBAL as fast as linked (docs/PERFORMANCE.md, "Embree loaded on first use").
   void* handle = ::dlopen(RAYVIEW_EMBREE_LIBRARY, RTLD_NOW | RTLD_GLOBAL);
   if (!handle) {
     const char* error = ::dlerror();

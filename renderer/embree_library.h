@@ -2,8 +2,8 @@
 // Private: Embree 3's functions, loaded from its shared library (dlopen) when a scene first needs Embree, not at
 // every process start. Linked the ordinary way, libembree3 and the libtbb it needs cost every process 2.0-2.8 ms
 // before main (Debian links both with BIND_NOW; libembree3 runs 168 static initialisers), and the scenes of up to
-// kPacketBvhTriangles triangles never use it: they get rayview's packet BVH (docs/PERFORMANCE.md, "2026-11-25,
-// eighth session").
+// kPacketBvhTriangles triangles never use it: they get rayview's packet BVH (docs/PERFORMANCE.md, "Embree
+// loaded on first use").
 
 #include <string>
 

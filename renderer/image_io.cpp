@@ -88,8 +88,8 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
       deflateSetDictionary(&s, data + begin - dictionary, static_cast<uInt>(dictionary));
     }
     // Room for an eighth of the part first, doubled while deflate fills it: a buffer of deflateBound's size (the
-    // part's own) put a fresh 2 MiB page of the launcher's huge-page heap under each part, for output that is
-    // mostly a few hundred KB (docs/PERFORMANCE.md, "twelfth session").
+    // part's own) held 4 MiB more at a 1920x1080 write on a huge-page heap, for output that is mostly a few
+    // hundred KB (docs/PERFORMANCE.md, "PNG writing").
     const std::size_t bound = deflateBound(&s, static_cast<uLong>(end - begin)) + 64;
     std::size_t capacity = std::min(bound, (end - begin) / 8 + 4096);
     out[k].reset(static_cast<unsigned char*>(std::malloc(capacity)));

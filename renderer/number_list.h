@@ -61,7 +61,7 @@ inline constexpr std::size_t kEstimateSample = std::size_t{1} << 16;
 // block. At least the items the sample's density gives, and slightly more (long blocks write their later indices
 // with more digits, which only lowers the density): never a multiple of what is needed, as a bound from the
 // shortest possible token would be ("1 2 3" against "50000//50000 ...": six times the faces, docs/PERFORMANCE.md,
-// "2026-11-25, tenth session"). An estimate only: arrays still grow when a block holds more.
+// "The loader"). An estimate only: arrays still grow when a block holds more.
 std::size_t estimatedItems(std::string_view sample, std::uint64_t totalBytes, std::size_t tokensPerItem);
 
 }  // namespace rayview::detail

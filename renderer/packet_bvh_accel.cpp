@@ -1,8 +1,8 @@
 // rayview's own BVH for small scenes: a binned-SAH binary tree of float boxes, traversed by packets of up to 16
 // rays with the four-wide watertight test at the leaves. It answers exactly what the Embree back-end answers
 // (the same float rays and boxes, the same watertight test and tie rule), without Embree's device, task scheduler
-// and first build, which cost a small scene's process more than its render (docs/PERFORMANCE.md, "2026-11-24,
-// seventh session").
+// and first build, which cost a small scene's process more than its render (docs/PERFORMANCE.md, "The packet
+// BVH for small scenes").
 #include <algorithm>
 #include <cmath>
 #include <cstdint>

@@ -97,7 +97,7 @@ void Loader::resolveIndices(int rootLine) {
   // No shrink_to_fit: a shrinking copy would hold every triangle twice at the load's peak, and what readFaces
   // reserved is close to what the text holds (detail::estimatedItems). It matters even unwritten: on the heap's
   // huge pages a reserve six times too large pushed the BVH and the image past memory the load had freed, 10 MB
-  // more at the peak of a 1e5-triangle scene (docs/PERFORMANCE.md, "2026-11-25, tenth session").
+  // more at the peak of a 1e5-triangle scene (docs/PERFORMANCE.md, "The loader").
   triangles.resize(kept);
   if (hasAttributes) attributes.resize(kept);
   warnAboutDuplicatedFaces();

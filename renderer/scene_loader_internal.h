@@ -178,8 +178,8 @@ struct StreamedBlocks {
 StreamedBlocks streamSkeleton(const ReadAt& read, std::uint64_t size);
 
 // The loader's warnings and how often each was met: one owner for both, so a warning can only be added
-// with its count (issue 9: repair messages once reached the list but not the counts, and a repeated
-// warning then wrote past the end of the counts). The same message again is counted, not listed.
+// with its count (two separate owners once let repair messages reach the list but not the counts, and a
+// repeated warning then wrote past the end of the counts). The same message again is counted, not listed.
 class WarningList {
  public:
   void add(Diagnostic diagnostic);

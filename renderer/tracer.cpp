@@ -468,7 +468,7 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
   v.continues = false;
   v.textured = false;
   // The mirror ray before the shading: 1.05-1.07x faster renders of the scenes with mirrors (docs/PERFORMANCE.md,
-  // "2026-11-24, sixth session"), its normalisation (a square root, then a division) overlapping the shading.
+  // "Shading"), its normalisation (a square root, then a division) overlapping the shading.
   if (material.isMirror() && depth < parameters_.maxRayDepth) {
     const glm::dvec3 nExact(n);
     const glm::dvec3 r = glm::normalize(dExact - 2.0 * glm::dot(dExact, nExact) * nExact);

@@ -14,7 +14,7 @@
 // inside exactly one of them, or exactly on the edge (value zero), and zero counts as inside for both.
 // Never neither. This needs each product rounded on its own: a fused multiply-add would round one product
 // and not the other. The build forbids contraction (-ffp-contract=off, CMakeLists.txt), and
-// WatertightEdge.IsAntisymmetricBitForBit checks it. (Until 2026-11 the vertices were put in a canonical
+// WatertightEdge.IsAntisymmetricBitForBit checks it. (The vertices were once put in a canonical
 // order first, which held under fusion too, but its three unpredictable branches per test cost 4-6 % of
 // a render.) The paper's fallback (recompute in double when an edge function is exactly zero in float) is
 // not needed: everything here is already double.

@@ -1,8 +1,9 @@
 // Renders the 16 CENG477 scenes and compares them with the course's own images (shared/conformance).
 //
-// Tolerances (issue 2): every scene >= 99.0 % of pixels with every channel within +-1; the seven 2021+
-// scenes (names without a year) also >= 98.5 % exact. Older vintages truncated instead of rounding, which
-// the +-1 figure absorbs. On failure the test writes actual, expected and difference images.
+// Tolerances (what the course's images allow, given their renderers' rounding): every scene >= 99.0 % of pixels with
+// every channel within +-1; the seven 2021+ scenes (names without a year) also >= 98.5 % exact. Older vintages
+// truncated instead of rounding, which the +-1 figure absorbs. On failure the test writes actual, expected and
+// difference images.
 #include <gtest/gtest.h>
 
 #include <iostream>

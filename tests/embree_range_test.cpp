@@ -1,6 +1,6 @@
-// Every number that reaches Embree is one Embree can represent (issue 9): beyond kEmbreeCoordinateLimit
-// a scene is traced by the reference BVH and a stray ray is answered without Embree, never dropped (a
-// silently wrong image) and never handed over (an assertion and SIGABRT in Embree).
+// Every number that reaches Embree is one Embree can represent, since Embree asserts on others: beyond
+// kEmbreeCoordinateLimit a scene is traced by the reference BVH and a stray ray is answered without Embree, never
+// dropped (a silently wrong image) and never handed over (an assertion and SIGABRT in Embree).
 
 #include <gtest/gtest.h>
 

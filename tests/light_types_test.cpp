@@ -1,6 +1,6 @@
-// One light type, one place (issue 7): the light list and the field tables drive the loader, the writer,
-// scripts and the tracer's preparation, so every test here loops over the list and the tables. A light type
-// added to SceneLights is covered without a line changed here.
+// One light type, one place, so that adding a type needs no edit here: the light list and the field tables drive the
+// loader, the writer, scripts and the tracer's preparation, so every test here loops over the list and the tables. A
+// light type added to SceneLights is covered without a line changed here.
 #include "rayview/light_types.h"
 
 #include <array>

@@ -101,7 +101,7 @@ TEST(Loader, SameAliasIsReportedOnceWithACount) {
   EXPECT_TRUE(hasWarning(loaded, 25, "(2 times; the first is shown)"));
 }
 
-// Issue 9: a repair by the XML pass followed by a repeated loader warning once wrote past the end of the
+// A repair by the XML pass followed by a repeated loader warning once wrote past the end of the
 // repeat counts (ASan: heap-buffer-overflow) and lost the "(N times)" note. Both kinds share one list now.
 TEST(Loader, RepeatCountIsRightAfterAnXmlRepair) {
   std::string xml = with("<ambient>1 0 0</ambient>", "<ambient>1 0 0</ambinet>");  // repaired, line 21

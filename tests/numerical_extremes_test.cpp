@@ -1,4 +1,4 @@
-// The numerical extremes of issue 4, each printing the figure it reaches (SPEC section 6):
+// The numerical extremes the renderer must survive, each printing the figure it reaches (SPEC section 6):
 //   scale        conformance scenes scaled by 1e-6..1e6 (intensities by factor^2, no <shadowrayepsilon>)
 //                render as at scale 1: >= 99.9 % of pixels within +-1;
 //   translation  conformance scenes moved by 1e3, 1e5, 1e6 along each axis: >= 99.9 % within +-1;
@@ -75,7 +75,7 @@ class TranslationInvariance : public ConformanceScene {};
 
 TEST_P(ScaleInvariance, SameImageFrom1eMinus6To1e6) {
   Scene base = load();
-  base.shadowRayEpsilon.reset();  // the issue's condition: the robust offset, not a fixed length
+  base.shadowRayEpsilon.reset();  // the condition under test: the robust offset, not a fixed length
   const Image expected = testing::renderChecked(base, defaultAccel()).image;
   for (double factor : {1e-6, 1e-3, 1e3, 1e6}) {
     Scene scaled = base;

@@ -201,7 +201,7 @@ TEST(SceneStream, ArraysHoldAboutWhatTheBlocksGive) {
   // A big scene's arrays are reserved from its text before it is read. Faces written "v//n" with five-digit
   // indices are ~40 bytes each: an estimate from the shortest possible face ("1 2 3") reserved six times the
   // faces, 24 MB of triangles and face attributes for a 1e5-triangle sphere's 3.6 MB, against a budget of 20 MB
-  // for the whole render (docs/PERFORMANCE.md, "2026-11-25, tenth session").
+  // for the whole render (docs/PERFORMANCE.md, "The loader").
   // Either way of reading, every array may hold at most half again what it has (here the estimate, from the
   // first faces with their shorter indices, reserves a third more).
   const int n = 60000;

@@ -1,4 +1,4 @@
-// Files the user names that are not scene files, or not files at all (issue 9): each is refused at once,
+// Files the user names that are not scene files, or not files at all: each is refused at once,
 // without blocking and without reading past the limit, with a message that names the file and says what
 // it is.
 

@@ -1,6 +1,6 @@
 #pragma once
 // The file's image rendered off the UI thread, for saving while the window view shows another resolution
-// (issue 10: Ctrl+S saves the file's resolution, equal to `rayview render`, never a coarse pass). One
+// (Ctrl+S saves the file's resolution, equal to `rayview render`, never a coarse pass). One
 // persistent worker thread (RequestWorker) renders the whole image on a thread pool of its own (made at the
 // first request, then kept); a new request supersedes the running one. No GL here.
 

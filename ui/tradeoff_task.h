@@ -1,5 +1,5 @@
 #pragma once
-// Measuring the speed-for-accuracy trade of the scene on screen (issue 4, item 2; docs/tradeoff.md) off the
+// Measuring the speed-for-accuracy trade of the scene on screen (docs/tradeoff.md) off the
 // UI thread: one persistent worker thread (RequestWorker) runs measureTradeoff() on a thread pool of its own (created at the
 // first measurement, then kept), one request at a time. No GL here.
 //

@@ -271,11 +271,11 @@ def peak_of_children_kib():
 
 
 def check_memory_line(stdout, children_kib):
-    """Issue 8 item 4: the summary reports the process's peak memory, per triangle, and the peak as it stood after
-    each stage (load, build, render, write). The stages' figures never fall, the last is the peak, the per-triangle
-    figure is the peak over the scene line's triangle count, and the peak is no more than the kernel's own count
-    for the process (ru_maxrss, which also covers the fork before the exec). A unit slip (KiB taken for bytes
-    or bytes for KiB) fails one of these."""
+    """Memory is judged in bytes per triangle: the summary reports the process's peak memory, per triangle, and the peak
+    as it stood after each stage (load, build, render, write). The stages' figures never fall, the last is the peak, the
+    per-triangle figure is the peak over the scene line's triangle count, and the peak is no more than the kernel's own
+    count for the process (ru_maxrss, which also covers the fork before the exec). A unit slip (KiB taken for bytes or
+    bytes for KiB) fails one of these."""
     line = next((line for line in stdout.splitlines() if line.startswith("memory ")), "")
     scene = next((line for line in stdout.splitlines() if line.startswith("scene ")), "")
     m = re.match(r"memory +peak ([\d.]+) MiB, (\d+) B/triangle; peak after load ([\d.]+), BVH build ([\d.]+), "
@@ -294,8 +294,9 @@ def check_memory_line(stdout, children_kib):
 
 
 def check_startup_line(stdout, origin, how):
-    """Issue 8: start-up (process start to the first ray, less load and build) is reported with each render,
-    and the write of the image is timed: the figures are there and are durations (their size is bench/'s)."""
+    """Start-up (process start to the first ray, less load and build) is reported with each render, so a user can
+    see the fixed cost, and the write of the image is timed: the figures are there and are durations (their size is
+    bench/'s)."""
     times = next((line for line in stdout.splitlines() if line.startswith("time ")), "")
     check(", write " in times and times.endswith(" ms"), f"the summary times the write ({how})")
     line = next((line for line in stdout.splitlines() if line.startswith("start-up ")), "")
@@ -327,8 +328,8 @@ def check_bench_words(a, scene):
 
 
 def check_output_is_never_an_input(a):
-    """Issue 9: `rayview render s.png -o s.png` once replaced its own input. The output is refused when it
-    is the scene or its texture image by any path: the same name, ./, a symlink, a hard link."""
+    """Never overwrite an input: `rayview render s.png -o s.png` once replaced its own input. The output is refused
+    when it is the scene or its texture image by any path: the same name, ./, a symlink, a hard link."""
     d = os.path.join(a.scratch, "same")
     os.makedirs(d)
     texture = os.path.join(d, "tex.png")

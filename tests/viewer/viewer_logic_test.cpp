@@ -459,7 +459,7 @@ class HeadlessImGui {
   }
 };
 
-// Issue 10: the light model and the samples showed no tooltip over their fields. Each knob's help is its tooltip.
+// The light model and the samples once showed no tooltip over their fields. Each knob's help is its tooltip.
 TEST(RenderPanel, KnobTooltipsShowOverTheirFields) {
   // Light samples twice: enabled (area model), and greyed out (directional), where the tooltip says why.
   for (const char* name : {"light-samples", "tri-light", "depth", "light-samples"}) {

@@ -226,7 +226,8 @@ def case_reload(args, work):
 
 
 def case_keys(args, work):
-    """Issue 10: F5 after a failed open, Ctrl+O into a collapsed Scene section, Ctrl+S while refining, failed saves."""
+    """Keys where the viewer once misbehaved: F5 after a failed open, Ctrl+O into a collapsed Scene section, Ctrl+S
+    while refining, failed saves."""
     scene = os.path.join(work, "missing.xml")
     other = copy_scene(work, "other.xml")
     viewer = Viewer(args.rayview, [scene, "--threads", "2"], work)

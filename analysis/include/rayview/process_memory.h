@@ -1,9 +1,9 @@
 #pragma once
 // This process's resident memory now and at its peak, from the kernel (VmRSS and VmHWM in /proc/self/status):
-// `rayview render`'s memory line (issue 8 item 4 measures peak memory in bytes per triangle), the viewer's stats
-// and the scale series' breakdown (bench/scale_series.cpp). The peak is the figure bench/peak_rss takes from
+// `rayview render`'s memory line (peak memory in bytes per triangle, the figure memory is judged by), the viewer's
+// stats and the scale series' breakdown (bench/scale_series.cpp). The peak is the figure bench/peak_rss takes from
 // outside (ru_maxrss), but readable between the stages of one process. A reading costs ~20 us (docs/PERFORMANCE.md,
-// "2026-11-25, eleventh session").
+// "Current figures").
 //
 // Approximate by up to a few hundred KiB while threads run: the kernel counts each thread's page faults in that
 // thread's cache first and adds them to the process's figure in batches, so two readings of the peak can even

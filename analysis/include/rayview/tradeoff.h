@@ -1,7 +1,7 @@
 #pragma once
-// The speed-for-accuracy trade, measured (issue 4, item 2). For each setting of each knob, varied alone from a
-// baseline, render the scene, time it and compare it with the highest-quality image. No GL: `rayview bench
-// tradeoff` and the viewer both use this.
+// The speed-for-accuracy trade, measured so users can pick settings by cost and error. For each setting of each knob,
+// varied alone from a baseline, render the scene, time it and compare it with the highest-quality image. No GL:
+// `rayview bench tradeoff` and the viewer both use this.
 //
 // The knobs, each varied alone; the others stay at the baseline: full resolution, the depth of the parameters
 // measured, and `options.baseline` (the viewer: the user's current settings and edits; the bench: the defaults

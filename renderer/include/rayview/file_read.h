@@ -1,6 +1,6 @@
 #pragma once
 // Reading a file the user named (a scene, a texture image): never blocks, never reads past a limit, and
-// says what the file is when it is not what was expected (issue 9).
+// says what the file is when it is not what was expected, so a wrong path gives a message, not a hang.
 
 #include <cstdint>
 #include <filesystem>

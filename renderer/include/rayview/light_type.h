@@ -1,7 +1,7 @@
 #pragma once
 // How a light type describes itself, so that the loader, the scene writer, the range check, the Lights panel
-// and the automation scripts handle every type with one generic loop (issue 7: a new light type touches
-// its own header, its row in light_types.h and its panel, nothing else).
+// and the automation scripts handle every type with one generic loop (so that a new light type touches
+// only its own header, its row in light_types.h and its panel, nothing else).
 //
 // A light type is a struct with
 //   std::string id;                    the file's id attribute

@@ -64,7 +64,7 @@ int chooseEditStride(std::span<const PassTime> recent, int width, int height);
 // the final pass takes seconds). Each level between costs: a pixel of a sparse pass costs 1.5 to 2.7 times
 // what it costs in a full pass (incoherent packets, cold caches; measured on car and killeroo_2020 with
 // edit_latency_bench), and halving level by level made an edit's final pass come 12-40 % later than the
-// headless render of the same image (docs/PERFORMANCE.md, issue 8 item 5).
+// headless render of the same image (docs/PERFORMANCE.md, "The viewer's progressive passes").
 int nextPassStride(int firstStride, int stride);
 
 }  // namespace rayview

@@ -68,7 +68,7 @@ struct SceneParameters {
 inline constexpr std::int32_t kNoIndex = -1;
 
 // One face, already resolved to 0-based indices into the scene's vertices. 12 bytes: at 1e7 triangles every byte
-// here is 10 MB (docs/PERFORMANCE.md, scale series). Its mesh and material come from the mesh ranges
+// here is 10 MB (docs/PERFORMANCE.md, "Memory per triangle"). Its mesh and material come from the mesh ranges
 // (SceneGeometry::meshOf), its corners' texture and normal indices from SceneGeometry::faceAttributes.
 struct Triangle {
   std::uint32_t vertex[3] = {0, 0, 0};

@@ -35,10 +35,10 @@ struct PixelXY {
 };
 
 // Geometry relative to the accelerator's origin, computed once per scene load.
-// What shading needs beyond the scene's own arrays: the origin the traversal's coordinates are relative to.
-// Hit points (the scene's vertices minus it, in double: on the triangle's plane) and face normals
-// (normalize((v2-v1) x (v3-v1)) of the world positions, never flipped) are computed per hit from the scene's
-// vertices: the same numbers a stored copy held, without 24-96 B per triangle of copies (docs/PERFORMANCE.md).
+// What shading needs beyond the scene's own arrays: the origin the traversal's coordinates are relative to. Hit points
+// (the scene's vertices minus it, in double: on the triangle's plane) and face normals (normalize((v2-v1) x (v3-v1)) of
+// the world positions, never flipped) are computed per hit from the scene's vertices: the same numbers a stored copy
+// held, without 24-96 B per triangle of copies (docs/PERFORMANCE.md, "Memory per triangle").
 struct ShadingGeometry {
   glm::dvec3 origin{0.0};
 };
