@@ -23,13 +23,28 @@ struct SeriesStyle {
   Rgb colour;
   MarkerShape shape;
 };
-constexpr SeriesStyle kSeries[] = {
+constexpr SeriesStyle kStyles[] = {
     {TradeoffKnob::Preview, "", "", {0, 114, 178}, MarkerShape::Circle},
     {TradeoffKnob::Depth, " (d)", "d", {213, 94, 0}, MarkerShape::Square},
     {TradeoffKnob::LightSamples, " (n)", "n=", {0, 158, 115}, MarkerShape::Triangle},
     {TradeoffKnob::Accel, "", "", {204, 121, 167}, MarkerShape::Diamond},
     {TradeoffKnob::PixelSamples, " (s)", "s=", {230, 159, 0}, MarkerShape::Star},
 };
+// A knob the table marks as measured that has no style above yet: the remaining Okabe-Ito colours in turn.
+constexpr Rgb kMoreColours[] = {{86, 180, 233}, {240, 228, 66}, {0, 0, 0}};
+
+// Every series of the measurement (tradeoffKnobs), in its order, each with its style.
+std::vector<SeriesStyle> seriesStyles() {
+  std::vector<SeriesStyle> series;
+  std::size_t more = 0;
+  for (const TradeoffKnob& knob : tradeoffKnobs()) {
+    const auto style = std::find_if(std::begin(kStyles), std::end(kStyles),
+                                    [&](const SeriesStyle& s) { return s.knob == knob; });
+    if (style != std::end(kStyles)) series.push_back(*style);
+    else series.push_back({knob, "", "", kMoreColours[more++ % std::size(kMoreColours)], MarkerShape::Circle});
+  }
+  return series;
+}
 
 constexpr double kTitleScale = 2.0, kAxisLabelScale = 1.6, kTickScale = 1.4, kPointLabelScale = 1.3;
 constexpr double kMarkerRadius = 5.0;
@@ -211,7 +226,7 @@ void drawLegend(PlotCanvas& canvas, const Axes& axes, const TradeoffReport& repo
     canvas.text(x + 34, y + 5 - kFontCapHeight * kTickScale / 2, name, kTickScale, kInk);
     y += rowHeight;
   };
-  for (const SeriesStyle& s : kSeries)
+  for (const SeriesStyle& s : seriesStyles())
     if (std::any_of(report.points.begin(), report.points.end(),
                     [&](const TradeoffPoint& p) { return p.setting.knob == s.knob; }))
       entry(std::string(knobLabel(s.knob)) + s.letter, s.colour, s.shape, true);
@@ -270,7 +285,7 @@ Image plotTradeoff(const TradeoffReport& report, int width, int height) {
 
   // Lines first, then markers over them, then labels where they fit (ends of each series always).
   LabelPlacer labels(axes);
-  for (const SeriesStyle& s : kSeries) {
+  for (const SeriesStyle& s : seriesStyles()) {
     const TradeoffPoint* previous = nullptr;
     for (const TradeoffPoint& p : report.points) {
       if (p.setting.knob != s.knob) continue;
@@ -291,7 +306,7 @@ Image plotTradeoff(const TradeoffReport& report, int width, int height) {
   };
   if (best) labels.place(canvas, axes.x(best->timeMs), axes.y(0), std::string(kBestImageLabel), kBlack, true);
   if (baseline) labels.place(canvas, axes.x(baseline->timeMs), axes.y(baseline->error.rmse), "baseline", kBlack, true);
-  for (const SeriesStyle& s : kSeries) {
+  for (const SeriesStyle& s : seriesStyles()) {
     std::vector<const TradeoffPoint*> series;
     for (const TradeoffPoint& p : report.points)
       if (p.setting.knob == s.knob) series.push_back(&p);

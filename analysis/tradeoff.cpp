@@ -75,235 +75,327 @@ std::string csvField(const std::string& text) {
 
 }  // namespace
 
-std::string_view toString(TradeoffKnob knob) {
-  static const std::string depthName = depthKnob().csvName(), samplesName = lightSamplesKnob().csvName(),
-                           accelName = accelKnob().csvName(), pixelSamplesName = pixelSamplesKnob().csvName();
-  switch (knob) {
-    case TradeoffKnob::BestImage: return "best_image";
-    case TradeoffKnob::Preview: return "preview";
-    case TradeoffKnob::Depth: return depthName;
-    case TradeoffKnob::LightSamples: return samplesName;
-    case TradeoffKnob::Accel: return accelName;
-    case TradeoffKnob::PixelSamples: return pixelSamplesName;
-  }
-  return "?";
+const Knob* TradeoffKnob::row() const { return kind == Kind::Table ? findKnob(name) : nullptr; }
+
+std::string toString(TradeoffKnob knob) {
+  if (const Knob* row = knob.row()) return row->csvName();
+  return knob.kind == TradeoffKnob::Kind::Preview ? "preview" : "best_image";
 }
+
+std::vector<TradeoffKnob> tradeoffKnobs() {
+  std::vector<TradeoffKnob> knobs = {TradeoffKnob::Preview};
+  for (const Knob& k : knobTable())
+    if (k.measuredByTradeoff()) knobs.push_back(TradeoffKnob::of(k));
+  return knobs;
+}
+
+KnobSweep TradeoffOptions::sweepOf(const Knob& knob) const {
+  KnobSweep sweep = knob.tradeoff;
+  for (const SweepLimit& l : limits)
+    if (l.knob == knob.name) {
+      sweep.max = std::min(sweep.max, l.max);
+      if (l.best >= 0) sweep.best = l.best;
+    }
+  return sweep;
+}
+
+namespace {
+
+// The values a knob's sweep lists for this scene and baseline (KnobSweep); empty when it changes nothing here.
+std::vector<int> sweptValues(const Knob& knob, const KnobSweep& sweep, const SceneParameters& scene,
+                             const RenderSettings& baseline) {
+  switch (sweep.kind) {
+    case TradeoffSweep::None: return {};
+    case TradeoffSweep::UpToScene:
+      return depthsToList(std::max(0, knob.get(scene, baseline)), !sweep.changesImage || sweep.changesImage(scene));
+    case TradeoffSweep::Doublings:
+      if (!knob.matters(scene, baseline)) return {};
+      return doublingsWith(std::clamp(sweep.max, std::max(1, knob.min), std::max(1, knob.max)),
+                           knob.get(scene, baseline));
+    case TradeoffSweep::Values: return {sweep.values.begin(), sweep.values.end()};
+  }
+  return {};
+}
+
+// The best image improves what the user has where a row says how (more light samples, the reference BVH); it
+// keeps the rest, the samples per pixel among them: anti-aliased images are not ranked against each other.
+void improveForBestImage(const Knob& knob, const KnobSweep& sweep, SceneParameters& scene, RenderSettings& best) {
+  if (sweep.best < 0 || !knob.matters(scene, best)) return;
+  const int value = sweep.kind == TradeoffSweep::Doublings
+                        ? std::clamp(std::max(sweep.best, knob.get(scene, best)), knob.min, knob.max)
+                        : sweep.best;
+  knob.set(scene, best, value);
+}
+
+// A setting of `knob` at `value` from the baseline; a Parameters knob the trade-off varies is the depth.
+KnobSetting settingOf(TradeoffKnob id, const Knob& knob, int value, const SceneParameters& scene,
+                      const RenderSettings& baseline) {
+  SceneParameters parameters = scene;
+  RenderSettings settings = baseline;
+  knob.set(parameters, settings, value);
+  return {id, knob.format(knob.get(parameters, settings)), 1, std::max(0, parameters.maxRayDepth), settings};
+}
+
+}  // namespace
 
 std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, const TradeoffOptions& options) {
   const int maxDepth = std::max(0, scene.maxRayDepth);
   RenderSettings baseline = options.baseline;
   baseline.accel = availableAccel(baseline.accel);
-  const bool samplesMatter = lightSamplesKnob().matters(scene, baseline);
 
-  std::vector<KnobSetting> list;
-  // The best image improves what the user has: more light samples, the reference BVH. It keeps their samples
-  // per pixel: anti-aliased images are not ranked against each other (docs/tradeoff.md).
+  SceneParameters bestScene = scene;
+  bestScene.maxRayDepth = maxDepth;
   RenderSettings best = baseline;
-  best.accel = availableAccel(AccelKind::Reference);
-  if (samplesMatter)
-    best.lightSamples = std::clamp(std::max(options.referenceLightSamples, baseline.lightSamples), 1, kMaxLightSamples);
-  SceneParameters atDepth;
-  atDepth.maxRayDepth = maxDepth;
+  for (const Knob& k : knobTable())
+    if (k.measuredByTradeoff()) improveForBestImage(k, options.sweepOf(k), bestScene, best);
   std::string bestLabel;  // "depth=6 light_samples=256 accel=reference samples=1", in the CSV's names
-  for (const Knob* k : {&depthKnob(), &lightSamplesKnob(), &accelKnob(), &pixelSamplesKnob()}) {
+  for (const Knob& k : knobTable()) {
+    if (!k.measuredByTradeoff()) continue;
     if (!bestLabel.empty()) bestLabel += ' ';
-    bestLabel.append(k->csvName()).append("=").append(k->format(k->get(atDepth, best)));
+    bestLabel.append(k.csvName()).append("=").append(k.format(k.get(bestScene, best)));
   }
+  std::vector<KnobSetting> list;
   list.push_back({TradeoffKnob::BestImage, bestLabel, 1, maxDepth, best});
-
   for (int stride : kPreviewStrides) list.push_back({TradeoffKnob::Preview, previewLabel(stride), stride, maxDepth, baseline});
-
-  for (int depth : depthsToList(maxDepth, scene.hasMirrors())) {
-    list.push_back({TradeoffKnob::Depth, std::to_string(depth), 1, depth, baseline});
-  }
-
-  if (samplesMatter) {
-    for (int n : doublingsWith(std::clamp(options.maxLightSamples, 1, kMaxLightSamples), baseline.lightSamples)) {
-      RenderSettings s = baseline;
-      s.lightSamples = n;
-      list.push_back({TradeoffKnob::LightSamples, std::to_string(n), 1, maxDepth, s});
-    }
-  }
-
-  // The fast traversal this build has (Embree, or the packet BVH in its place) and the reference BVH.
-  for (AccelKind kind : {availableAccel(AccelKind::Embree), AccelKind::Reference}) {
-    RenderSettings s = baseline;
-    s.accel = kind;
-    list.push_back({TradeoffKnob::Accel, std::string(toString(kind)), 1, maxDepth, s});
-  }
-
-  for (int n : doublingsWith(std::clamp(options.maxPixelSamples, 1, kMaxPixelSamples), baseline.pixelSamples)) {
-    RenderSettings s = baseline;
-    s.pixelSamples = n;
-    list.push_back({TradeoffKnob::PixelSamples, std::to_string(n), 1, maxDepth, s});
-  }
+  for (const Knob& k : knobTable())
+    for (int value : sweptValues(k, options.sweepOf(k), scene, baseline))
+      list.push_back(settingOf(TradeoffKnob::of(k), k, value, scene, baseline));
   return list;
 }
 
-TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> sceneGeometry,
-                               const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
-                               const std::atomic<bool>* cancel, const TradeoffProgressFn& progress) {
-  const auto start = TimingClock::now();
-  TradeoffReport report;
-  report.sceneName = sceneName;
-  report.threads = pool.size();
+namespace {
 
+// One measurement, as the stages it runs in order: plan the distinct renders, build the BVHs, make the tracers, run
+// the rounds, report. A stage that returns false was cancelled.
+class TradeoffRun {
+ public:
+  TradeoffRun(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> geometry,
+              const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
+              const std::atomic<bool>* cancel, const TradeoffProgressFn& progress);
+
+  TradeoffReport run();
+
+ private:
+  void planRenders();
+  bool buildGeometry();
+  void makeTracers();
+  bool runRound(int round);
+  bool timeAlone(std::size_t i, int round, std::vector<std::size_t>& inTurn);
+  bool timeQuickInTurn(const std::vector<std::size_t>& inTurn);
+  void finish();
+  int runsFor(const Render& r) const;
+  bool cancelled() const { return cancel_ && cancel_->load(); }
+  void tell(std::string what) {
+    status_.what = std::move(what);
+    if (progress_) progress_(status_);
+  }
+  TradeoffReport cancelledReport();
+
+  const SceneParameters& parameters_;
+  std::shared_ptr<const SceneGeometry> sceneGeometry_;
+  const TradeoffOptions& options_;
+  ThreadPool& pool_;
+  const std::atomic<bool>* cancel_;
+  const TradeoffProgressFn& progress_;
+  const TimingClock::time_point start_ = TimingClock::now();
+  TradeoffReport report_;
+  SceneParameters view_;  // the parameters with the resized camera
+  std::vector<KnobSetting> settings_;
+  std::vector<Render> renders_;
+  std::vector<std::size_t> renderOf_;  // the render of each setting
+  std::shared_ptr<const PreparedGeometry> geometry_[kAccelKindCount];  // by AccelKind
+  TradeoffProgress status_;
+  Image bestImage_;
+  int timedRuns_ = 1;
+  int slowedRepeated_ = 0, slowedKept_ = 0;
+};
+
+TradeoffRun::TradeoffRun(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> geometry,
+                         const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
+                         const std::atomic<bool>* cancel, const TradeoffProgressFn& progress)
+    : parameters_(parameters), sceneGeometry_(std::move(geometry)), options_(options), pool_(pool), cancel_(cancel),
+      progress_(progress), view_(parameters), timedRuns_(std::max(1, options.timedRuns)) {
+  report_.sceneName = sceneName;
+  report_.threads = pool.size();
   // Camera, lights and materials from a resized copy; the meshes are read from the geometry.
-  const SceneParameters* scene = &parameters;
-  SceneParameters view = parameters;
+  if (parameters.camera.width <= 0 || parameters.camera.height <= 0 || !(options.resolutionScale > 0.0))
+    throw std::invalid_argument("the tradeoff needs a camera with pixels and a positive resolution scale");
   const auto scaled = [&](int pixels) {
     return std::max(1, static_cast<int>(std::lround(pixels * options.resolutionScale)));
   };
-  if (scene->camera.width <= 0 || scene->camera.height <= 0 || !(options.resolutionScale > 0.0))
-    throw std::invalid_argument("the tradeoff needs a camera with pixels and a positive resolution scale");
-  view.camera.width = report.width = scaled(scene->camera.width);
-  view.camera.height = report.height = scaled(scene->camera.height);
-
-  if (!scene->hasMirrors()) report.notes.push_back("no mirrors (or depth 0): depth changes nothing");
-  if (!lightSamplesKnob().matters(*scene, options.baseline))
-    report.notes.push_back("light samples change nothing here (no triangular lights, or the directional model): not measured");
+  view_.camera.width = report_.width = scaled(parameters.camera.width);
+  view_.camera.height = report_.height = scaled(parameters.camera.height);
+  if (!parameters.hasMirrors()) report_.notes.push_back("no mirrors (or depth 0): depth changes nothing");
+  if (!lightSamplesKnob().matters(parameters, options.baseline))
+    report_.notes.push_back("light samples change nothing here (no triangular lights, or the directional model): not measured");
   if (availableAccel(AccelKind::Embree) != AccelKind::Embree)
-    report.notes.push_back("built without Embree: rayview's packet BVH is measured in its place");
+    report_.notes.push_back("built without Embree: rayview's packet BVH is measured in its place");
+}
 
-  const std::vector<KnobSetting> settings = enumerateKnobSettings(*scene, options);
+TradeoffReport TradeoffRun::run() {
+  planRenders();
+  if (!buildGeometry()) return cancelledReport();
+  makeTracers();
+  // Round 0 renders every setting and keeps its error (renders_[0] is the best image: it comes first); later
+  // rounds only time. Interleaved rounds spread slow drifts of the machine's load over all settings.
+  const int maxRuns = std::max(timedRuns_, options_.fastTimedRuns);
+  for (int round = 0; round < maxRuns; ++round)
+    if (!runRound(round)) return cancelledReport();
+  finish();
+  return std::move(report_);
+}
+
+// Settings that coincide (the baseline is the stride-1 preview, the depth's maximum, and one value of every other
+// knob) share one render.
+void TradeoffRun::planRenders() {
+  settings_ = enumerateKnobSettings(parameters_, options_);
   const auto describe = [&](const KnobSetting& k) {
-    SceneParameters rendered = view;
+    SceneParameters rendered = view_;
     rendered.maxRayDepth = k.depth;
     return describeKnobs(rendered, k.settings);
   };
-  for (const KnobSetting& k : settings)
-    if (k.knob == TradeoffKnob::Preview && k.stride == 1) report.baseline = k;
-  report.baselineText = describe(report.baseline);
-  report.bestText = describe(settings.front());
-  std::vector<Render> renders;
-  std::vector<std::size_t> renderOf;
-  for (const KnobSetting& k : settings) {
-    const auto same = std::find_if(renders.begin(), renders.end(),
-                                   [&](const Render& r) {
-                                     return r.stride == k.stride && r.depth == k.depth && r.settings == k.settings;
-                                   });
-    renderOf.push_back(static_cast<std::size_t>(same - renders.begin()));
-    if (same == renders.end()) {
-      Render& r = renders.emplace_back();
-      r.stride = k.stride;
-      r.depth = k.depth;
-      r.settings = k.settings;
-      r.description = describeRow(k);
-    }
+  for (const KnobSetting& k : settings_)
+    if (k.knob == TradeoffKnob::Preview && k.stride == 1) report_.baseline = k;
+  report_.baselineText = describe(report_.baseline);
+  report_.bestText = describe(settings_.front());
+  for (const KnobSetting& k : settings_) {
+    const auto same = std::find_if(renders_.begin(), renders_.end(), [&](const Render& r) {
+      return r.stride == k.stride && r.depth == k.depth && r.settings == k.settings;
+    });
+    renderOf_.push_back(static_cast<std::size_t>(same - renders_.begin()));
+    if (same != renders_.end()) continue;
+    Render& r = renders_.emplace_back();
+    r.stride = k.stride;
+    r.depth = k.depth;
+    r.settings = k.settings;
+    r.description = describeRow(k);
   }
+  status_ = {0, static_cast<int>(renders_.size()) * timedRuns_, {}};
+}
 
-  const auto isCancelled = [&] { return cancel && cancel->load(); };
-  const auto cancelledReport = [&] {
-    TradeoffReport r = std::move(report);
-    r.points.clear();
-    r.cancelled = true;
-    r.totalMs = msSince(start);
-    return r;
-  };
-  const int timedRuns = std::max(1, options.timedRuns);
-  TradeoffProgress status{0, static_cast<int>(renders.size()) * timedRuns, {}};
-  const auto tell = [&](std::string what) {
-    status.what = std::move(what);
-    if (progress) progress(status);
-  };
-
-  std::shared_ptr<const PreparedGeometry> geometry[kAccelKindCount];  // by AccelKind
-  for (const Render& r : renders) {
-    auto& built = geometry[static_cast<int>(r.settings.accel)];
+// Each accelerator the renders need, built once; not part of any time.
+bool TradeoffRun::buildGeometry() {
+  for (const Render& r : renders_) {
+    auto& built = geometry_[static_cast<int>(r.settings.accel)];
     if (built) continue;
-    if (isCancelled()) return cancelledReport();
+    if (cancelled()) return false;
     tell("building the " + std::string(toString(r.settings.accel)) + " BVH");
-    built = prepareGeometry(sceneGeometry, parameters.camera.position, r.settings.accel, cancel ? buildCancelled : nullptr,
-                            const_cast<std::atomic<bool>*>(cancel));
-    if (!built || isCancelled()) return cancelledReport();
-    report.buildMs[static_cast<int>(r.settings.accel)] = built->buildMs;
+    built = prepareGeometry(sceneGeometry_, parameters_.camera.position, r.settings.accel,
+                            cancel_ ? buildCancelled : nullptr, const_cast<std::atomic<bool>*>(cancel_));
+    if (!built || cancelled()) return false;
+    report_.buildMs[static_cast<int>(r.settings.accel)] = built->buildMs;
   }
+  return true;
+}
 
-  for (Render& r : renders) {
-    SceneParameters rendered = view;
+void TradeoffRun::makeTracers() {
+  for (Render& r : renders_) {
+    SceneParameters rendered = view_;
     rendered.maxRayDepth = r.depth;
     r.view = std::make_shared<const SceneParameters>(std::move(rendered));
-    r.tracer = std::make_unique<const Tracer>(*r.view, *geometry[static_cast<int>(r.settings.accel)], r.settings);
+    r.tracer = std::make_unique<const Tracer>(*r.view, *geometry_[static_cast<int>(r.settings.accel)], r.settings);
   }
+}
 
-  // Round 0 renders every setting and keeps its error (renders[0] is the best image: it comes first); later
-  // rounds only time. Interleaved rounds spread slow drifts of the machine's load over all settings. In each
-  // round the quick renders are timed last, in turn with each other (tradeoff_timing.h).
-  const auto runsFor = [&](const Render& r) {
-    const double first = r.timesMs.front();
-    if (first > options.singleRunMs) return 1;
-    return first < options.fastRunMs ? std::max(timedRuns, options.fastTimedRuns) : timedRuns;
-  };
-  const int maxRuns = std::max(timedRuns, options.fastTimedRuns);
-  const int width = view.camera.width, height = view.camera.height;
-  Image bestImage;
-  int slowedRepeated = 0, slowedKept = 0;
-  for (int round = 0; round < maxRuns; ++round) {
-    std::vector<std::size_t> inTurn;
-    for (std::size_t i = 0; i < renders.size(); ++i) {
-      Render& r = renders[i];
-      if (round > 0 && round >= runsFor(r)) continue;
-      if (r.quick) {
-        inTurn.push_back(i);
-        continue;
-      }
-      if (isCancelled()) return cancelledReport();
-      tell(r.description);
-      TimedRun run;
-      // A run during which other processes held the cores is repeated (a few times at most): on a shared
-      // machine that keeps bursts of someone else's work out of the medians.
-      for (int attempt = 0;; ++attempt) {
-        if (!renderOnce(*r.tracer, width, height, r.stride, pool, cancel, run)) return cancelledReport();
-        const bool slowed = run.wallMs >= kMinTimedMs && run.cpuShare < options.minCpuShare;
-        if (!slowed) break;
-        if (attempt >= options.slowedRetries) {
-          ++slowedKept;
-          break;
-        }
-        ++slowedRepeated;
-        // Give a burst of someone else's work time to pass: 50 ms, 100 ms, 200 ms ...
-        std::this_thread::sleep_for(std::chrono::milliseconds(50 << std::min(attempt, 5)));
-        if (isCancelled()) return cancelledReport();
-      }
-      if (round == 0) {
-        r.rays = run.rays.total();
-        if (i == 0) bestImage = std::move(run.image);
-        else r.error = compareToReference(run.image, bestImage);
-        r.quick = run.wallMs < kMinTimedMs;
-        if (r.quick) {  // that render gave the image; the time comes below
-          inTurn.push_back(i);
-          continue;
-        }
-      }
-      ++status.rendersDone;
-      r.timesMs.push_back(run.wallMs);
+int TradeoffRun::runsFor(const Render& r) const {
+  const double first = r.timesMs.front();
+  if (first > options_.singleRunMs) return 1;
+  return first < options_.fastRunMs ? std::max(timedRuns_, options_.fastTimedRuns) : timedRuns_;
+}
+
+// In each round the quick renders are timed last, in turn with each other (tradeoff_timing.h).
+bool TradeoffRun::runRound(int round) {
+  std::vector<std::size_t> inTurn;
+  for (std::size_t i = 0; i < renders_.size(); ++i) {
+    Render& r = renders_[i];
+    if (round > 0 && round >= runsFor(r)) continue;
+    if (r.quick) {
+      inTurn.push_back(i);
+      continue;
     }
-    if (!inTurn.empty()) {
-      if (isCancelled()) return cancelledReport();
-      tell(std::to_string(inTurn.size()) + " quick settings, in turn");
-      std::vector<QuickRender> quick;
-      for (std::size_t i : inTurn) quick.push_back({renders[i].tracer.get(), renders[i].stride, renders[i].settings.accel});
-      const std::vector<double> timesMs = timeInTurn(quick, width, height, pool, cancel);
-      if (timesMs.empty()) return cancelledReport();
-      for (std::size_t k = 0; k < inTurn.size(); ++k) renders[inTurn[k]].timesMs.push_back(timesMs[k]);
-      status.rendersDone += static_cast<int>(inTurn.size());
+    if (!timeAlone(i, round, inTurn)) return false;
+  }
+  if (!inTurn.empty() && !timeQuickInTurn(inTurn)) return false;
+  if (round == 0) {
+    status_.rendersPlanned = 0;
+    for (const Render& r : renders_) status_.rendersPlanned += runsFor(r);
+  }
+  return true;
+}
+
+// A run during which other processes held the cores is repeated (a few times at most): on a shared machine that
+// keeps bursts of someone else's work out of the medians. Round 0 also keeps the image's error, and finds out
+// whether the render is quick (then it is timed in turn with the others instead).
+bool TradeoffRun::timeAlone(std::size_t i, int round, std::vector<std::size_t>& inTurn) {
+  Render& r = renders_[i];
+  if (cancelled()) return false;
+  tell(r.description);
+  TimedRun run;
+  for (int attempt = 0;; ++attempt) {
+    if (!renderOnce(*r.tracer, view_.camera.width, view_.camera.height, r.stride, pool_, cancel_, run)) return false;
+    const bool slowed = run.wallMs >= kMinTimedMs && run.cpuShare < options_.minCpuShare;
+    if (!slowed) break;
+    if (attempt >= options_.slowedRetries) {
+      ++slowedKept_;
+      break;
     }
-    if (round == 0) {
-      status.rendersPlanned = 0;
-      for (const Render& r : renders) status.rendersPlanned += runsFor(r);
+    ++slowedRepeated_;
+    // Give a burst of someone else's work time to pass: 50 ms, 100 ms, 200 ms ...
+    std::this_thread::sleep_for(std::chrono::milliseconds(50 << std::min(attempt, 5)));
+    if (cancelled()) return false;
+  }
+  if (round == 0) {
+    r.rays = run.rays.total();
+    if (i == 0) bestImage_ = std::move(run.image);
+    else r.error = compareToReference(run.image, bestImage_);
+    r.quick = run.wallMs < kMinTimedMs;
+    if (r.quick) {  // that render gave the image; the time comes in turn
+      inTurn.push_back(i);
+      return true;
     }
   }
+  ++status_.rendersDone;
+  r.timesMs.push_back(run.wallMs);
+  return true;
+}
 
-  if (slowedRepeated > 0 || slowedKept > 0)
-    report.notes.push_back(std::to_string(slowedRepeated) + " runs slowed by other processes were repeated" +
-                           (slowedKept > 0 ? "; " + std::to_string(slowedKept) + " kept (still slowed)" : ""));
+bool TradeoffRun::timeQuickInTurn(const std::vector<std::size_t>& inTurn) {
+  if (cancelled()) return false;
+  tell(std::to_string(inTurn.size()) + " quick settings, in turn");
+  std::vector<QuickRender> quick;
+  for (std::size_t i : inTurn) quick.push_back({renders_[i].tracer.get(), renders_[i].stride, renders_[i].settings.accel});
+  const std::vector<double> timesMs = timeInTurn(quick, view_.camera.width, view_.camera.height, pool_, cancel_);
+  if (timesMs.empty()) return false;
+  for (std::size_t k = 0; k < inTurn.size(); ++k) renders_[inTurn[k]].timesMs.push_back(timesMs[k]);
+  status_.rendersDone += static_cast<int>(inTurn.size());
+  return true;
+}
 
-  for (std::size_t k = 0; k < settings.size(); ++k) {
-    const Render& r = renders[renderOf[k]];
-    report.points.push_back({settings[k], median(r.timesMs), static_cast<int>(r.timesMs.size()), r.error, r.rays});
+void TradeoffRun::finish() {
+  if (slowedRepeated_ > 0 || slowedKept_ > 0)
+    report_.notes.push_back(std::to_string(slowedRepeated_) + " runs slowed by other processes were repeated" +
+                            (slowedKept_ > 0 ? "; " + std::to_string(slowedKept_) + " kept (still slowed)" : ""));
+  for (std::size_t k = 0; k < settings_.size(); ++k) {
+    const Render& r = renders_[renderOf_[k]];
+    report_.points.push_back({settings_[k], median(r.timesMs), static_cast<int>(r.timesMs.size()), r.error, r.rays});
   }
-  report.totalMs = msSince(start);
-  return report;
+  report_.totalMs = msSince(start_);
+}
+
+TradeoffReport TradeoffRun::cancelledReport() {
+  TradeoffReport r = std::move(report_);
+  r.points.clear();
+  r.cancelled = true;
+  r.totalMs = msSince(start_);
+  return r;
+}
+
+}  // namespace
+
+TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> geometry,
+                               const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
+                               const std::atomic<bool>* cancel, const TradeoffProgressFn& progress) {
+  return TradeoffRun(parameters, std::move(geometry), sceneName, options, pool, cancel, progress).run();
 }
 
 std::string tradeoffCsvHeader() { return "scene,knob,setting,time_ms,rmse,psnr_db,pct_off_by_more_than_1,rays\n"; }

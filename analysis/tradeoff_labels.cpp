@@ -4,22 +4,10 @@
 
 namespace rayview {
 
-const Knob* tableKnob(TradeoffKnob knob) {
-  switch (knob) {
-    case TradeoffKnob::Depth: return &depthKnob();
-    case TradeoffKnob::LightSamples: return &lightSamplesKnob();
-    case TradeoffKnob::Accel: return &accelKnob();
-    case TradeoffKnob::PixelSamples: return &pixelSamplesKnob();
-    case TradeoffKnob::BestImage:
-    case TradeoffKnob::Preview: break;
-  }
-  return nullptr;
-}
-
 std::string_view knobLabel(TradeoffKnob knob) {
   if (const Knob* row = tableKnob(knob)) return row->label;
   // The stats over the image call the viewer's passes so.
-  return knob == TradeoffKnob::Preview ? "Preview level" : kBestImageLabel;
+  return knob == TradeoffKnob::Preview ? std::string_view("Preview level") : kBestImageLabel;
 }
 
 std::optional<int> knobValue(const KnobSetting& setting) {

@@ -116,7 +116,7 @@ std::string whereTag(unsigned applies) {
 // An option for each row of the knob table: --NAME VALUE. The bench varies the knobs it measures itself.
 OptionSpec knobOption(const Knob& knob) {
   const std::string option = "--" + std::string(knob.name);
-  return {option, knob.valueName(), knob.measuredByTradeoff ? kBoth : kAll,
+  return {option, knob.valueName(), knob.measuredByTradeoff() ? kBoth : kAll,
           std::string(knob.help) + " (default: " + knob.defaultText() + ")",
           [&knob, option](CommandLine& c, const std::string& v) {
             const std::optional<int> value = knob.parse(v);

@@ -15,6 +15,10 @@ constexpr KnobChoice kRayStarts[] = {{"offset", "offset off the surface"},
 
 bool always(const SceneParameters&, const RenderSettings&) { return true; }
 
+// The trade-off measures the fast traversal this build has (Embree, or the packet BVH in its place: the row's setter
+// makes it so) against the reference BVH.
+constexpr int kAccelSwept[] = {static_cast<int>(AccelKind::Embree), static_cast<int>(AccelKind::Reference)};
+
 const Knob kKnobs[] = {
     {.name = "depth",
      .label = "Max ray depth",
@@ -23,7 +27,8 @@ const Knob kKnobs[] = {
      .home = KnobHome::Parameters,
      .min = 0,
      .max = kMaxRayDepth,
-     .measuredByTradeoff = true,
+     .tradeoff = {.kind = TradeoffSweep::UpToScene,
+                  .changesImage = [](const SceneParameters& p) { return p.hasMirrors(); }},
      .get = [](const SceneParameters& p, const RenderSettings&) { return p.maxRayDepth; },
      .set = [](SceneParameters& p, RenderSettings&, int v) { p.maxRayDepth = v; },
      .matters = always},
@@ -42,7 +47,7 @@ const Knob kKnobs[] = {
      .home = KnobHome::Settings,
      .min = 1,
      .max = kMaxLightSamples,
-     .measuredByTradeoff = true,
+     .tradeoff = {.kind = TradeoffSweep::Doublings, .max = 256, .best = 256},
      .get = [](const SceneParameters&, const RenderSettings& s) { return s.lightSamples; },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.lightSamples = v; },
      .matters = [](const SceneParameters& p, const RenderSettings& s) {
@@ -55,7 +60,7 @@ const Knob kKnobs[] = {
              "size",
      .home = KnobHome::Settings,
      .choices = kAccelKinds,
-     .measuredByTradeoff = true,
+     .tradeoff = {.kind = TradeoffSweep::Values, .values = kAccelSwept, .best = static_cast<int>(AccelKind::Reference)},
      .get = [](const SceneParameters&, const RenderSettings& s) { return static_cast<int>(s.accel); },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.accel = availableAccel(static_cast<AccelKind>(v)); },
      .matters = always},
@@ -75,7 +80,7 @@ const Knob kKnobs[] = {
      .home = KnobHome::Settings,
      .min = 1,
      .max = kMaxPixelSamples,
-     .measuredByTradeoff = true,
+     .tradeoff = {.kind = TradeoffSweep::Doublings, .max = 16},
      .get = [](const SceneParameters&, const RenderSettings& s) { return s.pixelSamples; },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.pixelSamples = v; },
      .matters = always},

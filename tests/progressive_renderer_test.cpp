@@ -1,6 +1,11 @@
 // The pass scheduler: cancellation by generation, exactly-once pixels, no stale frame ever published.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+#include <cstdlib>
+#include <future>
+#include <thread>
+
 #include <atomic>
 #include <condition_variable>
 #include <mutex>
@@ -266,13 +271,25 @@ TEST(ProgressiveRenderer, OnePixelImage) {
   EXPECT_EQ(source->total(), 1);
 }
 
+// The destructor runs on a thread of its own under a watchdog: a hang fails the test (and ends the process, since a
+// hung thread cannot be joined) instead of stalling the suite until ctest's timeout.
 TEST(ProgressiveRenderer, DestroyingWhileRenderingDoesNotHang) {
   auto source = std::make_shared<CountingSource>(512, 512, 0.0f);
-  {
-    ProgressiveRenderer renderer(2);
-    renderer.restart(source);
+  std::promise<void> destroyed;
+  std::future<void> done = destroyed.get_future();
+  std::thread destroyer([&] {
+    {
+      ProgressiveRenderer renderer(2);
+      renderer.restart(source);
+    }
+    destroyed.set_value();
+  });
+  if (done.wait_for(60s) != std::future_status::ready) {
+    ADD_FAILURE() << "destroying a renderer that is rendering did not return within 60 s";
+    std::fflush(stdout);
+    std::_Exit(1);
   }
-  SUCCEED();
+  destroyer.join();
 }
 
 }  // namespace

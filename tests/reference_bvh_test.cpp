@@ -154,7 +154,8 @@ TEST(ReferenceBvh, ReportsProgressAndCancels) {
   EXPECT_LT(midway.fractions.size(), complete.fractions.size());
 }
 
-TEST(ReferenceBvh, BuildsAMillionTrianglesInAFewSeconds) {
+// Its times are printed for a reader; bench/ measures speed.
+TEST(ReferenceBvh, BuildsAndTracesAMillionTriangles) {
   Scene scene;
   scene.materials.push_back(Material{});
   testing::addIcosphere(scene, testing::Placement{}, 8, 0);  // 20 * 4^8 = 1 310 720 triangles
@@ -173,7 +174,6 @@ TEST(ReferenceBvh, BuildsAMillionTrianglesInAFewSeconds) {
   std::printf("[ figures  ] %zu triangles: build %.2f s, %.2f M rays/s on one thread\n", scene.triangles.size(), seconds,
               0.1 / traceSeconds);
   EXPECT_GT(hits, 30000);
-  EXPECT_LT(seconds, 30.0);  // "a few seconds" in Release; generous so that Debug and sanitizer builds pass
 }
 
 }  // namespace

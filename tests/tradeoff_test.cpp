@@ -225,7 +225,7 @@ TEST(KnobEnumeration, DeepScenesListPowersOfTwo) {
   Scene scene = wallScene(false);
   scene.maxRayDepth = 40;
   TradeoffOptions options;
-  options.maxLightSamples = 6;
+  options.limit(lightSamplesKnob(), 6);
   EXPECT_EQ(labelsOf(settingsOf(enumerateKnobSettings(scene, options), TradeoffKnob::Depth)),
             (std::vector<std::string>{"0", "1", "2", "4", "8", "16", "32", "40"}));
   scene = wallScene(true);
@@ -312,11 +312,12 @@ Scene manyTriangles() {
   return scene;
 }
 
-TEST(MeasureTradeoff, ACoarserPreviewLevelNeverCostsMoreThanAFinerOne) {
+// Its cost is the rays it casts (its time is bench/'s to measure).
+TEST(MeasureTradeoff, ACoarserPreviewLevelCastsFewerRaysThanAFinerOne) {
   ThreadPool pool(2);
   TradeoffOptions options;  // the repetitions the user's measurement makes
   options.slowedRetries = 1;  // as the viewer: a busy machine slows the long renders, not this test's subject
-  options.maxPixelSamples = 1;
+  options.limit(pixelSamplesKnob(), 1);
   const TradeoffReport report = measureScene(manyTriangles(), options, pool);
   ASSERT_FALSE(report.cancelled);
   const char* const levels[] = {"1/16", "1/8", "1/4", "1/2", "1"};
@@ -324,8 +325,6 @@ TEST(MeasureTradeoff, ACoarserPreviewLevelNeverCostsMoreThanAFinerOne) {
     const TradeoffPoint& coarser = pointOf(report, TradeoffKnob::Preview, levels[i]);
     const TradeoffPoint& finer = pointOf(report, TradeoffKnob::Preview, levels[i + 1]);
     EXPECT_LT(coarser.rays, finer.rays) << levels[i];
-    EXPECT_LE(coarser.timeMs, finer.timeMs) << levels[i] << " took " << coarser.timeMs << " ms, " << levels[i + 1]
-                                            << " " << finer.timeMs << " ms";
   }
 }
 
@@ -335,9 +334,8 @@ TEST(MeasureTradeoff, TheBaselineIsTheUsersSettingsAndTheReportSaysWhichInThePan
   options.baseline.accel = availableAccel(AccelKind::Embree);
   options.baseline.lightSamples = 4;
   options.baseline.pixelSamples = 2;
-  options.maxLightSamples = 8;
-  options.referenceLightSamples = 8;
-  options.maxPixelSamples = 4;
+  options.limit(lightSamplesKnob(), 8, 8);
+  options.limit(pixelSamplesKnob(), 4);
   const TradeoffReport report = measureScene(wallScene(true, 16), options, pool);
   ASSERT_FALSE(report.cancelled);
   EXPECT_EQ(report.baseline.settings.lightSamples, 4);
@@ -359,8 +357,7 @@ TEST(MeasureTradeoff, TheBaselineIsTheUsersSettingsAndTheReportSaysWhichInThePan
 TEST(MeasureTradeoff, LightSamplesConvergeToTheReference) {
   ThreadPool pool(2);
   TradeoffOptions options = quickOptions();
-  options.maxLightSamples = 64;
-  options.referenceLightSamples = 64;
+  options.limit(lightSamplesKnob(), 64, 64);
   const TradeoffReport report = measureScene((wallScene(true, 24)), options, pool);
   ASSERT_FALSE(report.cancelled);
   EXPECT_GT(pointOf(report, TradeoffKnob::LightSamples, "1").error.rmse, 0.5);
@@ -533,7 +530,7 @@ namespace {
 
 TEST(KnobEnumeration, SamplesPerPixelGoInPowersOfTwoAgainstTheOneSampleReference) {
   TradeoffOptions options;
-  options.maxPixelSamples = 12;
+  options.limit(pixelSamplesKnob(), 12);
   const std::vector<KnobSetting> all = enumerateKnobSettings(wallScene(false), options);
   std::vector<std::string> labels;
   for (const KnobSetting& k : all)

@@ -172,7 +172,7 @@ void parseMeasureTradeoff(ScriptCommand& c, const std::vector<std::string>& t, L
 void parseTradeoffApply(ScriptCommand& c, const std::vector<std::string>& t, LineParser& p) {
   std::string names;
   for (const Knob& knob : knobTable()) {
-    if (!knob.measuredByTradeoff) continue;
+    if (!knob.measuredByTradeoff()) continue;
     if (!names.empty()) names += '|';
     names += knob.name;
   }
@@ -182,7 +182,7 @@ void parseTradeoffApply(ScriptCommand& c, const std::vector<std::string>& t, Lin
     return;
   }
   const Knob* knob = t.size() == 2 ? findKnob(t[0]) : nullptr;
-  if (!knob || !knob->measuredByTradeoff) p.fail("usage: " + usage);
+  if (!knob || !knob->measuredByTradeoff()) p.fail("usage: " + usage);
   const std::optional<int> value = knob->parse(t[1]);
   if (!value) p.fail("tradeoff-apply " + t[0] + " expects " + knob->expectation() + " (" + usage + ")");
   c.args = {t[0], t[1]};

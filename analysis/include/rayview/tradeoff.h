@@ -6,6 +6,8 @@
 // The knobs, each varied alone; the others stay at the baseline: full resolution, the depth of the parameters
 // measured, and `options.baseline` (the viewer: the user's current settings and edits; the bench: the defaults
 // and its options). Each knob's list includes the baseline's value:
+// The knobs are the preview level and the knob table's rows that it marks as measured (Knob::tradeoff, which says
+// how each is swept); today:
 //   preview       pixel strides 16, 8, 4, 2, 1 (labelled 1/16 .. 1). The image is the blocky upscale the viewer
 //                 shows (every pixel shows the sample at the top-left of its stride block); the time is that
 //                 pass rendered alone from scratch, every pixel of its grid, not the incremental pass the
@@ -48,22 +50,45 @@
 
 namespace rayview {
 
-// BestImage is the highest-quality image every setting is compared with. It is never called "reference":
-// that word is the reference BVH's, a traversal back-end (the accel knob's choice).
-enum class TradeoffKnob { BestImage, Preview, Depth, LightSamples, Accel, PixelSamples };
+// A row of the measurement: the best image (the highest-quality one every setting is compared with), the preview
+// level, or a knob-table row the table marks as measured (Knob::tradeoff), named by the row's name. The best image is
+// never called "reference": that word is the reference BVH's, a traversal back-end (the accel knob's choice).
+struct TradeoffKnob {
+  enum class Kind { BestImage, Preview, Table };
+  Kind kind = Kind::BestImage;
+  std::string_view name = {};  // the knob table's row, for Kind::Table
+
+  constexpr bool operator==(const TradeoffKnob& other) const { return kind == other.kind && name == other.name; }
+  // The knob-table row it varies; nullptr for the best image and the preview level.
+  const Knob* row() const;
+  static TradeoffKnob of(const Knob& knob) { return {Kind::Table, knob.name}; }
+
+  static const TradeoffKnob BestImage, Preview, Depth, LightSamples, Accel, PixelSamples;
+};
+inline constexpr TradeoffKnob TradeoffKnob::BestImage{TradeoffKnob::Kind::BestImage};
+inline constexpr TradeoffKnob TradeoffKnob::Preview{TradeoffKnob::Kind::Preview};
+inline constexpr TradeoffKnob TradeoffKnob::Depth{TradeoffKnob::Kind::Table, "depth"};
+inline constexpr TradeoffKnob TradeoffKnob::LightSamples{TradeoffKnob::Kind::Table, "light-samples"};
+inline constexpr TradeoffKnob TradeoffKnob::Accel{TradeoffKnob::Kind::Table, "accel"};
+inline constexpr TradeoffKnob TradeoffKnob::PixelSamples{TradeoffKnob::Kind::Table, "samples"};
 
 // The CSV's and the bench's knob column: "best_image", "preview", and the knob table's CSV names ("depth",
 // "light_samples", "accel", "samples").
-std::string_view toString(TradeoffKnob knob);
+std::string toString(TradeoffKnob knob);
 
 inline constexpr int kPreviewStrides[] = {16, 8, 4, 2, 1};
 inline constexpr int kMaxDepthsListed = 10;  // deeper scenes list 0, 1, 2, 4, 8 .. and their maximum
 
+// A lower last value, or another best-image value, for a knob's sweep than its row gives (KnobSweep).
+struct SweepLimit {
+  std::string_view knob;  // the row's name
+  int max = 0;
+  int best = -1;          // -1: the row's
+};
+
 struct TradeoffOptions {
   double resolutionScale = 1.0;     // the camera resolution is multiplied by this (rounded, at least 1 pixel)
-  int maxLightSamples = 256;        // the light_samples knob goes 1, 2, 4 .. this
-  int referenceLightSamples = 256;  // samples per triangular light in the best image (at least)
-  int maxPixelSamples = 16;         // the samples knob goes 1, 2, 4 .. this
+  std::vector<SweepLimit> limits;   // over the rows' own sweeps
   // What every setting starts from (its accel becomes the packet BVH when built without Embree).
   // Each knob row varies one of its fields; the knobs not measured here (the triangular-light model, the ray
   // start) are kept for every setting, the best image included.
@@ -77,6 +102,11 @@ struct TradeoffOptions {
   // then kept and counted in the notes.
   double minCpuShare = 0.8;
   int slowedRetries = 5;
+
+  // Sweeps `knob` only up to `max` (Doublings) and gives the best image `best` of it (-1: the row's).
+  void limit(const Knob& knob, int max, int best = -1) { limits.push_back({knob.name, max, best}); }
+  // The row's sweep with the limits applied.
+  KnobSweep sweepOf(const Knob& knob) const;
 };
 
 // One setting of one knob: what to render.
@@ -94,7 +124,9 @@ struct KnobSetting {
 inline constexpr std::string_view kBestImageLabel = "best image";
 std::string_view knobLabel(TradeoffKnob knob);
 // The knob-table row a knob of the measurement varies; nullptr for the best image and the preview level.
-const Knob* tableKnob(TradeoffKnob knob);
+inline const Knob* tableKnob(TradeoffKnob knob) { return knob.row(); }
+// The rows of the measurement: the preview level, then every measured row of the knob table, in its order.
+std::vector<TradeoffKnob> tradeoffKnobs();
 // The value the setting gives its knob-table row (tableKnob), as Knob::get reads it: the depth, a count, a
 // choice's index. Nothing for the best image and the preview levels (not render settings).
 std::optional<int> knobValue(const KnobSetting& setting);

@@ -32,6 +32,25 @@ struct KnobTarget {
   RenderSettings* settings = nullptr;
 };
 
+// How the trade-off measurement (analysis/tradeoff.h) varies a knob, each value from the baseline alone.
+enum class TradeoffSweep {
+  None,       // not measured
+  UpToScene,  // 0 .. the scene's value (every value up to 10, then powers of two and the value); only the ends
+              // where `changesImage` says the scene would not show a difference
+  Doublings,  // 1, 2, 4 .. max, and the baseline's value; only where the knob `matters`
+  Values,     // the listed values
+};
+
+struct KnobSweep {
+  TradeoffSweep kind = TradeoffSweep::None;
+  int max = 0;                   // Doublings: the last value (TradeoffOptions can lower it)
+  std::span<const int> values = {};  // Values
+  // The best image's value: -1 keeps the baseline's; for Doublings at least this many (TradeoffOptions can
+  // change it).
+  int best = -1;
+  bool (*changesImage)(const SceneParameters&) = nullptr;  // UpToScene; null: always
+};
+
 struct Knob {
   std::string_view name;       // --NAME, `set NAME`, the trade-off CSV (with '_' for '-')
   std::string_view label;      // the panel's label
@@ -42,13 +61,15 @@ struct Knob {
   KnobHome home = KnobHome::Settings;
   int min = 0, max = 0;        // integer knobs; choice knobs take 0 .. choices.size() - 1
   std::span<const KnobChoice> choices = {};  // empty for an integer knob
-  bool measuredByTradeoff = false;      // the trade-off bench varies it: `bench` takes no option for it
+  // How the trade-off bench varies it (TradeoffSweep::None: it does not; then `bench` takes an option for it).
+  KnobSweep tradeoff = {};
   int (*get)(const SceneParameters&, const RenderSettings&) = nullptr;
   void (*set)(SceneParameters&, RenderSettings&, int) = nullptr;
   // Whether the knob changes anything for this scene and these settings (the panel greys it out otherwise).
   bool (*matters)(const SceneParameters&, const RenderSettings&) = nullptr;
 
   bool isChoice() const { return !choices.empty(); }
+  bool measuredByTradeoff() const { return tradeoff.kind != TradeoffSweep::None; }
   // "N", or the choices: "area|directional".
   std::string valueName() const;
   // "an integer from 0 to 1000000", or "'area' or 'directional'".
