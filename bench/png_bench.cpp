@@ -67,6 +67,25 @@ bool decodesTo(const std::string& png, const Image& image) {
   return decoded && decoded->width == image.width && decoded->height == image.height && decoded->rgb == image.rgb;
 }
 
+// The raw rows in `parts` parts, each deflated by stb on a thread of its own, not joined: the bytes of all parts.
+std::size_t stbDeflateInParts(const Image& image, int parts) {
+  const auto bytes = static_cast<int>(image.rgb.size());
+  std::vector<std::thread> workers;
+  std::vector<int> sizes(parts);
+  for (int k = 0; k < parts; ++k)
+    workers.emplace_back([&, k] {
+      const int begin = static_cast<int>(static_cast<long long>(bytes) * k / parts);
+      const int end = static_cast<int>(static_cast<long long>(bytes) * (k + 1) / parts);
+      sizes[k] = bench::stbNativeDeflate(image.rgb.data() + begin, end - begin, 5);
+    });
+  std::size_t total = 0;
+  for (int k = 0; k < parts; ++k) {
+    workers[k].join();
+    total += sizes[k];
+  }
+  return total;
+}
+
 }  // namespace
 }  // namespace rayview
 
@@ -119,27 +138,10 @@ int main(int argc, char** argv) {
       row("stb: filter " + std::to_string(filter) + " on every row, stb deflate level 5",
           timeIt(repeat, [&] { return bench::stbNativePng(image, 5, filter).size(); }));
     // stb's deflate cannot be split into parts and spliced (it ends in a final block with unknown bit
-    // padding), so this is only a lower bound for a parallel stb deflate: the raw rows in n parts, deflated
-    // on n threads, not joined.
-    const auto bytes = static_cast<int>(image.rgb.size());
-    const int parts = std::max(1, std::min(n, bytes / (1 << 18)));
+    // padding), so this is only a lower bound for a parallel stb deflate.
+    const int parts = std::max(1, std::min(n, static_cast<int>(image.rgb.size()) / (1 << 18)));
     row("lower bound: stb deflate level 5 of the raw rows, " + std::to_string(parts) + " parts on threads, not joined",
-        timeIt(repeat, [&] {
-          std::vector<std::thread> workers;
-          std::vector<int> sizes(parts);
-          for (int k = 0; k < parts; ++k)
-            workers.emplace_back([&, k] {
-              const int begin = static_cast<int>(static_cast<long long>(bytes) * k / parts);
-              const int end = static_cast<int>(static_cast<long long>(bytes) * (k + 1) / parts);
-              sizes[k] = bench::stbNativeDeflate(image.rgb.data() + begin, end - begin, 5);
-            });
-          std::size_t total = 0;
-          for (int k = 0; k < parts; ++k) {
-            workers[k].join();
-            total += sizes[k];
-          }
-          return total;
-        }));
+        timeIt(repeat, [&] { return stbDeflateInParts(image, parts); }));
     for (int level : {1, 3, 6})
       for (int t : {1, n}) {
         if (t == 1 && n == 1 && level != 1) continue;

@@ -60,6 +60,95 @@ int partCount(std::size_t bytes, int threads) {
 
 }  // namespace
 
+namespace {
+
+// One part of the stream: its raw deflate output (malloc'd) and the Adler-32 of its input.
+struct DeflatedPart {
+  std::unique_ptr<unsigned char, FreeBytes> bytes;
+  std::size_t size = 0;
+  uLong adler = 0;
+  bool failed = false;
+};
+
+// Deflates data[begin, end) as one part of a stream: primed with the 32 KiB before it, ended with a sync flush
+// unless it is the last part.
+void deflatePart(const unsigned char* data, std::size_t begin, std::size_t end, bool last, int level,
+                 DeflatedPart& part) {
+  z_stream s{};
+  if (deflateInit2(&s, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
+    part.failed = true;
+    return;
+  }
+  if (begin > 0) {
+    const std::size_t dictionary = std::min(begin, kWindow);
+    deflateSetDictionary(&s, data + begin - dictionary, static_cast<uInt>(dictionary));
+  }
+  // Room for an eighth of the part first, doubled while deflate fills it: output is mostly a few hundred KB, and a
+  // buffer of deflateBound's size would hold megabytes more at a 1920x1080 write.
+  const std::size_t bound = deflateBound(&s, static_cast<uLong>(end - begin)) + 64;
+  std::size_t capacity = std::min(bound, (end - begin) / 8 + 4096);
+  part.bytes.reset(static_cast<unsigned char*>(std::malloc(capacity)));
+  s.next_in = const_cast<unsigned char*>(data + begin);
+  s.avail_in = static_cast<uInt>(end - begin);
+  s.next_out = part.bytes.get();
+  s.avail_out = static_cast<uInt>(capacity);
+  bool ok = part.bytes != nullptr;
+  while (ok) {
+    const int result = deflate(&s, last ? Z_FINISH : Z_SYNC_FLUSH);
+    if (last ? result == Z_STREAM_END : result == Z_OK && s.avail_in == 0 && s.avail_out != 0) break;
+    // Only a full buffer is worth more room: doubled up to deflate's bound, which it never needs more than
+    // (realloc keeps what is written).
+    ok = result != Z_STREAM_ERROR && s.avail_out == 0 && capacity < bound;
+    if (!ok) break;
+    capacity = std::min(capacity * 2, bound);
+    auto* grown = static_cast<unsigned char*>(std::realloc(part.bytes.get(), capacity));
+    ok = grown != nullptr;
+    if (!ok) break;
+    static_cast<void>(part.bytes.release());
+    part.bytes.reset(grown);
+    s.next_out = grown + s.total_out;
+    s.avail_out = static_cast<uInt>(capacity - s.total_out);
+  }
+  part.failed = !ok;
+  part.size = s.total_out;
+  deflateEnd(&s);
+  part.adler = adler32(1L, data + begin, static_cast<uInt>(end - begin));
+}
+
+// The zlib stream: header, the parts in order, the combined Adler-32. Built in the first part's buffer, grown
+// (realloc), each further part appended and freed: no second copy of the whole output beside the parts.
+unsigned char* joinParts(std::vector<DeflatedPart>& parts, std::size_t bytes, int level, int* outLength) {
+  const std::size_t count = parts.size();
+  uLong adler = parts[0].adler;
+  for (std::size_t k = 1; k < count; ++k) {
+    const std::size_t partBytes = bytes * (k + 1) / count - bytes * k / count;
+    adler = adler32_combine(adler, parts[k].adler, static_cast<z_off_t>(partBytes));
+  }
+  std::size_t total = 2 + 4;
+  for (const DeflatedPart& part : parts) total += part.size;
+  auto* stream = static_cast<unsigned char*>(std::realloc(parts[0].bytes.get(), total));
+  if (!stream) return nullptr;
+  static_cast<void>(parts[0].bytes.release());
+  std::memmove(stream + 2, stream, parts[0].size);
+  // CMF: deflate, 32 KiB window; FLG: its check bits, no dictionary, level hint.
+  const unsigned cmf = 0x78, levelHint = level == 1 ? 0 : level < 6 ? 1 : level == 6 ? 2 : 3;
+  unsigned flg = levelHint << 6;
+  flg += 31 - (cmf * 256 + flg) % 31;
+  stream[0] = static_cast<unsigned char>(cmf);
+  stream[1] = static_cast<unsigned char>(flg);
+  std::size_t at = 2 + parts[0].size;
+  for (std::size_t k = 1; k < count; ++k) {
+    std::memcpy(stream + at, parts[k].bytes.get(), parts[k].size);
+    at += parts[k].size;
+    parts[k].bytes.reset();
+  }
+  for (int shift = 24; shift >= 0; shift -= 8) stream[at++] = static_cast<unsigned char>(adler >> shift);
+  *outLength = static_cast<int>(total);
+  return stream;
+}
+
+}  // namespace
+
 // A zlib stream of `data`, deflated in parts on their own threads (as pigz does): every part but the last
 // ends with a sync flush, which leaves it byte-aligned after a non-final block, so the raw parts concatenate
 // into one valid deflate stream; each part is primed with the 32 KiB before it, so matches still reach back
@@ -69,91 +158,19 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
   const PngOptions options = currentOptions ? *currentOptions : PngOptions{};
   const int level = std::clamp(options.level, 1, 9);
   const auto bytes = static_cast<std::size_t>(length);
-  const int parts = partCount(bytes, options.threads);
-  // Uninitialised buffers (malloc, grown by realloc): zero-filling deflateBound's worth for every part showed up
-  // in perf.
-  std::vector<std::unique_ptr<unsigned char, FreeBytes>> out(static_cast<std::size_t>(parts));
-  std::vector<std::size_t> outBytes(static_cast<std::size_t>(parts), 0);
-  std::vector<uLong> adlers(static_cast<std::size_t>(parts));
-  std::vector<int> failed(static_cast<std::size_t>(parts), 0);
+  const int count = partCount(bytes, options.threads);
+  std::vector<DeflatedPart> parts(static_cast<std::size_t>(count));
   auto work = [&](int k) {
-    const std::size_t begin = bytes * k / parts, end = bytes * (k + 1) / parts;
-    z_stream s{};
-    if (deflateInit2(&s, level, Z_DEFLATED, -15, 8, Z_DEFAULT_STRATEGY) != Z_OK) {
-      failed[k] = 1;
-      return;
-    }
-    if (begin > 0) {
-      const std::size_t dictionary = std::min(begin, kWindow);
-      deflateSetDictionary(&s, data + begin - dictionary, static_cast<uInt>(dictionary));
-    }
-    // Room for an eighth of the part first, doubled while deflate fills it: a buffer of deflateBound's size (the
-    // part's own) held 4 MiB more at a 1920x1080 write on a huge-page heap, for output that is mostly a few
-    // hundred KB (docs/PERFORMANCE.md, "PNG writing").
-    const std::size_t bound = deflateBound(&s, static_cast<uLong>(end - begin)) + 64;
-    std::size_t capacity = std::min(bound, (end - begin) / 8 + 4096);
-    out[k].reset(static_cast<unsigned char*>(std::malloc(capacity)));
-    s.next_in = data + begin;
-    s.avail_in = static_cast<uInt>(end - begin);
-    s.next_out = out[k].get();
-    s.avail_out = static_cast<uInt>(capacity);
-    const bool last = k + 1 == parts;
-    bool ok = out[k] != nullptr;
-    while (ok) {
-      const int result = deflate(&s, last ? Z_FINISH : Z_SYNC_FLUSH);
-      if (last ? result == Z_STREAM_END : result == Z_OK && s.avail_in == 0 && s.avail_out != 0) break;
-      // Only a full buffer is worth more room: doubled up to deflate's bound, which it never needs more than
-      // (realloc keeps what is written).
-      ok = result != Z_STREAM_ERROR && s.avail_out == 0 && capacity < bound;
-      if (!ok) break;
-      capacity = std::min(capacity * 2, bound);
-      auto* grown = static_cast<unsigned char*>(std::realloc(out[k].get(), capacity));
-      ok = grown != nullptr;
-      if (!ok) break;
-      static_cast<void>(out[k].release());
-      out[k].reset(grown);
-      s.next_out = grown + s.total_out;
-      s.avail_out = static_cast<uInt>(capacity - s.total_out);
-    }
-    if (!ok) failed[k] = 1;
-    outBytes[k] = s.total_out;
-    deflateEnd(&s);
-    adlers[k] = adler32(1L, data + begin, static_cast<uInt>(end - begin));
+    deflatePart(data, bytes * k / count, bytes * (k + 1) / count, k + 1 == count, level,
+                parts[static_cast<std::size_t>(k)]);
   };
   std::vector<std::thread> threads;
-  for (int k = 1; k < parts; ++k) threads.emplace_back(work, k);
+  for (int k = 1; k < count; ++k) threads.emplace_back(work, k);
   work(0);
   for (std::thread& t : threads) t.join();
-  if (std::find(failed.begin(), failed.end(), 1) != failed.end()) return nullptr;
-
-  uLong adler = adlers[0];
-  for (int k = 1; k < parts; ++k) {
-    const std::size_t partBytes = bytes * (k + 1) / parts - bytes * k / parts;
-    adler = adler32_combine(adler, adlers[k], static_cast<z_off_t>(partBytes));
-  }
-  std::size_t total = 2 + 4;
-  for (std::size_t bytesOfPart : outBytes) total += bytesOfPart;
-  // The stream in the first part's buffer, grown (realloc), each further part appended and freed: no second copy of
-  // the whole output beside the parts (at the write's peak, with the image and stb's filtered copy).
-  auto* stream = static_cast<unsigned char*>(std::realloc(out[0].get(), total));
-  if (!stream) return nullptr;
-  static_cast<void>(out[0].release());
-  std::memmove(stream + 2, stream, outBytes[0]);
-  // CMF: deflate, 32 KiB window; FLG: its check bits, no dictionary, level hint.
-  const unsigned cmf = 0x78, levelHint = level == 1 ? 0 : level < 6 ? 1 : level == 6 ? 2 : 3;
-  unsigned flg = levelHint << 6;
-  flg += 31 - (cmf * 256 + flg) % 31;
-  stream[0] = static_cast<unsigned char>(cmf);
-  stream[1] = static_cast<unsigned char>(flg);
-  std::size_t at = 2 + outBytes[0];
-  for (int k = 1; k < parts; ++k) {
-    std::memcpy(stream + at, out[k].get(), outBytes[k]);
-    at += outBytes[k];
-    out[k].reset();
-  }
-  for (int shift = 24; shift >= 0; shift -= 8) stream[at++] = static_cast<unsigned char>(adler >> shift);
-  *outLength = static_cast<int>(total);
-  return stream;
+  for (const DeflatedPart& part : parts)
+    if (part.failed) return nullptr;
+  return joinParts(parts, bytes, level, outLength);
 }
 
 }  // namespace png_detail

@@ -144,22 +144,20 @@ class Builder {
     return f >= 1.0f ? (f < static_cast<float>(bins) ? static_cast<int>(f) : bins - 1) : 0;
   }
 
-  // Builds the subtree of `node` over triangles [begin, end); its descendants take the slots from `next` on, which
-  // it moves past them.
-  void split(std::size_t node, std::size_t begin, std::size_t end, int depth, std::size_t& next) {
-    Box box, centroids;
-    for (std::size_t i = begin; i < end; ++i) {
-      box.grow(triangles_[i].box);
-      centroids.grow(triangles_[i].centroid());
-    }
-    const std::size_t count = end - begin;
-    if (count <= leafMax_ || depth >= kMaxDepth - 2) return makeLeaf(node, begin, end, box);
-
+  // Where binned SAH splits triangles [begin, end) whose centroids span `centroids`: the axis (-1: none worth it),
+  // the last bin of the left half, and the binning that decides which triangle goes where.
+  struct SplitChoice {
+    int axis = -1, bin = 0, binCount = 0;
+    float lo[3] = {}, scale[3] = {};
+  };
+  SplitChoice chooseSplit(std::size_t begin, std::size_t end, const Box& centroids) const {
     // Binned SAH over the three axes, binned in one pass. An axis whose centroids span nothing a float bin width
     // can resolve (zero, or so small that bins / extent overflows) is not split along. Small nodes get fewer bins:
     // the sweep over the bins, not the binning, was most of the build (callgrind: ~2000 instructions a node).
-    const int binCount = static_cast<int>(std::clamp<std::size_t>(2 * count, 4, kBins));
-    float scale[3], lo[3];
+    SplitChoice choice;
+    const int binCount = choice.binCount = static_cast<int>(std::clamp<std::size_t>(2 * (end - begin), 4, kBins));
+    float* const scale = choice.scale;
+    float* const lo = choice.lo;
     for (int axis = 0; axis < 3; ++axis) {
       lo[axis] = centroids.lower[axis];
       const float extent = centroids.upper[axis] - lo[axis];
@@ -178,7 +176,6 @@ class Builder {
       }
     }
     float bestCost = INFINITY;
-    int bestAxis = -1, bestBin = 0;
     for (int axis = 0; axis < 3; ++axis) {
       if (scale[axis] == 0.0f) continue;
       float rightArea[kBins];
@@ -198,17 +195,33 @@ class Builder {
         n += counts[axis][b];
         if (n == 0 || rightCount[b + 1] == 0) continue;
         const float cost = left.halfArea() * static_cast<float>(n) + rightArea[b + 1] * static_cast<float>(rightCount[b + 1]);
-        if (cost < bestCost) bestCost = cost, bestAxis = axis, bestBin = b;
+        if (cost < bestCost) bestCost = cost, choice.axis = axis, choice.bin = b;
       }
     }
+    return choice;
+  }
+
+  // Builds the subtree of `node` over triangles [begin, end); its descendants take the slots from `next` on, which
+  // it moves past them.
+  void split(std::size_t node, std::size_t begin, std::size_t end, int depth, std::size_t& next) {
+    Box box, centroids;
+    for (std::size_t i = begin; i < end; ++i) {
+      box.grow(triangles_[i].box);
+      centroids.grow(triangles_[i].centroid());
+    }
+    const std::size_t count = end - begin;
+    if (count <= leafMax_ || depth >= kMaxDepth - 2) return makeLeaf(node, begin, end, box);
+
+    const SplitChoice choice = chooseSplit(begin, end, centroids);
     std::size_t middle;
-    int axis = bestAxis;
-    if (bestAxis >= 0) {
+    int axis = choice.axis;
+    if (axis >= 0) {
       middle = static_cast<std::size_t>(
           std::partition(triangles_.begin() + static_cast<std::ptrdiff_t>(begin),
                          triangles_.begin() + static_cast<std::ptrdiff_t>(end),
                          [&](const BuildTriangle& t) {
-                           return binOf(t.centroid(axis), lo[axis], scale[axis], binCount) <= bestBin;
+                           return binOf(t.centroid(axis), choice.lo[axis], choice.scale[axis], choice.binCount) <=
+                                  choice.bin;
                          }) -
           triangles_.begin());
     } else {

@@ -141,19 +141,10 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage) {
   return sceneToXml(scene.parameters(), scene.geometry(), textureImage);
 }
 
-std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& geometry,
-                       const std::string& textureImage) {
-  std::string out;
-  // Faces dominate the size of big scenes: about 3 indices of up to 8 digits per triangle.
-  out.reserve(4096 + geometry.vertices.size() * 64 + geometry.triangles.size() * 40 +
-              (geometry.texCoords.size() + geometry.normals.size()) * 48);
-  XmlWriter xml(out);
-  out += "<!-- written by rayview " RAYVIEW_VERSION " -->\n";
-  xml.open(0, "scene");
-  xml.element(1, "maxraytracedepth", parameters.maxRayDepth);
-  xml.element(1, "background", parameters.background);
-  if (parameters.shadowRayEpsilon) xml.element(1, "shadowrayepsilon", *parameters.shadowRayEpsilon);
+namespace {
 
+// The camera, the lights and the materials.
+void writeParameters(XmlWriter& xml, const SceneParameters& parameters) {
   const Camera& c = parameters.camera;
   xml.open(1, "camera");
   xml.element(2, "position", c.position);
@@ -192,6 +183,24 @@ std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& g
     xml.close(2, "material");
   }
   xml.close(1, "materials");
+}
+
+}  // namespace
+
+std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& geometry,
+                       const std::string& textureImage) {
+  std::string out;
+  // Faces dominate the size of big scenes: about 3 indices of up to 8 digits per triangle.
+  out.reserve(4096 + geometry.vertices.size() * 64 + geometry.triangles.size() * 40 +
+              (geometry.texCoords.size() + geometry.normals.size()) * 48);
+  XmlWriter xml(out);
+  out += "<!-- written by rayview " RAYVIEW_VERSION " -->\n";
+  xml.open(0, "scene");
+  xml.element(1, "maxraytracedepth", parameters.maxRayDepth);
+  xml.element(1, "background", parameters.background);
+  if (parameters.shadowRayEpsilon) xml.element(1, "shadowrayepsilon", *parameters.shadowRayEpsilon);
+
+  writeParameters(xml, parameters);
 
   xml.open(1, "vertexdata");
   for (const glm::dvec3& v : geometry.vertices) {

@@ -331,9 +331,7 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
     std::optional<Hit> nextHits[kRayPacket];
   };
   thread_local Lanes lanes;
-  Ray* mirrors = lanes.mirrors;
-  Ray* next = lanes.next;
-  std::optional<Hit>* nextHits = lanes.nextHits;
+  auto& [mirrors, next, nextHits] = lanes;
   // Each lane's ray and hit at this depth, where they are (the camera's or the last mirror packet's): copied, a
   // hit just written field by field was read with wide loads, which miss store forwarding.
   const Ray* rays[kRayPacket];
@@ -395,14 +393,10 @@ void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHi
     const int m = active[a];
     beyond[m] = followPath(*rays[m], *hits[m], depth, pixelSeeds[m], counts);
   }
-  for (int m = 0; m < count; ++m)
-    out[m] = last[m] < 0 ? parameters_.background
-                         : foldPath(
-                               0, last[m],
-                               [&](int k) -> const PathVertex& {
-                                 return vertices[static_cast<std::size_t>(k) * kRayPacket + m];
-                               },
-                               beyond[m]);
+  for (int m = 0; m < count; ++m) {
+    const auto vertexOf = [&](int k) -> const PathVertex& { return vertices[static_cast<std::size_t>(k) * kRayPacket + m]; };
+    out[m] = last[m] < 0 ? parameters_.background : foldPath(0, last[m], vertexOf, beyond[m]);
+  }
 }
 
 SecondaryStart Tracer::secondaryStart() const {
@@ -427,32 +421,50 @@ void Tracer::shadePointLights(const LitPoint* points, int count, RayCounts& coun
   }
 }
 
+namespace {
+
+// A hit's point and normals, relative to the traversal's origin.
+struct SurfacePoint {
+  glm::dvec3 p;   // in double from the barycentrics: on the triangle's plane to double rounding, whatever the ray was
+  glm::dvec3 ng;  // the face normal from the world positions: exact whatever the origin
+  glm::vec3 n;    // the shading normal: the vertex normals interpolated where the face has them, else ng
+};
+
+inline SurfacePoint surfaceAt(const SceneGeometry& meshes, const glm::dvec3& origin, const Hit& hit,
+                              const FaceAttributes& attributes) {
+  const Triangle& triangle = meshes.triangles[hit.triangle];
+  const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
+  const float b0 = 1.0f - b1 - b2;
+  const glm::dvec3& w0 = meshes.vertices[triangle.vertex[0]];
+  const glm::dvec3& w1 = meshes.vertices[triangle.vertex[1]];
+  const glm::dvec3& w2 = meshes.vertices[triangle.vertex[2]];
+  const glm::dvec3 a = w0 - origin;
+  SurfacePoint s;
+  s.p = a + hit.b1 * ((w1 - origin) - a) + hit.b2 * ((w2 - origin) - a);
+  const glm::dvec3 cross = glm::cross(w1 - w0, w2 - w0);
+  const double crossLength = glm::length(cross);
+  s.ng = crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
+  s.n = toFloat(s.ng);
+  if (attributes.hasNormals()) {
+    const glm::vec3 interpolated = b0 * meshes.normals[attributes.normal[0]] +
+                                   b1 * meshes.normals[attributes.normal[1]] + b2 * meshes.normals[attributes.normal[2]];
+    const float length = glm::length(interpolated);
+    if (length > 0.0f && std::isfinite(length)) s.n = interpolated / length;
+  }
+  return s;
+}
+
+}  // namespace
+
 template <class Shadows>
 void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t pixelSeed, RayCounts& counts,
                       Shadows& shadows, PathVertex& v, Ray& mirrorRay, LitPoint* lit) const {
-  const Triangle& triangle = meshes_.triangles[hit.triangle];
   const Material& material = materialOf(hit.triangle);
   const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
-  const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
-  const float b0 = 1.0f - b1 - b2;
-  const glm::dvec3& w0 = meshes_.vertices[triangle.vertex[0]];
-  const glm::dvec3& w1 = meshes_.vertices[triangle.vertex[1]];
-  const glm::dvec3& w2 = meshes_.vertices[triangle.vertex[2]];
-  const glm::dvec3 a = w0 - shading_.origin;
-  // In double from the barycentrics: on the triangle's plane to double rounding, whatever the ray was.
-  const glm::dvec3 pExact = a + hit.b1 * ((w1 - shading_.origin) - a) + hit.b2 * ((w2 - shading_.origin) - a);
-  // The face normal from the world positions: exact whatever the origin.
-  const glm::dvec3 cross = glm::cross(w1 - w0, w2 - w0);
-  const double crossLength = glm::length(cross);
-  const glm::dvec3 ngExact = crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
-  const glm::vec3 ng = toFloat(ngExact);
-  glm::vec3 n = ng;
-  if (attributes.hasNormals()) {
-    const glm::vec3 interpolated = b0 * meshes_.normals[attributes.normal[0]] +
-                                   b1 * meshes_.normals[attributes.normal[1]] + b2 * meshes_.normals[attributes.normal[2]];
-    const float length = glm::length(interpolated);
-    if (length > 0.0f && std::isfinite(length)) n = interpolated / length;
-  }
+  const SurfacePoint surface = surfaceAt(meshes_, shading_.origin, hit, attributes);
+  const glm::dvec3& pExact = surface.p;
+  const glm::dvec3& ngExact = surface.ng;
+  const glm::vec3 n = surface.n;
   const glm::dvec3 dExact = glm::normalize(ray.direction);
   const glm::vec3 toEye = -toFloat(dExact);
   const SecondaryStart start = secondaryStart();
