@@ -134,6 +134,8 @@ std::vector<OptionSpec> makeOptionTable() {
   const std::vector<OptionSpec> rest = {
       {"--strict", "", kAll, "treat every repaired typo and unknown element as an error",
        [](CommandLine& c, const std::string&) { c.strict = true; }},
+      {"--camera", "N", kRender, "which camera of a CENG477 scene's <Cameras> to render (1 is the first, the default)",
+       [](CommandLine& c, const std::string& v) { c.camera = parseInt("--camera", v, 1, 1000000); }},
       {"--quiet", "", kRender | kBench, "print only errors",
        [](CommandLine& c, const std::string&) { c.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",

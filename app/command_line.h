@@ -26,6 +26,7 @@ struct CommandLine {
   int threads = 0;         // 0: one per hardware thread
   bool strict = false;
   bool quiet = false;
+  int camera = 0;          // render: --camera N, which camera of a CENG477 file's <Cameras> (0: the first)
   // --depth, --tri-light, ...: one per knob given (the last wins), written into the render settings at once
   // and into the scene's parameters once it is loaded (see knobs.h).
   std::vector<KnobAssignment> knobs;

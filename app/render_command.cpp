@@ -80,6 +80,7 @@ int runRenderCommand(const CommandLine& command) {
   try {
     LoadOptions options;
     options.strict = command.strict;
+    options.camera = command.camera;
     options.beforeArrays = useLeanHeapForEstimate;
     loaded = loadSceneOrDefault(command.scenePath, options);
   } catch (const SceneError& error) {

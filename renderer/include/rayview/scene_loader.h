@@ -23,6 +23,9 @@ struct LoadOptions {
   // triangles the faces' text holds by the density of its first 64 KiB (an estimate: detail::estimatedItems), when
   // the blocks are read as a stream. The command line decides its heap by it (rayview/lean_memory.h).
   void (*beforeArrays)(std::size_t estimatedTriangles) = nullptr;
+  // Which camera of a CENG477 file's <Cameras> to read, 1-based; 0 reads the first. Asking for a camera the file
+  // does not have (any but the first of a CSE 461 file) is a located error.
+  int camera = 0;
 };
 
 struct LoadedScene {
