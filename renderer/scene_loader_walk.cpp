@@ -95,8 +95,12 @@ bool Loader::readCameraField(const XMLElement* e, Tag tag) {
 
 void Loader::checkCamera(int line, unsigned have) {
   const Camera& camera = result_.scene.camera;
-  for (Tag t : {Tag::Position, Tag::Gaze, Tag::Up, Tag::NearPlane, Tag::NearDistance, Tag::ImageResolution})
-    if (!(have & cameraBit(t))) fail(line, "<camera> has no <" + std::string(tagName(t)) + ">");
+  constexpr Tag kFields[] = {Tag::Position, Tag::Gaze, Tag::Up, Tag::NearPlane, Tag::NearDistance, Tag::ImageResolution};
+  constexpr const char* kCeng477Names[] = {"Position", "Gaze", "Up", "NearPlane", "NearDistance", "ImageResolution"};
+  for (std::size_t i = 0; i < std::size(kFields); ++i)
+    if (!(have & cameraBit(kFields[i])))
+      fail(line, ceng477_ ? "<Camera> has no <" + std::string(kCeng477Names[i]) + ">"
+                          : "<camera> has no <" + std::string(tagName(kFields[i])) + ">");
 
   // SPEC section 3: a camera that cannot make an image.
   if (glm::length(camera.gaze) == 0.0) fail(line, "camera: <gaze> is the zero vector");

@@ -241,7 +241,7 @@ TEST(Ceng477Dialect, ReadsTheCameraAskedFor) {
 
 TEST(Ceng477Dialect, RefusesOrWarnsAboutCamerasItCannotHonour) {
   expectError(with("<Camera id=\"1\">", "<Camera id=\"1\" type=\"lookAt\">"), 6, "camera type \"lookAt\" is not supported");
-  expectError(with("<Gaze>0 0 -1</Gaze>", ""), 6, "<camera> has no <gaze>");
+  expectError(with("<Gaze>0 0 -1</Gaze>", ""), 6, "<Camera> has no <Gaze>");
   const LoadedScene loaded = load(with("<ImageName>out.ppm</ImageName>", "<NumSamples>4</NumSamples>"));
   EXPECT_TRUE(hasWarning(loaded, 13, "<NumSamples>4</NumSamples>: rendered with one sample per pixel"));
   EXPECT_TRUE(load(with("<ImageName>out.ppm</ImageName>", "<NumSamples>1</NumSamples>"), optionsWith(true)).warnings.empty());
