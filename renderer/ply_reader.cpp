@@ -191,16 +191,25 @@ void checkCounts(const Header& header, std::uint64_t bodyBytes) {
   }
 }
 
+// A record, named in messages as "face 12 of 100"; the text is made only for a message.
+struct Record {
+  const Element* element;
+  std::uint64_t index;
+  std::string describe() const {
+    return element->name + " " + std::to_string(index) + " of " + std::to_string(element->count);
+  }
+};
+
 // The records' values one at a time, from ASCII text or binary bytes.
 class Values {
  public:
   Values(std::string_view body, Format format, int firstLine) : body_(body), format_(format), line_(firstLine) {}
 
-  // The next value of type `kind`; `what` names the record for the message when the file ends.
-  double next(Kind kind, const std::string& what) {
+  // The next value of type `kind`, of record `what`.
+  double next(Kind kind, const Record& what) {
     if (format_ == Format::Ascii) return nextText(kind, what);
     const std::size_t n = sizeOf(kind);
-    if (body_.size() - pos_ < n) fail("the file ends inside " + what + " (truncated)");
+    if (body_.size() - pos_ < n) fail("the file ends inside " + what.describe() + " (truncated)");
     unsigned char b[8];
     std::memcpy(b, body_.data() + pos_, n);
     if ((format_ == Format::BigEndian) == (std::endian::native == std::endian::little)) std::reverse(b, b + n);
@@ -234,18 +243,18 @@ class Values {
     return 0.0;
   }
 
-  double nextText(Kind kind, const std::string& what) {
+  double nextText(Kind kind, const Record& what) {
     while (pos_ < body_.size() && isXmlSpace(body_[pos_])) line_ += body_[pos_++] == '\n';
-    if (pos_ == body_.size()) fail("the file ends inside " + what + " (truncated)");
+    if (pos_ == body_.size()) fail("the file ends inside " + what.describe() + " (truncated)");
     const std::size_t start = pos_;
     while (pos_ < body_.size() && !isXmlSpace(body_[pos_])) ++pos_;
     const std::string_view token = body_.substr(start, pos_ - start);
     double v = 0.0;
     if (parseDouble(token, v) != NumberStatus::Ok)
-      fail("line " + std::to_string(line_) + ": expected a number in " + what + ", found '" +
+      fail("line " + std::to_string(line_) + ": expected a number in " + what.describe() + ", found '" +
            std::string(token.substr(0, 32)) + "'");
     if (isInteger(kind) && v != std::floor(v))
-      fail("line " + std::to_string(line_) + ": expected an integer in " + what + ", found '" +
+      fail("line " + std::to_string(line_) + ": expected an integer in " + what.describe() + ", found '" +
            std::string(token.substr(0, 32)) + "'");
     return v;
   }
@@ -260,7 +269,7 @@ class Values {
 void addPolygon(PlyMesh& mesh, const std::vector<double>& indices, std::uint64_t vertexCount, std::uint64_t face,
                 const Values& values) {
   for (const double i : indices)
-    if (!(i >= 0.0) || i >= static_cast<double>(vertexCount))
+    if (!(i >= 0.0) || i >= static_cast<double>(vertexCount) || i != std::floor(i))
       fail(values.where() + ": face " + std::to_string(face) + " uses vertex " + std::to_string(static_cast<long long>(i)) +
            ", but the file has " + std::to_string(vertexCount) + " vertices (indices 0.." +
            std::to_string(static_cast<long long>(vertexCount) - 1) + ")");
@@ -281,16 +290,17 @@ void readRecords(const Header& header, std::string_view body, std::uint64_t vert
     if (e.properties.empty()) continue;  // nothing to read, whatever the count
     const bool vertex = e.name == "vertex", face = e.name == "face";
     if (vertex) mesh.vertices.reserve(e.count);
-    if (face) mesh.triangles.reserve(e.count);
+    // No more than the file could hold, whatever the count says.
+    if (face) mesh.triangles.reserve(std::min<std::uint64_t>(e.count, body.size() / 4));
     for (std::uint64_t r = 0; r < e.count; ++r) {
-      const std::string what = e.name + " " + std::to_string(r) + " of " + std::to_string(e.count);
+      const Record what{&e, r};
       glm::dvec3 position(0.0);
       for (const Property& p : e.properties) {
         if (p.countKind) {
           const double count = values.next(*p.countKind, what);
-          if (count < 0.0) fail(values.where() + ": " + what + " has a negative list length");
+          if (count < 0.0) fail(values.where() + ": " + what.describe() + " has a negative list length");
           if (!values.couldHold(count, p.kind))
-            fail(values.where() + ": " + what + " declares a list of " + std::to_string(static_cast<long long>(count)) +
+            fail(values.where() + ": " + what.describe() + " declares a list of " + std::to_string(static_cast<long long>(count)) +
                  " values, more than the rest of the file holds (truncated or corrupt)");
           if (p.role == Role::Indices) indices.clear();
           for (double k = 0; k < count; ++k) {
