@@ -4,6 +4,7 @@
 // (docs/scene-format.md, "The CENG477 dialect"). The element readers, the big blocks (also as a stream) and the
 // checks after the walk are the handout format's.
 
+#include <cmath>
 #include <filesystem>
 
 #include "ply_reader.h"
@@ -16,7 +17,7 @@ namespace {
 // The course parser's default when a file has no <ShadowRayEpsilon> (shared/conformance/ceng477/SOURCES.md).
 constexpr double kCourseShadowRayEpsilon = 1e-3;
 
-bool isWhole(float v) { return v == static_cast<float>(static_cast<long long>(v)); }
+bool isWhole(float v) { return v == std::floor(v); }  // finite: readColor refuses the rest
 
 }  // namespace
 
@@ -30,8 +31,8 @@ bool Loader::isCeng477(const XMLElement* root) {
 void Loader::keepFirstText(const XMLElement* e, std::vector<Piece>& pieces) {
   if (pieces.empty()) return;
   if (!e->FirstChild()->ToText())
-    fail(pieces.front().line, elementName(e) + ": the value comes after a comment; the CENG477 format's value is an "
-                              "element's first text, and this element has none before it");
+    fail(pieces.front().line, elementName(e) + ": the value comes after a comment or an element; the CENG477 format's "
+                              "value is an element's first text, and this element has none before it");
   for (std::size_t i = 1; i < pieces.size(); ++i) {
     const std::string_view text = pieces[i].text;
     if (std::all_of(text.begin(), text.end(), detail::isXmlSpace)) continue;
