@@ -12,6 +12,7 @@
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/scene_loader.h"
+#include "rayview/scene_writer.h"
 #include "support/image_compare.h"
 #include "support/scene_compare.h"
 
@@ -283,6 +284,13 @@ TEST(Ceng477Dialect, ReadsIndicesAsOneBasedOnly) {
   expectError(with("<Indices>1 3 4</Indices>", "<Indices>1 3 5</Indices>"), 53, "<Triangle id=\"1\">: vertex index 5 is out of range");
   expectError(with("<Indices>1 3 4</Indices>", "<Indices>1 3</Indices>"), 53, "expected 3 vertex indices, found 2 numbers");
   expectError(with("<VertexData>", "<VertexData binaryFile=\"v.bin\">"), 38, "binary vertex files are not supported");
+}
+
+TEST(Ceng477Dialect, SavesAsTheHandoutFormatAndReadsBackTheSame) {
+  // The viewer's Save writes what it loaded in the handout's format, a CENG477 scene too.
+  const Scene loaded = load(kBase).scene;
+  const Scene again = load(sceneToXml(loaded, "")).scene;
+  expectSameScene(again, loaded);
 }
 
 // ---------------------------------------------------------------- PLY faces
