@@ -144,6 +144,8 @@ std::vector<OptionSpec> makeOptionTable() {
        [](CommandLine& c, const std::string& v) {
          if (!parseMemoryUse(v, c.memory)) throw UsageError("--memory expects 'auto', 'fast' or 'lean', not '" + v + "'");
        }},
+      {"--camera", "N", kRender, "which camera of a CENG477 scene's <Cameras> to render (1 is the first, the default)",
+       [](CommandLine& c, const std::string& v) { c.camera = parseInt("--camera", v, 1, 1000000); }},
       {"--quiet", "", kRender | kBench, "print only errors",
        [](CommandLine& c, const std::string&) { c.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",

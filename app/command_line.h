@@ -28,6 +28,7 @@ struct CommandLine {
   bool strict = false;
   bool quiet = false;
   MemoryUse memory = MemoryUse::Auto;  // render: --memory (rayview/lean_memory.h)
+  int camera = 0;          // render: --camera N, which camera of a CENG477 file's <Cameras> (0: the first)
   // --depth, --tri-light, ...: one per knob given (the last wins), written into the render settings at once
   // and into the scene's parameters once it is loaded (see knobs.h).
   std::vector<KnobAssignment> knobs;

@@ -91,6 +91,7 @@ std::optional<int> RenderRun::load() {
   try {
     LoadOptions options;
     options.strict = command_.strict;
+    options.camera = command_.camera;
     loaded_ = loadSceneOrDefault(command_.scenePath, options);
   } catch (const SceneError& error) {
     return fail(kExitBadInput, error.what());

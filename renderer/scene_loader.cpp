@@ -1,4 +1,4 @@
-// Reading a CSE 461 PA1 scene: repair pass, tinyxml2, then a case-insensitive walk that fills Scene.
+// Reading a CSE 461 PA1 scene (or the METU CENG477 dialect, scene_loader_ceng477.cpp): repair pass, tinyxml2, then a case-insensitive walk that fills Scene.
 // Every message a user can meet is listed in docs/scene-format.md; keep the two in step.
 // This file: the entry points. The loader's three jobs live in scene_loader_elements.cpp (element
 // readers), scene_loader_walk.cpp (the walk) and scene_loader_checks.cpp (checks after the walk).
@@ -75,7 +75,7 @@ LoadedScene Loader::load(std::string_view text, std::string* owned, const fs::pa
 LoadedScene Loader::walk(const tinyxml2::XMLDocument& doc) {
   const XMLElement* root = doc.RootElement();
   if (!root) fail(0, "no <scene> element: the file has no elements");
-  detectCeng477(root);
+  ceng477_ = isCeng477(root);
   if (!isName(root, "scene"))
     fail(root->GetLineNum(), "the root element is <" + std::string(root->Name()) + ">, expected <scene>");
   for (const XMLNode* node = root->NextSibling(); node; node = node->NextSibling()) {
@@ -85,9 +85,15 @@ LoadedScene Loader::walk(const tinyxml2::XMLDocument& doc) {
   for (const XMLNode* node = doc.FirstChild(); node && node != root; node = node->NextSibling())
     if (const tinyxml2::XMLText* text = node->ToText()) strayText(text);
 
-  readScene(root);
+  if (ceng477_) readCeng477Scene(root);
+  else readScene(root);
+  if (options_.camera > 1 && !ceng477_)
+    fail(cameraLine_ ? cameraLine_ : root->GetLineNum(),
+         "camera " + std::to_string(options_.camera) + " was asked for, but the file has one <camera> (only CENG477 "
+         "files have several)");
   // Faces from the stream that no mesh took (a <faces> out of place) would shift every later mesh's.
   if (streamed_ && claimedTriangles_ != streamed_->triangleCount) throw StreamAbandoned{};
+  if (ceng477_) finishCeng477();
   finish(root);
   result_.warnings = warnings_.take();
   return std::move(result_);

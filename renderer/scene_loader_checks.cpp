@@ -12,10 +12,15 @@ namespace rayview::scene_loading {
 
 void Loader::finish(const XMLElement* root) {
   const int rootLine = root->GetLineNum();
-  if (cameraLine_ == 0) fail(rootLine, "no <camera> element");
-  if (!haveDepth_) warn(rootLine, "no <maxraytracedepth>: using 0 (no mirror reflections)");
-  if (!haveBackground_) warn(rootLine, "no <background>: using black (0 0 0)");
-  if (!haveAmbient_) warn(rootLine, "no <ambientlight>: using black (0 0 0)");
+  if (cameraLine_ == 0) fail(rootLine, ceng477_ ? "no <Camera> element" : "no <camera> element");
+  // The CENG477 dialect's defaults are the course parser's, the same values.
+  if (!haveDepth_)
+    warn(rootLine, ceng477_ ? "no <MaxRecursionDepth>: using 0 (no mirror reflections)"
+                            : "no <maxraytracedepth>: using 0 (no mirror reflections)");
+  if (!haveBackground_)
+    warn(rootLine, ceng477_ ? "no <BackgroundColor>: using black (0 0 0)" : "no <background>: using black (0 0 0)");
+  if (!haveAmbient_)
+    warn(rootLine, ceng477_ ? "no <AmbientLight>: using black (0 0 0)" : "no <ambientlight>: using black (0 0 0)");
 
   for (PendingMesh& mesh : meshes_) {
     auto it = materialIndex_.find(mesh.materialId);
@@ -48,7 +53,8 @@ void Loader::resolveIndices(int rootLine) {
   std::string zeroBased;
   int zeroLine = 0;
   for (int k = 0; k < 3; ++k) {
-    if (ranges[k]->any() && ranges[k]->min == 0 && ranges[k]->max < counts[k]) {
+    // The CENG477 dialect is 1-based only, as the course's parser reads it.
+    if (!ceng477_ && ranges[k]->any() && ranges[k]->min == 0 && ranges[k]->max < counts[k]) {
       base[k] = 0;
       zeroBased += zeroBased.empty() ? kinds[k] : std::string(", ") + kinds[k];
       if (zeroLine == 0 || ranges[k]->firstZeroLine < zeroLine) zeroLine = ranges[k]->firstZeroLine;

@@ -159,6 +159,7 @@ std::vector<Piece> Loader::textOf(const XMLElement* e) {
       unknownElement(child, "inside " + elementName(e));
     }
   }
+  if (ceng477_) keepFirstText(e, pieces);
   return pieces;
 }
 

@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <cstring>
 #include <functional>
+#include <initializer_list>
 #include <memory>
 #include <string_view>
 #include <unordered_map>
@@ -108,6 +109,8 @@ struct FaceCorner {
 
 struct PendingMesh {
   std::string id;
+  std::string label;  // how messages name it when not by id (the CENG477 dialect: <Triangle id="2">)
+  bool fromPly = false;  // its faces index the PLY vertices (the CENG477 dialect's <Faces plyFile>)
   int line = 0;
   std::string materialId;
   int materialIdLine = 0;
@@ -312,13 +315,60 @@ class Loader {
 
   std::string trimmedText(const XMLElement* e);
 
-  // ---------------------------------------------------------------- the METU CENG477 format
-  void detectCeng477(const XMLElement* root);
+  // ---------------------------------------------------------------- the METU CENG477 dialect
+  // scene_loader_ceng477.cpp: the course's capitalised format, read into the same Scene as its conversion.
+  static bool isCeng477(const XMLElement* root);
+
+  // The dialect's loop over children: stray text warned, comments skipped; `onElement(child, lowercaseName)`
+  // returns false for an element it does not know. A name in `once` may appear only once.
+  template <class F>
+  void forEachCeng477Child(const XMLElement* parent, std::initializer_list<std::string_view> once, F&& onElement) {
+    std::vector<std::pair<std::string, int>> seen;
+    for (const XMLNode* node = parent->FirstChild(); node; node = node->NextSibling()) {
+      if (const tinyxml2::XMLText* text = node->ToText()) {
+        strayText(text);
+        continue;
+      }
+      const XMLElement* child = node->ToElement();
+      if (!child) continue;  // comments, declarations
+      const std::string name = toLower(child->Name());
+      if (std::find(once.begin(), once.end(), name) != once.end()) {
+        for (const auto& [earlier, line] : seen)
+          if (earlier == name)
+            fail(child->GetLineNum(), "duplicate " + elementName(child) + " inside " + elementName(parent) +
+                                          " (the first is at line " + std::to_string(line) + ")");
+        seen.emplace_back(name, child->GetLineNum());
+      }
+      if (!onElement(child, std::string_view(name))) unknownElement(child, "inside " + elementName(parent));
+    }
+  }
+
+  void readCeng477Scene(const XMLElement* root);
+  void readCeng477Cameras(const XMLElement* cameras);
+  void readCeng477Camera(const XMLElement* camera);
+  void readCeng477Lights(const XMLElement* lights);
+  void readCeng477Materials(const XMLElement* materials);
+  Material readCeng477Material(const XMLElement* e, bool typed);
+  void readCeng477Objects(const XMLElement* objects);
+  // <Mesh> and <Triangle>: false when the object is dropped (a child rayview cannot honour).
+  bool readCeng477Object(const XMLElement* e, bool triangle);
+  void readCeng477Triangle(const XMLElement* indices, PendingMesh& mesh);
+  void readPlyFaces(PendingMesh& mesh, const std::string& plyFile);
+  // After the walk: the PLY meshes' vertices join the scene's, after <VertexData>'s.
+  void finishCeng477();
+  // The course's parser keeps an element's first text only: text after a comment inside it is ignored.
+  void keepFirstText(const XMLElement* e, std::vector<Piece>& pieces);
 
   // ---------------------------------------------------------------- the scene
   void readScene(const XMLElement* root);
 
   void readCamera(const XMLElement* cameraElement);
+  // One of <camera>'s values by its tag (false for another tag), and the checks once all are read.
+  bool readCameraField(const XMLElement* e, Tag tag);
+  static unsigned cameraBit(Tag tag) { return 1u << (static_cast<unsigned>(tag) - static_cast<unsigned>(Tag::Position)); }
+  void checkCamera(int line, unsigned have);
+  void readMaxRayDepth(const XMLElement* e);
+  void readShadowRayEpsilon(const XMLElement* e);
 
   static std::string trimmedNumber(double v);
 
@@ -405,6 +455,10 @@ class Loader {
   std::unordered_map<std::string, std::uint32_t> materialIndex_;
   std::vector<PendingMesh> meshes_;
   IndexRange vertexRange_, textureRange_, normalRange_;
+  bool ceng477_ = false;                 // the file is in the CENG477 dialect
+  int firstDroppedObject_ = 0;           // the line of its first object rayview cannot render, and its name
+  std::string firstDroppedName_;
+  std::vector<glm::dvec3> plyVertices_;  // the dialect's PLY meshes' vertices, in order, until finishCeng477
   StreamedBlocks* streamed_ = nullptr;  // when loading from a skeleton
   std::uint64_t claimedTriangles_ = 0;
   bool streamedTrianglesTaken_ = false;

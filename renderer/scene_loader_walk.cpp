@@ -5,45 +5,16 @@
 
 namespace rayview::scene_loading {
 
-void Loader::detectCeng477(const XMLElement* root) {
-  if (!isName(root, "scene")) return;
-  for (const XMLElement* child = root->FirstChildElement(); child; child = child->NextSiblingElement())
-    if (isName(child, "cameras"))
-      fail(child->GetLineNum(),
-           "this looks like a METU CENG477 scene (<Cameras>, <MaxRecursionDepth>, <AmbientReflectance>...), not the "
-           "CSE 461 PA1 format: it has <" + std::string(child->Name()) + "> where the format has one <camera>; "
-           "convert it to the CSE 461 format first");
-}
-
 void Loader::readScene(const XMLElement* root) {
   Scene& scene = result_.scene;
   forEachChild(root, "inside <scene>", [&](const XMLElement* e, Tag tag) {
     switch (tag) {
-      case Tag::MaxRayTraceDepth: {
-        std::int64_t depth = 0;
-        readIntegers(e, 1, &depth, 0, "a non-negative integer");
-        if (depth > kMaxRayDepthLimit)
-          fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(depth) + " is above the limit of " +
-                                    std::to_string(kMaxRayDepthLimit));
-        scene.maxRayDepth = static_cast<int>(depth);
-        haveDepth_ = true;
-        return true;
-      }
+      case Tag::MaxRayTraceDepth: readMaxRayDepth(e); return true;
       case Tag::Background:
         scene.background = readColor(e);
         haveBackground_ = true;
         return true;
-      case Tag::ShadowRayEpsilon: {
-        double epsilon = readScalar(e, false);
-        if (epsilon < 0.0) fail(e->GetLineNum(), elementName(e) + ": must be >= 0, found " + trimmedText(e));
-        // Larger than any distance rayview traces (Embree's coordinates stop at kEmbreeCoordinateLimit):
-        // such an epsilon is a typo, and would push every shadow ray out of range.
-        if (epsilon > kEmbreeCoordinateLimit)
-          fail(e->GetLineNum(), elementName(e) + ": " + trimmedText(e) + " is larger than any distance rayview can trace "
-                                "(the limit is 1e18)");
-        scene.shadowRayEpsilon = epsilon;
-        return true;
-      }
+      case Tag::ShadowRayEpsilon: readShadowRayEpsilon(e); return true;
       case Tag::Camera: readCamera(e); return true;
       case Tag::Lights: readLights(e); return true;
       case Tag::Materials: readMaterials(e); return true;
@@ -60,42 +31,76 @@ void Loader::readScene(const XMLElement* root) {
   });
 }
 
+void Loader::readMaxRayDepth(const XMLElement* e) {
+  std::int64_t depth = 0;
+  readIntegers(e, 1, &depth, 0, "a non-negative integer");
+  if (depth > kMaxRayDepthLimit)
+    fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(depth) + " is above the limit of " +
+                              std::to_string(kMaxRayDepthLimit));
+  result_.scene.maxRayDepth = static_cast<int>(depth);
+  haveDepth_ = true;
+}
+
+void Loader::readShadowRayEpsilon(const XMLElement* e) {
+  double epsilon = readScalar(e, false);
+  if (epsilon < 0.0) fail(e->GetLineNum(), elementName(e) + ": must be >= 0, found " + trimmedText(e));
+  // Larger than any distance rayview traces (Embree's coordinates stop at kEmbreeCoordinateLimit):
+  // such an epsilon is a typo, and would push every shadow ray out of range.
+  if (epsilon > kEmbreeCoordinateLimit)
+    fail(e->GetLineNum(), elementName(e) + ": " + trimmedText(e) + " is larger than any distance rayview can trace "
+                          "(the limit is 1e18)");
+  result_.scene.shadowRayEpsilon = epsilon;
+}
+
 void Loader::readCamera(const XMLElement* cameraElement) {
-  Camera& camera = result_.scene.camera;
   const int line = cameraElement->GetLineNum();
   cameraLine_ = line;
   unsigned have = 0;
-  auto bit = [](Tag t) { return 1u << (static_cast<unsigned>(t) - static_cast<unsigned>(Tag::Position)); };
   forEachChild(cameraElement, "inside <camera>", [&](const XMLElement* e, Tag tag) {
-    switch (tag) {
-      case Tag::Position: camera.position = readPoint(e); break;
-      case Tag::Gaze: camera.gaze = readPoint(e); break;
-      case Tag::Up: camera.up = readPoint(e); break;
-      case Tag::NearPlane: {
-        double v[4];
-        readFixed(e, 4, v, false);
-        camera.left = v[0], camera.right = v[1], camera.bottom = v[2], camera.top = v[3];
-        break;
-      }
-      case Tag::NearDistance: camera.nearDistance = readScalar(e, false); break;
-      case Tag::ImageResolution: {
-        std::int64_t v[2];
-        readIntegers(e, 2, v, INT64_MIN, "2 integers (nx ny)");
-        if (v[0] > 0 && v[1] > 0 && (v[0] > kMaxImagePixels || v[1] > kMaxImagePixels || v[0] * v[1] > kMaxImagePixels))
-          fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(v[0]) + " x " + std::to_string(v[1]) +
-                                    " pixels is too large (the limit is " + std::to_string(kMaxImagePixels) +
-                                    " pixels, 16384 x 16384)");
-        camera.width = static_cast<int>(std::clamp<std::int64_t>(v[0], INT32_MIN, INT32_MAX));
-        camera.height = static_cast<int>(std::clamp<std::int64_t>(v[1], INT32_MIN, INT32_MAX));
-        break;
-      }
-      default: return false;
-    }
-    have |= bit(tag);
+    if (!readCameraField(e, tag)) return false;
+    have |= cameraBit(tag);
     return true;
   });
-  for (Tag t : {Tag::Position, Tag::Gaze, Tag::Up, Tag::NearPlane, Tag::NearDistance, Tag::ImageResolution})
-    if (!(have & bit(t))) fail(line, "<camera> has no <" + std::string(tagName(t)) + ">");
+  checkCamera(line, have);
+}
+
+bool Loader::readCameraField(const XMLElement* e, Tag tag) {
+  Camera& camera = result_.scene.camera;
+  switch (tag) {
+    case Tag::Position: camera.position = readPoint(e); break;
+    case Tag::Gaze: camera.gaze = readPoint(e); break;
+    case Tag::Up: camera.up = readPoint(e); break;
+    case Tag::NearPlane: {
+      double v[4];
+      readFixed(e, 4, v, false);
+      camera.left = v[0], camera.right = v[1], camera.bottom = v[2], camera.top = v[3];
+      break;
+    }
+    case Tag::NearDistance: camera.nearDistance = readScalar(e, false); break;
+    case Tag::ImageResolution: {
+      std::int64_t v[2];
+      readIntegers(e, 2, v, INT64_MIN, "2 integers (nx ny)");
+      if (v[0] > 0 && v[1] > 0 && (v[0] > kMaxImagePixels || v[1] > kMaxImagePixels || v[0] * v[1] > kMaxImagePixels))
+        fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(v[0]) + " x " + std::to_string(v[1]) +
+                                  " pixels is too large (the limit is " + std::to_string(kMaxImagePixels) +
+                                  " pixels, 16384 x 16384)");
+      camera.width = static_cast<int>(std::clamp<std::int64_t>(v[0], INT32_MIN, INT32_MAX));
+      camera.height = static_cast<int>(std::clamp<std::int64_t>(v[1], INT32_MIN, INT32_MAX));
+      break;
+    }
+    default: return false;
+  }
+  return true;
+}
+
+void Loader::checkCamera(int line, unsigned have) {
+  const Camera& camera = result_.scene.camera;
+  constexpr Tag kFields[] = {Tag::Position, Tag::Gaze, Tag::Up, Tag::NearPlane, Tag::NearDistance, Tag::ImageResolution};
+  constexpr const char* kCeng477Names[] = {"Position", "Gaze", "Up", "NearPlane", "NearDistance", "ImageResolution"};
+  for (std::size_t i = 0; i < std::size(kFields); ++i)
+    if (!(have & cameraBit(kFields[i])))
+      fail(line, ceng477_ ? "<Camera> has no <" + std::string(kCeng477Names[i]) + ">"
+                          : "<camera> has no <" + std::string(tagName(kFields[i])) + ">");
 
   // SPEC section 3: a camera that cannot make an image.
   if (glm::length(camera.gaze) == 0.0) fail(line, "camera: <gaze> is the zero vector");
@@ -165,6 +170,9 @@ void Loader::readLight(const XMLElement* e, std::vector<Light>& into) {
     if (firstLine[i] == 0) fail(e->GetLineNum(), describe(e) + " has no <" + std::string(fields[i].element) + ">");
   into.push_back(std::move(light));
 }
+
+// The CENG477 dialect (scene_loader_ceng477.cpp) reads its <PointLight> with the same field table.
+template void Loader::readLight<PointLight>(const XMLElement* e, std::vector<PointLight>& into);
 
 void Loader::readMaterials(const XMLElement* materials) {
   Scene& scene = result_.scene;
@@ -293,7 +301,9 @@ void Loader::readObjects(const XMLElement* objects) {
   });
 }
 
-std::string Loader::meshName(const PendingMesh& mesh) const { return "mesh \"" + mesh.id + "\""; }
+std::string Loader::meshName(const PendingMesh& mesh) const {
+  return mesh.label.empty() ? "mesh \"" + mesh.id + "\"" : mesh.label;
+}
 
 // Face tokens: v, v/t, v//n or v/t/n; stored raw (file numbering) until the index base is known.
 void Loader::readFaces(PendingMesh& mesh) {

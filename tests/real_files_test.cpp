@@ -52,7 +52,8 @@ const std::string kBackgroundColor = "<backgroundColor> read as <background> (th
 const std::string kMirrorAlias = "<mirrorreflactance> read as <mirrorreflectance> (misspelled element name)";
 const std::string kZeroBased = "face indices are 0-based (vertex indices include 0 and never reach the count)";
 const std::string kGlued = "<nearPlane>: numbers not separated by whitespace in '1-1'";
-const std::string kCeng477 = "this looks like a METU CENG477 scene";
+const std::string kCameras = "<Cameras> has ";
+const std::string kSphere = "<Sphere> is a CENG477 object rayview does not render (triangle meshes only): dropped, the image lacks it";
 const std::string kRepeatedFaces = "faces repeat the three vertices of an earlier face";
 
 const std::vector<Row>& table() {
@@ -73,19 +74,26 @@ const std::vector<Row>& table() {
              {38, kMirrorAlias}}),
       fails("handout/skeleton_2024.xml", 2, "<maxraytracedepth>: expected a non-negative integer, found 'n'"),
 
-      // ---- AhmetKadir: one handout copy, one partial conversion, and METU CENG477 scenes (another format)
+      // ---- AhmetKadir: one handout copy, one partial conversion, and METU CENG477 scenes (the loader's CENG477 dialect)
       loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/scene.xml", 2, false,
             {{3, kBackgroundColor}, {12, "stray text '3' ignored"}, {34, kMirrorAlias}, {55, "stray text '...' ignored"}}),
       loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/bunny.xml", 4968, false,
             {{2, "<backgroundcolor> read as <background>"}}),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/cornellbox.xml", 8, kCeng477),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/dragon_lowres.xml", 8, kCeng477),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/horse_and_mug.xml", 8, kCeng477),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/mirror_spheres.xml", 8, kCeng477),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/scienceTree.xml", 8, kCeng477),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/simple.xml", 8, kCeng477),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/simple_reflectance.xml", 8, kCeng477),
-      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/simple_shading.xml", 8, kCeng477),
+      // (read natively as the CENG477 dialect; its spheres are dropped with a warning, docs/scene-format.md)
+      loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/cornellbox.xml", 10, false,
+            {{9, kCameras + "3 cameras: rendering the first"}, {142, kSphere + " (2 times; the first is shown)"}}),
+      loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/dragon_lowres.xml", 11973, false,
+            {{6042, "4 " + kRepeatedFaces}}),
+      loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/horse_and_mug.xml", 31582, false,
+            {{47556, kSphere + " (2 times; the first is shown)"}}),
+      fails("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/mirror_spheres.xml", 67,
+            "no object of the scene can be rendered: rayview renders triangle meshes only, and the objects here are not "
+            "(the first is <Sphere id=\"1\">)"),
+      loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/scienceTree.xml", 2240, false,
+            {{9, kCameras + "3 cameras: rendering the first"}}),
+      loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/simple.xml", 3, false, {{63, kSphere}}),
+      loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/simple_reflectance.xml", 2, false, {{66, kSphere}}),
+      loads("peer-scenes/AhmetKadir__Simple-Ray-Tracer/sample_scenes/simple_shading.xml", 2, false, {{62, kSphere}}),
 
       // ---- GtuOdevlerEmirhanAltunel: 0-based cat/chest/cube, textures by absolute and ../ paths
       loads("peer-scenes/GtuOdevlerEmirhanAltunel__CSE461-HW1/assets/scene copy.xml", 30, true,

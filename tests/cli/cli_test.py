@@ -145,6 +145,7 @@ def main():
     check_far_scene_falls_back(a)
     check_embree_loaded_only_when_needed(a)
     check_lean_scene(a)
+    check_ceng477_camera(a)
     print("cli: all checks passed")
 
 
@@ -218,6 +219,23 @@ def check_one_executable(a):
     r = subprocess.run([os.path.join(lonely, "rayview")], capture_output=True, text=True, timeout=60, cwd=lonely)
     check(r.returncode == 1 and "the viewer cannot start" in r.stderr and os.listdir(lonely) == ["rayview"],
           "without its viewer program, rayview says the viewer cannot start, exits 1 and writes nothing")
+
+
+def check_ceng477_camera(a):
+    """A course CENG477 file renders natively: --camera N picks one of its <Cameras>, giving the image of its
+    conversion to the CSE 461 format byte for byte; a camera it does not have exits 2 and writes nothing."""
+    folder = os.path.join(a.shared, "conformance", "ceng477")
+    original = os.path.join(folder, "scienceTree_1080x1080.ceng477.xml")
+    ours, theirs = os.path.join(a.scratch, "tree_c.png"), os.path.join(a.scratch, "tree.png")
+    r = run(["render", original, "--camera", "2", "-o", ours, "--quiet"], a.rayview)
+    check(r.returncode == 0, "a CENG477 file renders with --camera 2 (exit 0)")
+    run(["render", os.path.join(folder, "scienceTree_1080x1080.xml"), "-o", theirs, "--quiet"], a.rayview)
+    with open(ours, "rb") as f, open(theirs, "rb") as g:
+        check(f.read() == g.read(), "its camera 2 gives the image of its conversion, byte for byte")
+    missing = os.path.join(a.scratch, "tree_9.png")
+    r = run(["render", original, "--camera", "9", "-o", missing], a.rayview)
+    check(r.returncode == 2 and "camera 9 was asked for, but <Cameras> has 3 cameras" in r.stderr
+          and not os.path.exists(missing), "a camera the file does not have exits 2 and writes nothing")
 
 
 def check_lean_scene(a):

@@ -19,6 +19,9 @@ struct LoadOptions {
   // text; false reads everything through tinyxml2's DOM. Both give the same scene, messages and warnings:
   // false is for tests and the fuzz target that check so.
   bool streamBlocks = true;
+  // Which camera of a CENG477 file's <Cameras> to read, 1-based; 0 reads the first. Asking for a camera the file
+  // does not have (any but the first of a CSE 461 file) is a located error.
+  int camera = 0;
 };
 
 struct LoadedScene {

@@ -1,0 +1,38 @@
+#pragma once
+// A plain reader of PLY meshes (ASCII, binary little- and big-endian): the vertices' x, y, z and the faces'
+// vertex index lists, polygons split into triangle fans. Every other element and property is skipped. Used for
+// the CENG477 dialect's <Faces plyFile="...">; refuses a truncated or implausible file instead of guessing.
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+namespace rayview::detail {
+
+struct PlyMesh {
+  std::vector<glm::dvec3> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;  // 0-based indices into `vertices`
+  std::size_t skippedFaces = 0;                         // faces of fewer than three vertices
+};
+
+// What is wrong with a PLY file; the message does not name the file (the caller does), but says where in it
+// ("line 12", "byte 4096") when it can.
+struct PlyError {
+  std::string message;
+};
+
+// The largest PLY file read (it is held whole while it is parsed).
+inline constexpr std::uintmax_t kMaxPlyBytes = (std::uintmax_t{1} << 31) - 1;
+
+// Parses a whole PLY file's bytes. Throws PlyError.
+PlyMesh parsePly(std::string_view bytes);
+
+// Reads and parses the file at `path` (a regular file only, never a blocking open). Throws PlyError.
+PlyMesh readPlyFile(const std::filesystem::path& path);
+
+}  // namespace rayview::detail
