@@ -34,6 +34,7 @@
 #include "accel_backends.h"
 #include "rayview/accel.h"
 #include "rayview/scene_loader.h"
+#include "support/image_compare.h"
 #include "support/conformance_scenes.h"
 #include "watertight_triangle.h"
 
@@ -307,6 +308,7 @@ int expectSameAnswers(const Accel& base, const Accel& other, const std::vector<R
 // bit for bit: every hit is the closest by the watertight test and the tie rule, whatever order the BVH visits the
 // triangles in. Single rays and packets, closest hits and occlusion.
 TEST(EmbreeLayouts, TheCompactLayoutGivesTheSameAnswersBitForBit) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
   if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
   ASSERT_EQ(embreeLayoutFor(kCompactBvhTriangles - 1), EmbreeLayout::Fast);
   ASSERT_EQ(embreeLayoutFor(kCompactBvhTriangles), EmbreeLayout::Compact);
@@ -331,6 +333,7 @@ TEST(EmbreeLayouts, TheCompactLayoutGivesTheSameAnswersBitForBit) {
 // SSE; the callbacks test the lanes four at a time by their ids (watertight_lanes.h). Devices limited to AVX2 and to
 // SSE4.2 (which this machine can run whatever it has beyond them) give the answers of the default device bit for bit.
 TEST(EmbreeIsas, EveryPacketWidthGivesTheSameAnswersBitForBit) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
   if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
   if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this machine has no AVX2";
   int scenes = 0;

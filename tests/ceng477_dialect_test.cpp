@@ -156,6 +156,7 @@ void expectSameScene(const Scene& a, const Scene& b) {
 // ---------------------------------------------------------------- mappings
 
 TEST(Ceng477Dialect, ReadsAsItsConversionWithoutWarnings) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
   const LoadedScene loaded = load(kBase, optionsWith(true));
   EXPECT_TRUE(loaded.warnings.empty());
   const Scene& s = loaded.scene;
@@ -389,6 +390,7 @@ std::vector<CourseScene> manifestScenes() {
 }
 
 TEST(Ceng477Dialect, CourseFilesLoadAsTheirConversionsBothWays) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
   const fs::path dir = testing::sharedDirectory() / "conformance" / "ceng477";
   const std::vector<CourseScene> scenes = manifestScenes();
   ASSERT_EQ(scenes.size(), 16u);

@@ -88,7 +88,10 @@ void expectMatchesTheCourseImage(const ConformanceScene& c, Source source) {
 
 class Conformance : public ::testing::TestWithParam<ConformanceScene> {};
 
-TEST_P(Conformance, MatchesTheCourseImage) { expectMatchesTheCourseImage(GetParam(), Source::Converted); }
+TEST_P(Conformance, MatchesTheCourseImage) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
+  expectMatchesTheCourseImage(GetParam(), Source::Converted);
+}
 
 INSTANTIATE_TEST_SUITE_P(Ceng477, Conformance, ::testing::ValuesIn(kScenes),
                          [](const auto& info) { return std::string(info.param.name); });
@@ -96,7 +99,10 @@ INSTANTIATE_TEST_SUITE_P(Ceng477, Conformance, ::testing::ValuesIn(kScenes),
 // The same scenes from the course's own files: the same tolerances.
 class ConformanceCourseFile : public ::testing::TestWithParam<ConformanceScene> {};
 
-TEST_P(ConformanceCourseFile, MatchesTheCourseImage) { expectMatchesTheCourseImage(GetParam(), Source::CourseFile); }
+TEST_P(ConformanceCourseFile, MatchesTheCourseImage) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
+  expectMatchesTheCourseImage(GetParam(), Source::CourseFile);
+}
 
 INSTANTIATE_TEST_SUITE_P(Ceng477, ConformanceCourseFile, ::testing::ValuesIn(kScenes),
                          [](const auto& info) { return std::string(info.param.name); });

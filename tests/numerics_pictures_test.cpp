@@ -68,6 +68,7 @@ Scene roundedToFloat(Scene scene) {
 }
 
 TEST(NumericsPictures, TranslationNeedsCameraRelativeCoordinates) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
   Scene base = loadSceneFile(testing::sharedDirectory() / "conformance/ceng477/monkey.xml").scene;
   testing::reduceResolution(base, 8);  // 128 x 128
   const AccelKind accel = availableAccel(AccelKind::Embree);

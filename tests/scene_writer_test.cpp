@@ -108,6 +108,7 @@ bool aboutRepeatedFaces(const Diagnostic& d) { return d.message.find("faces repe
 class SceneWriterRoundTrip : public ::testing::TestWithParam<fs::path> {};
 
 TEST_P(SceneWriterRoundTrip, ReadsBackEqualWithoutWarnings) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
   const fs::path& source = GetParam();
   ASSERT_TRUE(fs::exists(source)) << source;
   const LoadedScene original = loadSceneFile(source);
@@ -139,6 +140,7 @@ INSTANTIATE_TEST_SUITE_P(RealScenes, SceneWriterRoundTrip, ::testing::ValuesIn(r
                          });
 
 TEST(SceneWriter, WrittenSceneRendersTheSameImage) {
+  RAYVIEW_SKIP_WITHOUT_SHARED();
   const fs::path source = testing::sharedDirectory() / "peer-scenes/mertugr__mesh-trace/scenes/textured_cube.xml";
   const LoadedScene original = loadSceneFile(source);
   const fs::path written = testing::testOutputDirectory() / "scene_writer" / "render_check.xml";

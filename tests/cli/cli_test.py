@@ -33,6 +33,9 @@ def main():
     parser.add_argument("--shared", required=True)
     parser.add_argument("--scratch", required=True)
     a = parser.parse_args()
+    if not os.path.isdir(os.path.join(a.shared, "conformance", "ceng477")):
+        print(f"SKIPPED: needs {a.shared} (the course's scenes and images; configure with -DRAYVIEW_SHARED_DIR=PATH)")
+        sys.exit(77)
     shutil.rmtree(a.scratch, ignore_errors=True)
     os.makedirs(a.scratch)
     scene = os.path.join(a.shared, "conformance", "ceng477", "bunny.xml")

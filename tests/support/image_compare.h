@@ -26,6 +26,13 @@ std::filesystem::path writeDifferenceImages(const std::string& name, const Image
 std::filesystem::path testOutputDirectory();
 
 inline std::filesystem::path sharedDirectory() { return RAYVIEW_SHARED_DIR; }
+// Whether the shared folder (the course's scenes and images, the peers' scenes) is there: a test that reads it starts
+// with RAYVIEW_SKIP_WITHOUT_SHARED(), so without it the test is skipped and says why instead of failing.
+inline bool sharedFilesPresent() { return std::filesystem::is_directory(sharedDirectory() / "conformance" / "ceng477"); }
+#define RAYVIEW_SKIP_WITHOUT_SHARED()                                                                        \
+  if (!::rayview::testing::sharedFilesPresent())                                                             \
+  GTEST_SKIP() << "needs " << ::rayview::testing::sharedDirectory().string()                                 \
+               << " (the course's scenes and images; configure with -DRAYVIEW_SHARED_DIR=PATH)"
 inline std::filesystem::path sourceDirectory() { return RAYVIEW_SOURCE_DIR; }
 
 }  // namespace rayview::testing
