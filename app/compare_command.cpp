@@ -5,16 +5,22 @@
 
 #include "rayview/image.h"
 #include "rayview/image_metrics.h"
+#include "rayview/input_files.h"
 
 namespace rayview {
 
 int runCompareCommand(const CommandLine& command) {
   Image image, reference;
   try {
-    image = readImageFile(command.scenePaths[0]);
-    reference = readImageFile(command.scenePaths[1]);
+    image = readImageFile(command.scenePaths[0], "the image compared");
+    reference = readImageFile(command.scenePaths[1], "the reference image");
   } catch (const ImageIoError& error) {
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitBadInput;
+  }
+  // Refused before any figure is printed: the difference map never replaces an image it was made from.
+  if (const std::string problem = outputReplacesInput(command.diffPath); !command.diffPath.empty() && !problem.empty()) {
+    std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
   }
   if (image.width != reference.width || image.height != reference.height) {

@@ -11,6 +11,7 @@
 #include "process_start.h"
 #include "program_exec.h"
 #include "render_command.h"
+#include "rayview/image.h"
 
 #ifdef RAYVIEW_HAVE_VIEWER
 #include "viewer.h"
@@ -19,6 +20,8 @@
 int main(int argc, char** argv) {
   using namespace rayview;
   captureProcessStart();
+  // Before any command writes a file: a signal that ends the process removes the file's temporary copy first.
+  removeTemporaryFileOnSignals();
   CommandLine command;
   try {
     command = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));

@@ -1,8 +1,5 @@
 #include "render_command.h"
 
-#include <signal.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -25,21 +22,6 @@ namespace {
 
 double msSince(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-}
-
-// SIGINT / SIGTERM during a render: remove the image's temporary file if it is being written, exit
-// 130 / 143 as a shell would report the signal. The existing output is never touched before the rename.
-extern "C" void onInterrupt(int signal) {
-  if (const char* temporary = temporaryFileInProgress()) ::unlink(temporary);
-  ::_exit(128 + signal);
-}
-
-void removeTemporaryOnInterrupt() {
-  struct sigaction action {};
-  action.sa_handler = onInterrupt;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
 }
 
 // The summary's memory line: the process's peak, per triangle (issue 8 item 4's measure), and the peak as it stood
@@ -94,7 +76,6 @@ int runRenderCommand(const CommandLine& command) {
     std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
   }
-  removeTemporaryOnInterrupt();
   if (!command.quiet)
     for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
 

@@ -55,7 +55,7 @@ LoadedScene Loader::load(std::string_view text, std::string* owned, const fs::pa
                       parseFileDirectly(doc, *source, text.size(), *owned);
   if (direct && doc.Error()) {
     // Messages quote the text: read it again (errors are rare; their memory does not matter).
-    detail::UserFileRead again = detail::readUserFile(*source, kMaxFileBytes);
+    detail::UserFileRead again = detail::readUserFile(*source, kMaxFileBytes, {}, kSceneFileRole);
     if (!again.problem.empty()) fail(0, "the scene file " + again.problem);
     *owned = std::move(again.bytes);
     text = *owned;
@@ -98,6 +98,7 @@ LoadedScene Loader::walk(const tinyxml2::XMLDocument& doc) {
 namespace fs = std::filesystem;
 using scene_loading::Loader;
 using scene_loading::kMaxFileBytes;
+using scene_loading::kSceneFileRole;
 
 namespace {
 
@@ -151,7 +152,7 @@ LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   if (directory.empty()) directory = ".";
   {
     // Opened with readUserFile's checks; any problem is reported by the ordinary reading below.
-    const detail::UserFile file(path, kMaxFileBytes);
+    const detail::UserFile file(path, kMaxFileBytes, kSceneFileRole);
     if (file.problem().empty()) {
       const auto read = [&file](std::uint64_t offset, char* into, std::size_t count) {
         return file.read(offset, into, count);
@@ -166,7 +167,7 @@ LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   detail::UserFileRead file = detail::readUserFile(path, kMaxFileBytes, [&](std::string_view start) {
     scene_loading::refuseWhatIsNotText(display, start);
     return std::string();
-  });
+  }, kSceneFileRole);
   if (file.notFound || file.problem.rfind("cannot be opened", 0) == 0)
     throwSceneError({display, 0}, "cannot open the scene file: " + file.problem.substr(file.problem.find(": ") + 2));
   if (!file.problem.empty()) throwSceneError({display, 0}, "the scene file " + file.problem);

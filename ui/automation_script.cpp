@@ -251,7 +251,7 @@ Script parseScript(const std::string& text, const std::string& file) {
 
 Script readScriptFile(const std::filesystem::path& path) {
   // As every file a user names: a FIFO or a device is refused without blocking, the size is checked first.
-  const detail::UserFileRead read = detail::readUserFile(path, kMaxScriptBytes);
+  const detail::UserFileRead read = detail::readUserFile(path, kMaxScriptBytes, {}, "the script");
   if (!read.problem.empty()) throw ScriptError(path.string() + ": " + read.problem);
   return parseScript(read.bytes, path.string());
 }

@@ -185,7 +185,7 @@ std::filesystem::path ViewerApp::saveFrame(const std::string& path, FrameSave wh
   const Image& image = what == FrameSave::Displayed ? mapped : fileImage();
   std::filesystem::path saved = path;
   if (path.empty()) saved = saveFrameNumbered(image, scenePath_, what);
-  else writeImageFile(path, image);
+  else writeImageFile(refusingInputs(path, scenePath_, session_ ? &session_->loaded() : nullptr), image);
   filePanel_.frameSavePending = false;
   filePanel_.lastSaveFailed = false;
   filePanel_.lastSaved = "saved " + saved.string();
