@@ -1,8 +1,11 @@
 #include "rayview/tradeoff.h"
 
+#include "rayview/image_limits.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <thread>
 
@@ -140,6 +143,18 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
   return list;
 }
 
+std::string scaledImageProblem(const Camera& camera, double scale) {
+  // The scaled camera meets the one image limit, as a scene's own resolution does: never 0 made 1, never more
+  // pixels than the buffers can hold.
+  const long long width = std::llround(camera.width * scale), height = std::llround(camera.height * scale);
+  const std::string problem = imageSizeProblem(width, height);
+  if (problem.empty()) return {};
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", scale);
+  return "the resolution scale " + std::string(factor) + " makes the " + std::to_string(camera.width) + " x " +
+         std::to_string(camera.height) + " image " + problem;
+}
+
 TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> sceneGeometry,
                                const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
                                const std::atomic<bool>* cancel, const TradeoffProgressFn& progress) {
@@ -151,13 +166,12 @@ TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_pt
   // Camera, lights and materials from a resized copy; the meshes are read from the geometry.
   const SceneParameters* scene = &parameters;
   SceneParameters view = parameters;
-  const auto scaled = [&](int pixels) {
-    return std::max(1, static_cast<int>(std::lround(pixels * options.resolutionScale)));
-  };
   if (scene->camera.width <= 0 || scene->camera.height <= 0 || !(options.resolutionScale > 0.0))
     throw std::invalid_argument("the tradeoff needs a camera with pixels and a positive resolution scale");
-  view.camera.width = report.width = scaled(scene->camera.width);
-  view.camera.height = report.height = scaled(scene->camera.height);
+  if (const std::string problem = scaledImageProblem(scene->camera, options.resolutionScale); !problem.empty())
+    throw std::invalid_argument(problem);
+  view.camera.width = report.width = static_cast<int>(std::llround(scene->camera.width * options.resolutionScale));
+  view.camera.height = report.height = static_cast<int>(std::llround(scene->camera.height * options.resolutionScale));
 
   if (!scene->hasMirrors()) report.notes.push_back("no mirrors (or depth 0): depth changes nothing");
   if (!lightSamplesKnob().matters(*scene, options.baseline))

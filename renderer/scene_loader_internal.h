@@ -38,8 +38,6 @@ using tinyxml2::XMLNode;
 
 // --- limits (SPEC section 2: refuse up front what cannot fit) ---
 constexpr std::int64_t kMaxRayDepthLimit = kMaxRayDepth;  // the depth's one limit (scene.h)
-// 16384 x 16384: with a 16-byte-per-pixel accumulation buffer this is a 4 GiB framebuffer.
-constexpr std::int64_t kMaxImagePixels = 1LL << 28;
 constexpr std::uintmax_t kMaxFileBytes = (1ULL << 31) - 1;  // tinyxml2 and line numbers use int
 // What the files a scene reads are recorded as (rayview/input_files.h), for the messages refusing an output.
 inline constexpr std::string_view kSceneFileRole = "the scene file";

@@ -1,6 +1,7 @@
 // The scene loader's element walk: <scene> and its children into Scene, faces kept in file numbering
 // until the checks after the walk (scene_loader_checks.cpp) know the index base.
 
+#include "rayview/image_limits.h"
 #include "scene_loader_internal.h"
 
 namespace rayview::scene_loading {
@@ -81,10 +82,9 @@ void Loader::readCamera(const XMLElement* cameraElement) {
       case Tag::ImageResolution: {
         std::int64_t v[2];
         readIntegers(e, 2, v, INT64_MIN, "2 integers (nx ny)");
-        if (v[0] > 0 && v[1] > 0 && (v[0] > kMaxImagePixels || v[1] > kMaxImagePixels || v[0] * v[1] > kMaxImagePixels))
-          fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(v[0]) + " x " + std::to_string(v[1]) +
-                                    " pixels is too large (the limit is " + std::to_string(kMaxImagePixels) +
-                                    " pixels, 16384 x 16384)");
+        // More than any buffer of that size can hold, at the element's own line (not positive: the camera's check).
+        if (const std::string problem = imageSizeProblem(v[0], v[1]); v[0] > 0 && v[1] > 0 && !problem.empty())
+          fail(e->GetLineNum(), elementName(e) + ": " + problem);
         camera.width = static_cast<int>(std::clamp<std::int64_t>(v[0], INT32_MIN, INT32_MAX));
         camera.height = static_cast<int>(std::clamp<std::int64_t>(v[1], INT32_MIN, INT32_MAX));
         break;

@@ -10,12 +10,13 @@
 #include <vector>
 
 #include "rayview/file_read.h"
+#include "rayview/image_limits.h"
 #include "rayview/scene.h"
 
 namespace rayview::detail {
 
-// Largest texture accepted, in pixels (refused before decoding, from the header alone).
-inline constexpr long long kMaxTexturePixels = 1LL << 28;
+// Largest texture accepted, in pixels (refused before decoding, from the header alone): the one image limit.
+inline constexpr long long kMaxTexturePixels = kMaxImagePixels;
 // Largest texture file read, in bytes (refused from its size, before reading): 1 GiB holds the largest
 // accepted image even uncompressed (2^28 pixels x 3 bytes).
 inline constexpr std::uintmax_t kMaxTextureFileBytes = 1ULL << 30;
