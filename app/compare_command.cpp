@@ -40,8 +40,11 @@ int runCompareCommand(const CommandLine& command) {
       return kExitBadInput;
     }
   }
+  // Decided on the exact counts; the message gives them, and a truncated percentage that never reads as the
+  // requirement met ("100.000 %" only when every pixel is within 1).
   if (within1 < command.minWithin1) {
-    std::fprintf(stderr, "rayview: %.3f%% of the pixels are within 1 of the reference, %.3f%% required\n", within1,
+    std::fprintf(stderr, "rayview: %s%% of the pixels (%zu of %zu) are within 1 of the reference, %g%% required\n",
+                 formatPercent(error.within1Pixels, error.pixels).c_str(), error.within1Pixels, error.pixels,
                  command.minWithin1);
     return 1;
   }

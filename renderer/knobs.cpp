@@ -12,6 +12,7 @@ constexpr KnobChoice kTriangularLightModels[] = {{"area", "area"}, {"directional
 constexpr KnobChoice kAccelKinds[] = {{"embree", "Embree"}, {"reference", "reference BVH"}, {"packet", "packet BVH"}};
 static_assert(kPacketBvhTriangles == 5000, "the accel row's help below names prepareGeometry's limit");
 static_assert(kLeanFromTriangles == 100'000 && kLeanUntilTriangles == 1'000'000, "and its lean scenes' sizes");
+constexpr KnobChoice kQuantizations[] = {{"round", "round to nearest"}, {"truncate", "truncate"}};
 constexpr KnobChoice kRayStarts[] = {{"offset", "offset off the surface"},
                                      {"exclude-hit", "at the hit, skip its triangle"}};
 
@@ -78,6 +79,15 @@ const Knob kKnobs[] = {
      .measuredByTradeoff = true,
      .get = [](const SceneParameters&, const RenderSettings& s) { return s.pixelSamples; },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.pixelSamples = v; },
+     .matters = always},
+    {.name = "quantize",
+     .label = "Quantisation",
+     .help = "radiance to 8 bits: round to nearest (default), or truncate, as the 2017-2020 course reference "
+             "images did",
+     .home = KnobHome::Settings,
+     .choices = kQuantizations,
+     .get = [](const SceneParameters&, const RenderSettings& s) { return static_cast<int>(s.quantization); },
+     .set = [](SceneParameters&, RenderSettings& s, int v) { s.quantization = static_cast<Quantization>(v); },
      .matters = always},
 };
 

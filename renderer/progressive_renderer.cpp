@@ -151,11 +151,11 @@ bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t ge
           for (int n = 0; n < count; ++n)
             sums_[static_cast<std::size_t>(pixels[n].y) * samples_.width + pixels[n].x] = out[n];
         },
-        stride, previousStride, pool_, samples_, rays, stopped);
+        stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
   } else {
     renderGrid([&](const PixelXY* pixels, int count, Color* out,
                    RayCounts& counts) { source.pixels(pixels, count, out, counts); },
-               stride, previousStride, pool_, samples_, rays, stopped);
+               stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
   }
   return generation_.load() == generation;
 }
@@ -171,7 +171,8 @@ bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_
           out[m] = sum / count;  // after the last sample, the expression Tracer::tracePixel ends with
         }
       },
-      1, 0, pool_, samples_, rays, [&] { return generation_.load(std::memory_order_relaxed) != generation; });
+      1, 0, pool_, samples_, rays, [&] { return generation_.load(std::memory_order_relaxed) != generation; },
+      source.quantization());
   return generation_.load() == generation;
 }
 

@@ -39,7 +39,7 @@ FileImageResult FileImageTask::run(std::uint64_t id, const std::shared_ptr<const
         source->pixels(pixels, count, out, counts);
         pixelsDone_.fetch_add(count, std::memory_order_relaxed);
       },
-      1, 0, *pool_, result.image, rays, [&] { return cancel.load(std::memory_order_relaxed); });
+      1, 0, *pool_, result.image, rays, [&] { return cancel.load(std::memory_order_relaxed); }, source->quantization());
   result.cancelled = !complete;
   if (!complete) result.image = Image();
   result.renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
