@@ -93,6 +93,11 @@ inline std::string quoted(std::string_view token) {
   return out + "'";
 }
 
+// A token that should have been a number, quoted, and each character in it that cannot be part of one named
+// with its column, since O and 0 or l and 1 look alike in many fonts: "'1OO' (letter O at column 2, letter O at
+// column 3)". `allowed`: the characters a number of that kind may hold.
+std::string quotedNumber(std::string_view token, std::string_view allowed = "0123456789.+-eE");
+
 inline std::string plural(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
 }
@@ -254,6 +259,12 @@ class Loader {
 
   // A name the format knows anywhere: a tag, a light type's element or one of its fields.
   static bool isKnownName(std::string_view canonical);
+  // The known element name nearest `canonical` when it is a likely misspelling of one (at most 2 edits, letters
+  // swapped counting as one), else "".
+  static std::string nearestKnownName(std::string_view canonical);
+  // Fails because `parent` lacks <missing>: at the line of a child that misspells it, with "did you mean", when
+  // there is one; else at `line` with `message`.
+  [[noreturn]] void failMissing(const XMLElement* parent, int line, std::string_view missing, const std::string& message);
 
   void unknownElement(const XMLElement* e, const std::string& where);
 

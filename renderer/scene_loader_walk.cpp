@@ -95,7 +95,7 @@ void Loader::readCamera(const XMLElement* cameraElement) {
     return true;
   });
   for (Tag t : {Tag::Position, Tag::Gaze, Tag::Up, Tag::NearPlane, Tag::NearDistance, Tag::ImageResolution})
-    if (!(have & bit(t))) fail(line, "<camera> has no <" + std::string(tagName(t)) + ">");
+    if (!(have & bit(t))) failMissing(cameraElement, line, tagName(t), "<camera> has no <" + std::string(tagName(t)) + ">");
 
   // SPEC section 3: a camera that cannot make an image.
   if (glm::length(camera.gaze) == 0.0) fail(line, "camera: <gaze> is the zero vector");
@@ -162,7 +162,8 @@ void Loader::readLight(const XMLElement* e, std::vector<Light>& into) {
     else light.*fields[i].intensity = readColor(child);
   }
   for (std::size_t i = 0; i < fields.size(); ++i)
-    if (firstLine[i] == 0) fail(e->GetLineNum(), describe(e) + " has no <" + std::string(fields[i].element) + ">");
+    if (firstLine[i] == 0)
+      failMissing(e, e->GetLineNum(), fields[i].element, describe(e) + " has no <" + std::string(fields[i].element) + ">");
   into.push_back(std::move(light));
 }
 
@@ -196,9 +197,10 @@ void Loader::readMaterials(const XMLElement* materials) {
       }
       return true;
     });
-    const char* names[] = {"<ambient>", "<diffuse>", "<specular>", "<phongexponent>"};
+    const char* names[] = {"ambient", "diffuse", "specular", "phongexponent"};
     for (int i = 0; i < 4; ++i)
-      if (!(have & (1u << i))) fail(e->GetLineNum(), describe(e) + " has no " + names[i]);
+      if (!(have & (1u << i)))
+        failMissing(e, e->GetLineNum(), names[i], describe(e) + " has no <" + std::string(names[i]) + ">");
     if (!(have & 16))
       warn(e->GetLineNum(), describe(e) + " has no <mirrorreflectance>; using 0 0 0 (not a mirror)");
     materialIndex_.emplace(material.id, static_cast<std::uint32_t>(scene.materials.size()));
@@ -285,8 +287,8 @@ void Loader::readObjects(const XMLElement* objects) {
       }
       return true;
     });
-    if (!haveMaterial) fail(mesh.line, describe(e) + " has no <materialid>");
-    if (!mesh.faces) fail(mesh.line, describe(e) + " has no <faces>");
+    if (!haveMaterial) failMissing(e, mesh.line, "materialid", describe(e) + " has no <materialid>");
+    if (!mesh.faces) failMissing(e, mesh.line, "faces", describe(e) + " has no <faces>");
     readFaces(mesh);
     meshes_.push_back(std::move(mesh));
     return true;
@@ -340,7 +342,7 @@ void Loader::readFaces(PendingMesh& mesh) {
         if (token.find_first_not_of("+-0123456789/") == std::string_view::npos && token.find('-') != token.npos)
           fail(line, meshName(mesh) + ": " + elementName(e) + ": face indices must be positive, found " + quoted(token));
         fail(line, meshName(mesh) + ": " + elementName(e) + ": expected a vertex index (v, v/t, v//n or v/t/n), found " +
-                       quoted(token));
+                       quotedNumber(token, "0123456789/+-"));
       }
       ++indexCount;
       if (++cornerCount < 3) continue;
