@@ -243,6 +243,10 @@ Script parseScript(const std::string& text, const std::string& file) {
       else p.fail("unknown command '" + c.name + "' (see docs/viewer.md)");
     }
     if (c.name == "sleep" && c.numbers[0] < 0) p.fail("sleep needs a time that is not negative");
+    // A time beyond the limit would overflow the clock's deadline: a false timeout, or no wait at all.
+    const bool timed = c.name == "sleep" || c.name == "wait-final" || c.name == "measure-tradeoff";
+    if (timed && !c.numbers.empty() && c.numbers.back() > kMaxScriptSeconds)
+      p.fail(c.name + ": a time of at most " + std::to_string(static_cast<long>(kMaxScriptSeconds)) + " seconds");
     if (c.name == "wait-final" && !c.numbers.empty() && c.numbers[0] <= 0) p.fail("wait-final needs a positive timeout");
     script.commands.push_back(std::move(c));
   }

@@ -188,11 +188,13 @@ void ViewerApp::writeViewSave(int framebufferWidth, int framebufferHeight, const
     else writeImageFile(refusingInputs(path, scenePath_, session_ ? &session_->loaded() : nullptr), view);
     filePanel_.lastSaveFailed = false;
     filePanel_.lastSaved = "saved the view as seen: " + saved.string();
+    captureOutcome_ = std::string();
     std::printf("saved view %s\n", saved.string().c_str());
     std::fflush(stdout);
   } catch (const ImageIoError& error) {
     filePanel_.lastSaved = std::string("view not saved: ") + error.what();
     filePanel_.lastSaveFailed = true;
+    captureOutcome_ = error.what();
     std::fprintf(stderr, "rayview: view not saved: %s\n", error.what());
   }
 }
