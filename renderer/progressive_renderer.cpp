@@ -1,5 +1,8 @@
 #include "rayview/progressive_renderer.h"
 
+#include <cstdio>
+#include <new>
+
 #include <algorithm>
 
 #include "rayview/grid_render.h"
@@ -89,6 +92,7 @@ void ProgressiveRenderer::controllerLoop() {
       busy_ = true;
     }
     const bool final = [&] {
+     try {
       if (!source || source->width() <= 0 || source->height() <= 0) return false;
       const int width = source->width(), height = source->height();
       if (samples_.width != width || samples_.height != height) samples_ = Image(width, height);
@@ -129,6 +133,14 @@ void ProgressiveRenderer::controllerLoop() {
         if (!holdWhileDragging()) return false;
       }
       return false;
+     } catch (const std::bad_alloc&) {
+      // Out of memory on this thread or a worker (the pool hands it back): this render stops, never the process;
+      // the next edit tries again.
+      std::fprintf(stderr, "rayview: out of memory: the render stopped\n");
+      samples_ = Image();
+      std::vector<Color>().swap(sums_);
+      return false;
+     }
     }();
     {
       std::lock_guard lock(mutex_);

@@ -162,6 +162,10 @@ bool ViewerApp::pollFileImage() {
   std::optional<FileImageResult> result = fileImageTask_.takeResult();
   if (!result || result->id != awaitedFileImage_) return false;
   awaitedFileImage_ = 0;
+  if (!result->error.empty()) {
+    reportSaveFailure(ImageIoError(result->error));
+    return true;
+  }
   if (result->cancelled) return true;
   fileImage_ = std::move(result->image);
   fileImageOf_ = awaitedFileImageKey_;
