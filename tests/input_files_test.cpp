@@ -13,6 +13,7 @@
 
 #include "rayview/image.h"
 #include "rayview/image_limits.h"
+#include "rayview/image_metrics.h"
 #include "rayview/input_files.h"
 #include "rayview/scene_loader.h"
 #include "rayview/scene_source.h"
@@ -181,6 +182,21 @@ TEST(ThreadPool, ATasksExceptionReachesTheCaller) {
   std::atomic<int> ran{0};
   pool.parallelFor(10, [&](std::size_t) { ++ran; });  // the pool still works
   EXPECT_EQ(ran.load(), 10);
+}
+
+TEST(CompareFigures, NeverRoundUpToTheRequirementAndSayWhenTheCameraDiffers) {
+  EXPECT_EQ(formatPercent(262143, 262144), "99.999");
+  EXPECT_EQ(formatPercent(262144, 262144), "100.000");
+  EXPECT_EQ(formatPercent(1, 262144), "0.000");
+  EXPECT_EQ(formatPercent(1, 8), "12.500");
+  Image image = gradient(512, 512), reference = image;
+  reference.rgb[0] = static_cast<std::uint8_t>(reference.rgb[0] ^ 4);
+  ImageError error = compareToReference(image, reference);
+  EXPECT_EQ(comparisonSummary(error).rfind("exact=99.999% within1=99.999% maxdiff=4 psnr=", 0), 0u)
+      << comparisonSummary(error);
+  error.cameraMismatch = "the viewer's camera is not the scene file's";
+  EXPECT_NE(comparisonSummary(error).find(" camera=differs (the viewer's camera is not the scene file's)"),
+            std::string::npos);
 }
 
 }  // namespace
