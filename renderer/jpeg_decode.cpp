@@ -67,7 +67,12 @@ bool decodeInto(std::string_view bytes, long long maxPixels, Texture& out, std::
   jpeg_start_decompress(&info);
   out.width = static_cast<int>(info.output_width);
   out.height = static_cast<int>(info.output_height);
-  out.rgb.resize(static_cast<std::size_t>(out.width) * out.height * 3);
+  try {
+    out.rgb.resize(static_cast<std::size_t>(out.width) * out.height * 3);
+  } catch (...) {  // the pixels' allocation (std::bad_alloc): libjpeg's memory is released, the caller told
+    jpeg_destroy_decompress(&info);
+    throw;
+  }
   while (info.output_scanline < info.output_height) {
     unsigned char* row = out.rgb.data() + static_cast<std::size_t>(info.output_scanline) * out.width * 3;
     jpeg_read_scanlines(&info, &row, 1);

@@ -116,7 +116,13 @@ std::optional<Texture> decodePng(std::string_view bytes, long long maxPixels, st
   png_set_user_limits(png, static_cast<png_uint_32>(kMaxImageSide), static_cast<png_uint_32>(kMaxImageSide));
   Texture texture;
   std::vector<png_bytep> rows;
-  const bool ok = info && decodeInto(reading, png, info, texture, rows, reason);
+  bool ok = false;
+  try {
+    ok = info && decodeInto(reading, png, info, texture, rows, reason);
+  } catch (...) {  // the pixels' allocation (std::bad_alloc): libpng's memory is released, the caller told
+    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+    throw;
+  }
   if (!info) reason = "cannot be decoded (libpng could not start)";
   png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
   if (!ok) return std::nullopt;
