@@ -18,11 +18,20 @@
 #include "viewer.h"
 #endif
 
-namespace {
-
-int runCommand(rayview::CommandLine& command, char** argv) {
+// A function-try-block: any command's allocation failure (an image, a BVH, a render's buffers, a worker's: the
+// pool hands it back) ends in a message and a clean exit, never an abort; writes are whole or absent.
+int main(int argc, char** argv) try {
   using namespace rayview;
-  static_cast<void>(argv);  // only the build without the viewer hands it on
+  captureProcessStart();
+  // Before any command writes a file: a signal that ends the process removes the file's temporary copy first.
+  removeTemporaryFileOnSignals();
+  CommandLine command;
+  try {
+    command = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const UsageError& error) {
+    std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitBadInput;
+  }
   switch (command.kind) {
     case CommandKind::Help:
       std::fputs(helpText(command.helpFor).c_str(), stdout);
@@ -49,28 +58,7 @@ int runCommand(rayview::CommandLine& command, char** argv) {
 #endif
   }
   return kExitOk;
-}
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  using namespace rayview;
-  captureProcessStart();
-  // Before any command writes a file: a signal that ends the process removes the file's temporary copy first.
-  removeTemporaryFileOnSignals();
-  CommandLine command;
-  try {
-    command = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
-  } catch (const UsageError& error) {
-    std::fprintf(stderr, "rayview: error: %s\n", error.what());
-    return kExitBadInput;
-  }
-  try {
-    return runCommand(command, argv);
-  } catch (const std::bad_alloc&) {
-    // Any command's allocation failure (an image, a BVH, a render's buffers): a message and a clean exit, never
-    // an abort; writes are whole or absent, so nothing half-written is left.
-    std::fprintf(stderr, "rayview: error: out of memory: this needs more memory than the system gives it\n");
-    return kExitOutOfMemory;
-  }
+} catch (const std::bad_alloc&) {
+  std::fprintf(stderr, "rayview: error: out of memory: this needs more memory than the system gives it\n");
+  return rayview::kExitOutOfMemory;
 }
