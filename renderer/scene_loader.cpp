@@ -3,7 +3,9 @@
 // This file: the entry points. The loader's three jobs live in scene_loader_elements.cpp (element
 // readers), scene_loader_walk.cpp (the walk) and scene_loader_checks.cpp (checks after the walk).
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
@@ -31,12 +33,20 @@ namespace {
 // Parses the file at `path` with tinyxml2 reading it into its own buffer, when it is still `expectedSize` bytes;
 // false (the document untouched) when it cannot be opened or its size changed since it was read.
 bool parseFileDirectly(tinyxml2::XMLDocument& doc, const fs::path& path, std::size_t expectedSize, std::string& text) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) return false;
+  // Opened as the one reader of user files opens (file_read.h): never blocking, should the path have become a FIFO
+  // since it was read.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) return false;
   struct stat status {};
-  if (::fstat(::fileno(file.get()), &status) != 0 || !S_ISREG(status.st_mode) ||
-      static_cast<std::size_t>(status.st_size) != expectedSize)
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode) || static_cast<std::size_t>(status.st_size) != expectedSize) {
+    ::close(fd);
     return false;
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(::fdopen(fd, "rb"), &std::fclose);
+  if (!file) {
+    ::close(fd);
+    return false;
+  }
   std::string().swap(text);  // the copy already read: tinyxml2 makes its own
   doc.LoadFile(file.get());
   return true;
