@@ -22,11 +22,21 @@ std::string formatPsnr(double psnrDb) {
   return text;
 }
 
+std::string formatPercent(std::size_t count, std::size_t total) {
+  if (total == 0) return "100.000";
+  // In integers: 100000 * count fits 64 bits for any image the size limit allows.
+  const unsigned long long thousandths = 100000ULL * count / total;
+  char text[32];
+  std::snprintf(text, sizeof text, "%llu.%03llu", thousandths / 1000, thousandths % 1000);
+  return text;
+}
+
 std::string comparisonSummary(const ImageError& error) {
-  char text[128];
-  std::snprintf(text, sizeof text, "exact=%.3f%% within1=%.3f%% maxdiff=%d psnr=", error.pctExact, pctWithin1(error),
-                error.maxChannelDifference);
-  return text + formatPsnr(error.psnrDb);
+  std::string text = "exact=" + formatPercent(error.exactPixels, error.pixels) + "% within1=" +
+                     formatPercent(error.within1Pixels, error.pixels) + "% maxdiff=" +
+                     std::to_string(error.maxChannelDifference) + " psnr=" + formatPsnr(error.psnrDb);
+  if (!error.cameraMismatch.empty()) text += " camera=differs (" + error.cameraMismatch + ")";
+  return text;
 }
 
 ImageError compareToReference(const Image& image, const Image& reference) {
@@ -55,6 +65,9 @@ ImageError compareToReference(const Image& image, const Image& reference) {
   error.psnrDb = psnrFromRmse(error.rmse);
   error.pctOffByMoreThan1 = 100.0 * static_cast<double>(offPixels) / static_cast<double>(pixels);
   error.pctExact = 100.0 * static_cast<double>(exactPixels) / static_cast<double>(pixels);
+  error.pixels = pixels;
+  error.exactPixels = exactPixels;
+  error.within1Pixels = pixels - offPixels;
   return error;
 }
 

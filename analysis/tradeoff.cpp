@@ -1,8 +1,11 @@
 #include "rayview/tradeoff.h"
 
+#include "rayview/image_limits.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <thread>
 
@@ -163,7 +166,20 @@ std::vector<KnobSetting> enumerateKnobSettings(const SceneParameters& scene, con
   return list;
 }
 
+std::string scaledImageProblem(const Camera& camera, double scale) {
+  // The scaled camera meets the one image limit, as a scene's own resolution does: never 0 made 1, never more
+  // pixels than the buffers can hold.
+  const long long width = std::llround(camera.width * scale), height = std::llround(camera.height * scale);
+  const std::string problem = imageSizeProblem(width, height);
+  if (problem.empty()) return {};
+  char factor[32];
+  std::snprintf(factor, sizeof factor, "%g", scale);
+  return "the resolution scale " + std::string(factor) + " makes the " + std::to_string(camera.width) + " x " +
+         std::to_string(camera.height) + " image " + problem;
+}
+
 namespace {
+
 
 // One measurement, as the stages it runs in order: plan the distinct renders, build the BVHs, make the tracers, run
 // the rounds, report. A stage that returns false was cancelled.
@@ -220,11 +236,10 @@ TradeoffRun::TradeoffRun(const SceneParameters& parameters, std::shared_ptr<cons
   // Camera, lights and materials from a resized copy; the meshes are read from the geometry.
   if (parameters.camera.width <= 0 || parameters.camera.height <= 0 || !(options.resolutionScale > 0.0))
     throw std::invalid_argument("the tradeoff needs a camera with pixels and a positive resolution scale");
-  const auto scaled = [&](int pixels) {
-    return std::max(1, static_cast<int>(std::lround(pixels * options.resolutionScale)));
-  };
-  view_.camera.width = report_.width = scaled(parameters.camera.width);
-  view_.camera.height = report_.height = scaled(parameters.camera.height);
+  if (const std::string problem = scaledImageProblem(parameters.camera, options.resolutionScale); !problem.empty())
+    throw std::invalid_argument(problem);
+  view_.camera.width = report_.width = static_cast<int>(std::llround(parameters.camera.width * options.resolutionScale));
+  view_.camera.height = report_.height = static_cast<int>(std::llround(parameters.camera.height * options.resolutionScale));
   if (!parameters.hasMirrors()) report_.notes.push_back("no mirrors (or depth 0): depth changes nothing");
   if (!lightSamplesKnob().matters(parameters, options.baseline))
     report_.notes.push_back("light samples change nothing here (no triangular lights, or the directional model): not measured");

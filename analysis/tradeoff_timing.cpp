@@ -25,7 +25,8 @@ bool traceGrid(const Tracer& tracer, int stride, ThreadPool& pool, const std::at
       [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
         tracer.tracePixels(pixels, count, out, counts);
       },
-      stride, 0, pool, image, rays, [cancel] { return cancel && cancel->load(std::memory_order_relaxed); });
+      stride, 0, pool, image, rays, [cancel] { return cancel && cancel->load(std::memory_order_relaxed); },
+      tracer.quantization());
 }
 
 }  // namespace

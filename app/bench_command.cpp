@@ -68,6 +68,10 @@ int runBenchCommand(const CommandLine& command) {
       LoadedScene loaded = loadSceneOrDefault(path, LoadOptions{command.strict, true});
       if (!command.quiet)
         for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
+      if (const std::string problem = scaledImageProblem(loaded.scene.camera, command.resolutionScale); !problem.empty()) {
+        std::fprintf(stderr, "%s: error: %s\n", path.empty() ? "default scene" : path.c_str(), problem.c_str());
+        return kExitBadInput;
+      }
       scenes.push_back(std::make_shared<const Scene>(std::move(loaded.scene)));
     } catch (const SceneError& error) {
       std::fprintf(stderr, "%s\n", error.what());

@@ -289,7 +289,7 @@ std::string helpText(CommandKind kind) {
              "options:\n" +
              optionLines(kRender) +
              "\nexit status: 0 success, 1 the output could not be written, 2 bad scene or bad arguments (nothing "
-             "written)\n";
+             "written), 3 out of memory\n";
     case CommandKind::Bench:
       return "usage: rayview bench tradeoff SCENE... --out DIR [options]\n"
              "\n"
@@ -307,7 +307,8 @@ std::string helpText(CommandKind kind) {
              "\n"
              "options:\n" +
              optionLines(kCompare) +
-             "\nexit status: 0 within the threshold, 1 not, 2 bad arguments, an unreadable image or different sizes\n";
+             "\nexit status: 0 within the threshold, 1 not, 2 bad arguments, an unreadable image or different sizes, 3 "
+             "out of memory\n";
     default:
       break;
   }
@@ -329,7 +330,8 @@ std::string helpText(CommandKind kind) {
   text += optionLines(kView);
   text +=
       "\n"
-      "exit status: 0 success, 1 the output could not be written, 2 bad scene or bad arguments (nothing written)\n";
+      "exit status: 0 success, 1 the output could not be written, 2 bad scene or bad arguments (nothing written), 3 "
+      "out of memory\n";
   return text;
 }
 

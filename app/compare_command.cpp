@@ -5,16 +5,22 @@
 
 #include "rayview/image.h"
 #include "rayview/image_metrics.h"
+#include "rayview/input_files.h"
 
 namespace rayview {
 
 int runCompareCommand(const CommandLine& command) {
   Image image, reference;
   try {
-    image = readImageFile(command.scenePaths[0]);
-    reference = readImageFile(command.scenePaths[1]);
+    image = readImageFile(command.scenePaths[0], "the image compared");
+    reference = readImageFile(command.scenePaths[1], "the reference image");
   } catch (const ImageIoError& error) {
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitBadInput;
+  }
+  // Refused before any figure is printed: the difference map never replaces an image it was made from.
+  if (const std::string problem = outputReplacesInput(command.diffPath); !command.diffPath.empty() && !problem.empty()) {
+    std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
   }
   if (image.width != reference.width || image.height != reference.height) {
@@ -34,8 +40,11 @@ int runCompareCommand(const CommandLine& command) {
       return kExitBadInput;
     }
   }
+  // Decided on the exact counts; the message gives them, and a truncated percentage that never reads as the
+  // requirement met ("100.000 %" only when every pixel is within 1).
   if (within1 < command.minWithin1) {
-    std::fprintf(stderr, "rayview: %.3f%% of the pixels are within 1 of the reference, %.3f%% required\n", within1,
+    std::fprintf(stderr, "rayview: %s%% of the pixels (%zu of %zu) are within 1 of the reference, %g%% required\n",
+                 formatPercent(error.within1Pixels, error.pixels).c_str(), error.within1Pixels, error.pixels,
                  command.minWithin1);
     return 1;
   }

@@ -1,6 +1,7 @@
 // `rayview` and `libexec/rayview-viewer`: the viewer by default, `rayview render` headless, `rayview bench`,
 // `rayview compare`. `rayview` has no viewer: it becomes `libexec/rayview-viewer` for the viewer command.
 #include <cstdio>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -8,6 +9,7 @@
 #include "command_line.h"
 #include "compare_command.h"
 #include "process_start.h"
+#include "rayview/image.h"
 #include "render_command.h"
 
 #ifdef RAYVIEW_HAVE_VIEWER
@@ -40,9 +42,13 @@ int runViewCommand(const rayview::CommandLine& command, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
+// A function-try-block: any command's allocation failure (an image, a BVH, a render's buffers, a worker's: the
+// pool hands it back) ends in a message and a clean exit, never an abort; writes are whole or absent.
+int main(int argc, char** argv) try {
   using namespace rayview;
   captureProcessStart();
+  // Before any command writes a file: a signal that ends the process removes the file's temporary copy first.
+  removeTemporaryFileOnSignals();
   CommandLine command;
   try {
     command = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
@@ -67,4 +73,7 @@ int main(int argc, char** argv) {
       return runViewCommand(command, argv);
   }
   return kExitOk;
+} catch (const std::bad_alloc&) {
+  std::fprintf(stderr, "rayview: error: out of memory: this needs more memory than the system gives it\n");
+  return rayview::kExitOutOfMemory;
 }

@@ -1,8 +1,5 @@
 #include "render_command.h"
 
-#include <signal.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -27,21 +24,6 @@ using Clock = std::chrono::steady_clock;
 
 double msSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-// SIGINT / SIGTERM during a render: remove the image's temporary file if it is being written, exit
-// 130 / 143 as a shell would report the signal. The existing output is never touched before the rename.
-extern "C" void onInterrupt(int signal) {
-  if (const char* temporary = temporaryFileInProgress()) ::unlink(temporary);
-  ::_exit(128 + signal);
-}
-
-void removeTemporaryOnInterrupt() {
-  struct sigaction action {};
-  action.sa_handler = onInterrupt;
-  sigemptyset(&action.sa_mask);
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
 }
 
 // One `rayview render`, as the stages it runs in order; a stage that ends the command returns its exit status.
@@ -100,7 +82,6 @@ std::optional<int> RenderRun::load() {
   summary_.peaks.load = peakNow();
   if (const std::string problem = outputOverwritesInput(output_, command_.scenePath, &loaded_.scene); !problem.empty())
     return fail(kExitBadInput, "rayview: error: " + problem);
-  removeTemporaryOnInterrupt();
   if (!command_.quiet)
     for (const Diagnostic& warning : loaded_.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
   // The knobs given on the command line, written once into their homes: the settings and the scene's parameters.

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstring>
 
+#include "rayview/input_files.h"
+
 namespace rayview::detail {
 
 namespace {
@@ -34,14 +36,16 @@ std::string describeSize(std::uintmax_t bytes) {
   return buffer;
 }
 
-UserFile::UserFile(const std::filesystem::path& path, std::uintmax_t maxBytes) : problem_(open(path, maxBytes)) {}
+UserFile::UserFile(const std::filesystem::path& path, std::uintmax_t maxBytes, std::string_view role)
+    : problem_(open(path, maxBytes, role)) {}
 
-std::string UserFile::open(const std::filesystem::path& path, std::uintmax_t maxBytes) {
+std::string UserFile::open(const std::filesystem::path& path, std::uintmax_t maxBytes, std::string_view role) {
   struct stat named {};
   if (::stat(path.c_str(), &named) != 0) {
     notFound_ = errno == ENOENT || errno == ENOTDIR;
     return std::string("cannot be opened: ") + std::strerror(errno);
   }
+  rememberInput(path, role);
   if (std::string problem = notAFile(named); !problem.empty()) return problem;
   if (static_cast<std::uintmax_t>(named.st_size) > maxBytes)
     return "is too large (" + describeSize(static_cast<std::uintmax_t>(named.st_size)) + "; the limit is " +
@@ -82,14 +86,14 @@ long UserFile::read(std::uintmax_t offset, char* into, std::size_t count) const 
 }
 
 UserFileRead readUserFile(const std::filesystem::path& path, std::uintmax_t maxBytes,
-                          const std::function<std::string(std::string_view start)>& checkStart) {
+                          const std::function<std::string(std::string_view start)>& checkStart, std::string_view role) {
   UserFileRead out;
   auto fail = [&](std::string problem) {
     out.bytes.clear();
     out.problem = std::move(problem);
     return std::move(out);
   };
-  const UserFile file(path, maxBytes);
+  const UserFile file(path, maxBytes, role);
   if (!file.problem().empty()) {
     out.notFound = file.notFound();
     return fail(file.problem());

@@ -21,7 +21,7 @@ bool renderFrame(const Tracer& tracer, int width, int height, ThreadPool& pool, 
         tracer.tracePixels(pixels, count, out, counts);
       },
       1, 0, pool, image, stats.rays,
-      [stop] { return stop && stop->load(std::memory_order_relaxed); });
+      [stop] { return stop && stop->load(std::memory_order_relaxed); }, tracer.quantization());
   stats.renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return complete;
 }
@@ -46,7 +46,7 @@ void renderFrameDeflated(const Tracer& tracer, int width, int height, ThreadPool
           for (int n = 0; n < count; ++n) inImage[n] = {pixels[n].x, pixels[n].y + top};
           tracer.tracePixels(inImage, count, out, counts);
         },
-        1, 0, pool, band, stats.rays, nullptr);
+        1, 0, pool, band, stats.rays, nullptr, tracer.quantization());
     const std::size_t chunks = static_cast<std::size_t>((rows + kChunkRows - 1) / kChunkRows);
     std::vector<std::string> deflated(chunks);
     std::atomic<bool> failed{false};

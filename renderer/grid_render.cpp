@@ -15,7 +15,7 @@ int ceilDiv(int a, int b) { return (a + b - 1) / b; }
 }  // namespace
 
 bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, ThreadPool& pool, Image& image,
-                RayCounts& rays, const std::function<bool()>& stopped) {
+                RayCounts& rays, const std::function<bool()>& stopped, Quantization quantization) {
   constexpr int kBlock = 4;  // kBlock x kBlock = kPixelBatch
   static_assert(kBlock * kBlock == kPixelBatch);
   const std::vector<Tile> tiles = makeTiles(ceilDiv(image.width, stride), ceilDiv(image.height, stride), pool.size());
@@ -36,9 +36,9 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
       pixels(batch, count, colors, counts);
       for (int n = 0; n < count; ++n) {
         std::uint8_t* out = image.pixel(batch[n].x, batch[n].y);
-        out[0] = quantizeChannel(colors[n].x);
-        out[1] = quantizeChannel(colors[n].y);
-        out[2] = quantizeChannel(colors[n].z);
+        out[0] = quantizeChannel(colors[n].x, quantization);
+        out[1] = quantizeChannel(colors[n].y, quantization);
+        out[2] = quantizeChannel(colors[n].z, quantization);
       }
       count = 0;
     };

@@ -193,13 +193,8 @@ std::string encodePpm(const Image& image) {
   return bytes;
 }
 
-// One write at a time registers its temporary file here (the command line writes one image).
-char g_temporaryPath[4096];
-std::atomic<bool> g_temporaryActive{false};
-
 }  // namespace
 
-const char* temporaryFileInProgress() { return g_temporaryActive.load() ? g_temporaryPath : nullptr; }
 
 std::string encodePng(const Image& image, const PngOptions& options) {
   std::string bytes;
@@ -214,40 +209,6 @@ std::string encodePng(const Image& image, const PngOptions& options) {
 bool isSupportedImageExtension(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
   return ext == ".png" || ext == ".ppm";
-}
-
-void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes) {
-  std::filesystem::path temporary = path;
-  temporary += ".tmp-" + std::to_string(std::random_device{}());
-  // Registered before the file exists, cleared after it is renamed or removed.
-  const bool registered = temporary.native().size() < sizeof g_temporaryPath && !g_temporaryActive.load();
-  if (registered) {
-    std::memcpy(g_temporaryPath, temporary.c_str(), temporary.native().size() + 1);
-    g_temporaryActive.store(true);
-  }
-  struct Unregister {
-    bool registered;
-    ~Unregister() {
-      if (registered) g_temporaryActive.store(false);
-    }
-  } unregister{registered};
-  {
-    std::FILE* file = std::fopen(temporary.c_str(), "wb");
-    if (!file) throw ImageIoError("cannot write " + path.string() + ": " + std::strerror(errno));
-    const bool written = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-    const bool closed = std::fclose(file) == 0;
-    if (!written || !closed) {
-      const int error = errno;
-      std::remove(temporary.c_str());
-      throw ImageIoError("cannot write " + path.string() + ": " + std::strerror(error));
-    }
-  }
-  std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
-  if (ec) {
-    std::remove(temporary.c_str());
-    throw ImageIoError("cannot write " + path.string() + ": " + ec.message());
-  }
 }
 
 void writeImageFile(const std::filesystem::path& path, const Image& image) {
@@ -268,10 +229,10 @@ void writeImageFile(const std::filesystem::path& path, Image&& image) {
   writeFileAtomically(path, bytes);
 }
 
-Image readImageFile(const std::filesystem::path& path) {
+Image readImageFile(const std::filesystem::path& path, std::string_view role) {
   // As textures are read: never blocking on a FIFO, sizes checked first, the same decoders.
   std::string reason;
-  std::optional<Texture> texture = detail::readTextureImage(path, reason);
+  std::optional<Texture> texture = detail::readTextureImage(path, reason, role);
   if (!texture) throw ImageIoError("cannot read " + path.string() + ": " + reason);
   Image image(texture->width, texture->height);
   image.rgb = std::move(texture->rgb);

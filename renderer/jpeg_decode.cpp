@@ -8,6 +8,8 @@
 
 #include <jpeglib.h>
 
+#include "rayview/image_limits.h"
+
 namespace rayview::detail {
 namespace {
 
@@ -23,7 +25,11 @@ struct ErrorManager {
   std::longjmp(errors->jump, 1);
 }
 
-void onMessage(j_common_ptr, int) {}  // warnings (corrupt data the decoder recovers from) stay quiet
+// A warning (level -1) is corrupt or missing data the decoder would paper over (a truncated file reads as grey
+// rows): the file is refused, as an error is. Trace messages (levels 0 and up) stay quiet.
+void onMessage(j_common_ptr info, int level) {
+  if (level < 0) onError(info);
+}
 
 }  // namespace
 
@@ -51,16 +57,22 @@ bool decodeInto(std::string_view bytes, long long maxPixels, Texture& out, std::
   jpeg_create_decompress(&info);
   jpeg_mem_src(&info, reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<unsigned long>(bytes.size()));
   jpeg_read_header(&info, TRUE);
-  if (static_cast<long long>(info.image_width) * info.image_height > maxPixels) {
+  if (!imageSizeProblem(info.image_width, info.image_height).empty() ||
+      static_cast<long long>(info.image_width) * info.image_height > maxPixels) {
     jpeg_destroy_decompress(&info);
-    reason = "image too large (" + std::to_string(info.image_width) + " x " + std::to_string(info.image_height) + ")";
+    reason = imageSizeProblem(info.image_width, info.image_height);
     return false;
   }
   info.out_color_space = JCS_RGB;
   jpeg_start_decompress(&info);
   out.width = static_cast<int>(info.output_width);
   out.height = static_cast<int>(info.output_height);
-  out.rgb.resize(static_cast<std::size_t>(out.width) * out.height * 3);
+  try {
+    out.rgb.resize(static_cast<std::size_t>(out.width) * out.height * 3);
+  } catch (...) {  // the pixels' allocation (std::bad_alloc): libjpeg's memory is released, the caller told
+    jpeg_destroy_decompress(&info);
+    throw;
+  }
   while (info.output_scanline < info.output_height) {
     unsigned char* row = out.rgb.data() + static_cast<std::size_t>(info.output_scanline) * out.width * 3;
     jpeg_read_scanlines(&info, &row, 1);

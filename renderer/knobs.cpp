@@ -10,6 +10,7 @@ namespace {
 constexpr KnobChoice kTriangularLightModels[] = {{"area", "area"}, {"directional", "directional"}};
 constexpr KnobChoice kAccelKinds[] = {{"embree", "Embree"}, {"reference", "reference BVH"}, {"packet", "packet BVH"}};
 static_assert(kPacketBvhTriangles == 5000, "the accel row's help below names prepareGeometry's limit");
+constexpr KnobChoice kQuantizations[] = {{"round", "round to nearest"}, {"truncate", "truncate"}};
 constexpr KnobChoice kRayStarts[] = {{"offset", "offset off the surface"},
                                      {"exclude-hit", "at the hit, skip its triangle"}};
 
@@ -83,6 +84,15 @@ const Knob kKnobs[] = {
      .tradeoff = {.kind = TradeoffSweep::Doublings, .max = 16},
      .get = [](const SceneParameters&, const RenderSettings& s) { return s.pixelSamples; },
      .set = [](SceneParameters&, RenderSettings& s, int v) { s.pixelSamples = v; },
+     .matters = always},
+    {.name = "quantize",
+     .label = "Quantisation",
+     .help = "radiance to 8 bits: round to nearest, or truncate, as the 2017-2020 course reference "
+             "images did",
+     .home = KnobHome::Settings,
+     .choices = kQuantizations,
+     .get = [](const SceneParameters&, const RenderSettings& s) { return static_cast<int>(s.quantization); },
+     .set = [](SceneParameters&, RenderSettings& s, int v) { s.quantization = static_cast<Quantization>(v); },
      .matters = always},
 };
 

@@ -1,10 +1,16 @@
-// PNG decoding with libpng's simplified API (Debian's libpng-dev): fuzzing found Debian 12's stb_image
-// passing null pointers to memcpy on malformed PNGs (undefined behaviour; tests/fuzz_regressions/texture/),
-// after its JPEG, PNM and GIF decoders had failed the same way. libpng is the PNG decoder the rest of the
-// system trusts and that is fuzzed continuously upstream.
+// PNG decoding with libpng (Debian's libpng-dev): fuzzing found Debian 12's stb_image passing null pointers to
+// memcpy on malformed PNGs (undefined behaviour; tests/fuzz_regressions/texture/), after its JPEG, PNM and GIF
+// decoders had failed the same way. libpng is the PNG decoder the rest of the system trusts and that is fuzzed
+// continuously upstream. Its full interface, not the simplified one: that one treats a 16-bit file without colour
+// chunks as linear light and gamma-encodes it, where rayview wants the values the file holds.
 #include "png_decode.h"
 
 #include <png.h>
+
+#include <csetjmp>
+#include <cstring>
+
+#include "rayview/image_limits.h"
 
 namespace rayview::detail {
 
@@ -29,40 +35,97 @@ bool chunkLengthsFit(std::string_view bytes) {
   return true;
 }
 
+struct Reading {
+  std::string_view bytes;
+  std::size_t at = 0;
+  std::jmp_buf jump;
+  char message[256] = {};
+};
+
+void readBytes(png_structp png, png_bytep into, png_size_t count) {
+  auto* reading = static_cast<Reading*>(png_get_io_ptr(png));
+  if (count > reading->bytes.size() - reading->at) png_error(png, "the file ends before the image does");
+  std::memcpy(into, reading->bytes.data() + reading->at, count);
+  reading->at += count;
+}
+
+[[noreturn]] void onError(png_structp png, png_const_charp message) {
+  auto* reading = static_cast<Reading*>(png_get_error_ptr(png));
+  std::strncpy(reading->message, message, sizeof reading->message - 1);
+  std::longjmp(reading->jump, 1);
+}
+
+void onWarning(png_structp, png_const_charp) {}  // ancillary-chunk problems: the samples are still exact
+
+// 8-bit RGB as stored: palettes and low bit depths expanded, 16-bit samples scaled (v * 255 / 65535, rounded),
+// grey made RGB, alpha and tRNS dropped (the colour, not composited), no gamma or colour-space conversion.
+void setTransforms(png_structp png, png_infop info) {
+  png_set_expand(png);
+  png_set_scale_16(png);
+  png_set_strip_alpha(png);
+  const int colour = png_get_color_type(png, info);
+  if (colour == PNG_COLOR_TYPE_GRAY || colour == PNG_COLOR_TYPE_GRAY_ALPHA) png_set_gray_to_rgb(png);
+  png_set_interlace_handling(png);
+  png_read_update_info(png, info);
+}
+
+// Between setjmp and a longjmp back to it, no automatic object with a destructor is alive and nothing local is
+// changed that is read after the jump: the pixels and rows belong to the caller.
+bool decodeInto(Reading& reading, png_structp png, png_infop info, Texture& out, std::vector<png_bytep>& rows,
+                std::string& reason) {
+  if (setjmp(reading.jump)) {
+    reason = std::string("cannot be decoded (") + reading.message + ")";
+    return false;
+  }
+  png_set_read_fn(png, &reading, readBytes);
+  png_read_info(png, info);
+  const png_uint_32 width = png_get_image_width(png, info), height = png_get_image_height(png, info);
+  if (std::string problem = imageSizeProblem(width, height); !problem.empty()) {
+    reason = problem;
+    return false;
+  }
+  setTransforms(png, info);
+  if (png_get_rowbytes(png, info) != static_cast<std::size_t>(width) * 3) png_error(png, "unexpected row layout");
+  out.width = static_cast<int>(width);
+  out.height = static_cast<int>(height);
+  out.rgb.resize(static_cast<std::size_t>(width) * height * 3);
+  rows.resize(height);
+  for (png_uint_32 y = 0; y < height; ++y) rows[y] = out.rgb.data() + static_cast<std::size_t>(y) * width * 3;
+  png_read_image(png, rows.data());
+  png_read_end(png, nullptr);
+  return true;
+}
+
 }  // namespace
 
 std::optional<Texture> decodePng(std::string_view bytes, long long maxPixels, std::string& reason) {
+  static_cast<void>(maxPixels);  // the one image limit (rayview/image_limits.h) applies
   if (!chunkLengthsFit(bytes)) {
     reason = "cannot be decoded (a chunk is longer than the file)";
     return std::nullopt;
   }
-  png_image image{};
-  image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_memory(&image, bytes.data(), bytes.size())) {
-    reason = std::string("cannot be decoded (") + image.message + ")";
-    png_image_free(&image);
+  Reading reading;
+  reading.bytes = bytes;
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &reading, onError, onWarning);
+  if (!png) {
+    reason = "cannot be decoded (libpng could not start)";
     return std::nullopt;
   }
-  if (image.width == 0 || image.height == 0 || static_cast<long long>(image.width) * image.height > maxPixels) {
-    reason = "image too large (" + std::to_string(image.width) + " x " + std::to_string(image.height) + ")";
-    png_image_free(&image);
-    return std::nullopt;
-  }
-  // RGBA, 8 bits: the colour as stored (no compositing over a background), the alpha dropped below.
-  image.format = PNG_FORMAT_RGBA;
-  std::vector<unsigned char> rgba(PNG_IMAGE_SIZE(image));
-  if (!png_image_finish_read(&image, nullptr, rgba.data(), 0, nullptr)) {
-    reason = std::string("cannot be decoded (") + image.message + ")";
-    png_image_free(&image);
-    return std::nullopt;
-  }
+  png_infop info = png_create_info_struct(png);
+  // libpng refuses a larger side itself, before its own row buffers are allocated.
+  png_set_user_limits(png, static_cast<png_uint_32>(kMaxImageSide), static_cast<png_uint_32>(kMaxImageSide));
   Texture texture;
-  texture.width = static_cast<int>(image.width);
-  texture.height = static_cast<int>(image.height);
-  const std::size_t pixels = static_cast<std::size_t>(image.width) * image.height;
-  texture.rgb.resize(pixels * 3);
-  for (std::size_t p = 0; p < pixels; ++p)
-    for (int c = 0; c < 3; ++c) texture.rgb[p * 3 + c] = rgba[p * 4 + c];
+  std::vector<png_bytep> rows;
+  bool ok = false;
+  try {
+    ok = info && decodeInto(reading, png, info, texture, rows, reason);
+  } catch (...) {  // the pixels' allocation (std::bad_alloc): libpng's memory is released, the caller told
+    png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+    throw;
+  }
+  if (!info) reason = "cannot be decoded (libpng could not start)";
+  png_destroy_read_struct(&png, info ? &info : nullptr, nullptr);
+  if (!ok) return std::nullopt;
   return texture;
 }
 

@@ -5,6 +5,8 @@
 #include <cctype>
 #include <cstdint>
 
+#include "rayview/image_limits.h"
+
 namespace rayview::detail {
 namespace {
 
@@ -65,8 +67,8 @@ std::optional<Texture> decodePnm(std::string_view bytes, long long maxPixels, st
     reason = "cannot be decoded (a PNM header needs a width, a height and a maximum value from 1 to 65535)";
     return std::nullopt;
   }
-  if (*width * *height > maxPixels) {
-    reason = "image too large (" + std::to_string(*width) + " x " + std::to_string(*height) + ")";
+  if (std::string problem = imageSizeProblem(*width, *height); !problem.empty() || *width * *height > maxPixels) {
+    reason = imageSizeProblem(*width, *height);
     return std::nullopt;
   }
   const int bytesPerSample = *maxValue > 255 ? 2 : 1;
@@ -81,11 +83,19 @@ std::optional<Texture> decodePnm(std::string_view bytes, long long maxPixels, st
   texture.width = static_cast<int>(*width);
   texture.height = static_cast<int>(*height);
   texture.rgb.resize(pixels * 3);
+  // Each sample scaled from 0..maxval to 0..255, rounded: a maxval-1 white is 255, a 16-bit sample (big-endian, as
+  // the format stores it) is v * 255 / maxval. A sample over maxval is not a value the file can hold.
+  const unsigned maxval = static_cast<unsigned>(*maxValue);
   for (std::size_t p = 0; p < pixels; ++p)
     for (int c = 0; c < 3; ++c) {
       const std::size_t sample = (p * channels + (channels == 3 ? c : 0)) * bytesPerSample;
-      // Samples as stored (the most significant byte of 16-bit ones), as stb_image read them.
-      texture.rgb[p * 3 + c] = in[sample];
+      const unsigned value = bytesPerSample == 2 ? (unsigned{in[sample]} << 8) | in[sample + 1] : in[sample];
+      if (value > maxval) {
+        reason = "cannot be decoded (a sample is " + std::to_string(value) + ", over the maximum value " +
+                 std::to_string(maxval) + ")";
+        return std::nullopt;
+      }
+      texture.rgb[p * 3 + c] = static_cast<std::uint8_t>((value * 255u + maxval / 2) / maxval);
     }
   return texture;
 }

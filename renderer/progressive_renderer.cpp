@@ -1,5 +1,8 @@
 #include "rayview/progressive_renderer.h"
 
+#include <cstdio>
+#include <new>
+
 #include <algorithm>
 
 #include "rayview/grid_render.h"
@@ -89,6 +92,7 @@ void ProgressiveRenderer::controllerLoop() {
       busy_ = true;
     }
     const bool final = [&] {
+     try {
       if (!source || source->width() <= 0 || source->height() <= 0) return false;
       const int width = source->width(), height = source->height();
       if (samples_.width != width || samples_.height != height) samples_ = Image(width, height);
@@ -129,6 +133,14 @@ void ProgressiveRenderer::controllerLoop() {
         if (!holdWhileDragging()) return false;
       }
       return false;
+     } catch (const std::bad_alloc&) {
+      // Out of memory on this thread or a worker (the pool hands it back): this render stops, never the process;
+      // the next edit tries again.
+      std::fprintf(stderr, "rayview: out of memory: the render stopped\n");
+      samples_ = Image();
+      std::vector<Color>().swap(sums_);
+      return false;
+     }
     }();
     {
       std::lock_guard lock(mutex_);
@@ -151,11 +163,11 @@ bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t ge
           for (int n = 0; n < count; ++n)
             sums_[static_cast<std::size_t>(pixels[n].y) * samples_.width + pixels[n].x] = out[n];
         },
-        stride, previousStride, pool_, samples_, rays, stopped);
+        stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
   } else {
     renderGrid([&](const PixelXY* pixels, int count, Color* out,
                    RayCounts& counts) { source.pixels(pixels, count, out, counts); },
-               stride, previousStride, pool_, samples_, rays, stopped);
+               stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
   }
   return generation_.load() == generation;
 }
@@ -171,7 +183,8 @@ bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_
           out[m] = sum / count;  // after the last sample, the expression Tracer::tracePixel ends with
         }
       },
-      1, 0, pool_, samples_, rays, [&] { return generation_.load(std::memory_order_relaxed) != generation; });
+      1, 0, pool_, samples_, rays, [&] { return generation_.load(std::memory_order_relaxed) != generation; },
+      source.quantization());
   return generation_.load() == generation;
 }
 

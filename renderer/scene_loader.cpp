@@ -3,7 +3,9 @@
 // This file: the entry points. The loader's three jobs live in scene_loader_elements.cpp (element
 // readers), scene_loader_walk.cpp (the walk) and scene_loader_checks.cpp (checks after the walk).
 
+#include <fcntl.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <cstring>
@@ -31,12 +33,20 @@ namespace {
 // Parses the file at `path` with tinyxml2 reading it into its own buffer, when it is still `expectedSize` bytes;
 // false (the document untouched) when it cannot be opened or its size changed since it was read.
 bool parseFileDirectly(tinyxml2::XMLDocument& doc, const fs::path& path, std::size_t expectedSize, std::string& text) {
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) return false;
+  // Opened as the one reader of user files opens (file_read.h): never blocking, should the path have become a FIFO
+  // since it was read.
+  const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) return false;
   struct stat status {};
-  if (::fstat(::fileno(file.get()), &status) != 0 || !S_ISREG(status.st_mode) ||
-      static_cast<std::size_t>(status.st_size) != expectedSize)
+  if (::fstat(fd, &status) != 0 || !S_ISREG(status.st_mode) || static_cast<std::size_t>(status.st_size) != expectedSize) {
+    ::close(fd);
     return false;
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(::fdopen(fd, "rb"), &std::fclose);
+  if (!file) {
+    ::close(fd);
+    return false;
+  }
   std::string().swap(text);  // the copy already read: tinyxml2 makes its own
   doc.LoadFile(file.get());
   return true;
@@ -55,7 +65,7 @@ LoadedScene Loader::load(std::string_view text, std::string* owned, const fs::pa
                       parseFileDirectly(doc, *source, text.size(), *owned);
   if (direct && doc.Error()) {
     // Messages quote the text: read it again (errors are rare; their memory does not matter).
-    detail::UserFileRead again = detail::readUserFile(*source, kMaxFileBytes);
+    detail::UserFileRead again = detail::readUserFile(*source, kMaxFileBytes, {}, kSceneFileRole);
     if (!again.problem.empty()) fail(0, "the scene file " + again.problem);
     *owned = std::move(again.bytes);
     text = *owned;
@@ -104,6 +114,7 @@ LoadedScene Loader::walk(const tinyxml2::XMLDocument& doc) {
 namespace fs = std::filesystem;
 using scene_loading::Loader;
 using scene_loading::kMaxFileBytes;
+using scene_loading::kSceneFileRole;
 
 namespace {
 
@@ -157,7 +168,7 @@ LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   if (directory.empty()) directory = ".";
   {
     // Opened with readUserFile's checks; any problem is reported by the ordinary reading below.
-    const detail::UserFile file(path, kMaxFileBytes);
+    const detail::UserFile file(path, kMaxFileBytes, kSceneFileRole);
     if (file.problem().empty()) {
       const auto read = [&file](std::uint64_t offset, char* into, std::size_t count) {
         return file.read(offset, into, count);
@@ -172,7 +183,7 @@ LoadedScene loadSceneFile(const fs::path& path, const LoadOptions& options) {
   detail::UserFileRead file = detail::readUserFile(path, kMaxFileBytes, [&](std::string_view start) {
     scene_loading::refuseWhatIsNotText(display, start);
     return std::string();
-  });
+  }, kSceneFileRole);
   if (file.notFound || file.problem.rfind("cannot be opened", 0) == 0)
     throwSceneError({display, 0}, "cannot open the scene file: " + file.problem.substr(file.problem.find(": ") + 2));
   if (!file.problem.empty()) throwSceneError({display, 0}, "the scene file " + file.problem);

@@ -128,7 +128,7 @@ void Loader::readCeng477Camera(const XMLElement* e) {
     have |= cameraBit(tag);
     return true;
   });
-  checkCamera(line, have);
+  checkCamera(e, line, have);
 }
 
 void Loader::readCeng477Lights(const XMLElement* lights) {

@@ -191,7 +191,7 @@ void Loader::loadTexture() {
   std::string lastReason;
   for (const fs::path& candidate : detail::textureCandidates(baseDirectory_, scene.textureImage)) {
     std::string reason;
-    if (auto texture = detail::readTextureImage(candidate, reason)) {
+    if (auto texture = detail::readTextureImage(candidate, reason, kTextureRole)) {
       scene.texture = std::move(*texture);
       return;
     }

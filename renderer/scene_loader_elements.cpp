@@ -1,6 +1,9 @@
 // The scene loader's tolerant element readers: located messages, element names (case, aliases),
 // the numbers and text inside an element. The walk (scene_loader_walk.cpp) calls these for every element.
 
+#include <cctype>
+#include <cstdio>
+
 #include "scene_loader_internal.h"
 
 namespace rayview::scene_loading {
@@ -130,6 +133,56 @@ Tag Loader::identify(const XMLElement* e) {
   return isLightElement(canonical) ? Tag::Light : Tag::Unknown;
 }
 
+namespace {
+
+// Edits from `a` to `b` (insert, delete, replace, or swap two neighbours), at most `limit` + 1 reported.
+std::size_t editDistance(std::string_view a, std::string_view b, std::size_t limit) {
+  if ((a.size() > b.size() ? a.size() - b.size() : b.size() - a.size()) > limit) return limit + 1;
+  std::vector<std::vector<std::size_t>> d(a.size() + 1, std::vector<std::size_t>(b.size() + 1));
+  for (std::size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (std::size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i)
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+
+// A name this close to a known one is taken for a misspelling of it: two edits, and never most of a short name.
+bool isLikelyMisspelling(std::string_view written, std::string_view known) {
+  const std::size_t limit = known.size() <= 4 ? 1 : 2;
+  return editDistance(written, known, limit) <= limit;
+}
+
+}  // namespace
+
+std::string Loader::nearestKnownName(std::string_view canonical) {
+  std::string best;
+  std::size_t bestDistance = 3;
+  const auto consider = [&](std::string_view known) {
+    if (!isLikelyMisspelling(canonical, known)) return;
+    const std::size_t distance = editDistance(canonical, known, 2);
+    if (distance < bestDistance) bestDistance = distance, best = std::string(known);
+  };
+  for (const TagName& t : kTagNames) consider(t.name);
+  SceneLights().forEachType([&](const auto& list) {
+    consider(LightOf<decltype(list)>::kType.element);
+    for (const auto& field : LightOf<decltype(list)>::fields()) consider(field.element);
+  });
+  return best;
+}
+
+void Loader::failMissing(const XMLElement* parent, int line, std::string_view missing, const std::string& message) {
+  for (const XMLElement* child = parent->FirstChildElement(); child; child = child->NextSiblingElement()) {
+    const std::string canonical = canonicalName(child);
+    if (!isKnownName(canonical) && isLikelyMisspelling(canonical, missing))
+      fail(child->GetLineNum(), "unknown element " + elementName(child) + " (did you mean <" + std::string(missing) +
+                                    ">?): " + message);
+  }
+  fail(line, message);
+}
+
 void Loader::unknownElement(const XMLElement* e, const std::string& where) {
   const bool known = isKnownName(canonicalName(e));
   std::string message;
@@ -137,6 +190,8 @@ void Loader::unknownElement(const XMLElement* e, const std::string& where) {
     message = "element " + elementName(e) + " is not expected " + where + "; ignored";
   else
     message = "unknown element " + elementName(e) + " ignored";
+  if (const std::string nearest = known ? std::string() : nearestKnownName(canonicalName(e)); !nearest.empty())
+    message += " (did you mean <" + nearest + ">?)";
   if (where == "inside <objects>" && !known) message += " (only <mesh> objects are part of the format)";
   nonconforming(e->GetLineNum(), message);
 }
@@ -185,7 +240,7 @@ void Loader::readNumbers(const XMLElement* e, bool asFloat, const std::function<
     bool glued = false;
     while (scanner.nextNumber(value, status, token, glued)) {
       if (status == NumberStatus::NotANumber)
-        fail(lineIn(piece, token.data()), elementName(e) + ": expected a number, found " + quoted(token));
+        fail(lineIn(piece, token.data()), elementName(e) + ": expected a number, found " + quotedNumber(token));
       if (status == NumberStatus::NotFinite || (asFloat && std::fabs(value) > FLT_MAX))
         fail(lineIn(piece, token.data()), elementName(e) + ": " + quoted(token) + " is not a finite number" +
                                               (status == NumberStatus::Ok ? " in single precision" : ""));
@@ -242,7 +297,7 @@ void Loader::readIntegers(const XMLElement* e, std::size_t count, std::int64_t* 
     std::string_view token;
     while (scanner.nextInteger(value, status, token)) {
       if (status != NumberStatus::Ok || value < minimum)
-        fail(lineIn(piece, token.data()), elementName(e) + ": expected " + what + ", found " + quoted(token));
+        fail(lineIn(piece, token.data()), elementName(e) + ": expected " + what + ", found " + quotedNumber(token));
       if (found < count) values[found] = value;
       ++found;
     }
@@ -284,6 +339,27 @@ std::string Loader::describe(const XMLElement* e) {
   std::string s = elementName(e);
   s.pop_back();
   return s + " id=\"" + attribute(e, "id") + "\">";
+}
+
+std::string quotedNumber(std::string_view token, std::string_view allowed) {
+  constexpr int kMaxNamed = 3;
+  std::string names;
+  int named = 0;
+  for (std::size_t i = 0; i < token.size() && i < 32; ++i) {
+    const auto c = static_cast<unsigned char>(token[i]);
+    if (allowed.find(static_cast<char>(c)) != std::string_view::npos) continue;
+    if (named == kMaxNamed) {
+      names += ", ...";
+      break;
+    }
+    char name[48];
+    if (std::isalpha(c)) std::snprintf(name, sizeof name, "letter %c", c);
+    else if (c >= 0x80) std::snprintf(name, sizeof name, "non-ASCII byte 0x%02X", c);
+    else if (std::isprint(c)) std::snprintf(name, sizeof name, "'%c'", c);
+    else std::snprintf(name, sizeof name, "control character 0x%02X", c);
+    names += (named++ == 0 ? "" : ", ") + std::string(name) + " at column " + std::to_string(i + 1);
+  }
+  return names.empty() ? quoted(token) : quoted(token) + " (" + names + ")";
 }
 
 }  // namespace rayview::scene_loading

@@ -39,9 +39,10 @@ using tinyxml2::XMLNode;
 
 // --- limits (SPEC section 2: refuse up front what cannot fit) ---
 constexpr std::int64_t kMaxRayDepthLimit = kMaxRayDepth;  // the depth's one limit (scene.h)
-// 16384 x 16384: with a 16-byte-per-pixel accumulation buffer this is a 4 GiB framebuffer.
-constexpr std::int64_t kMaxImagePixels = 1LL << 28;
 constexpr std::uintmax_t kMaxFileBytes = (1ULL << 31) - 1;  // tinyxml2 and line numbers use int
+// What the files a scene reads are recorded as (rayview/input_files.h), for the messages refusing an output.
+inline constexpr std::string_view kSceneFileRole = "the scene file";
+inline constexpr std::string_view kTextureRole = "the scene's texture image";
 
 // --- element names ---
 enum class Tag {
@@ -92,6 +93,11 @@ inline std::string quoted(std::string_view token) {
   if (token.size() > kMax) out += "...";
   return out + "'";
 }
+
+// A token that should have been a number, quoted, and each character in it that cannot be part of one named
+// with its column, since O and 0 or l and 1 look alike in many fonts: "'1OO' (letter O at column 2, letter O at
+// column 3)". `allowed`: the characters a number of that kind may hold.
+std::string quotedNumber(std::string_view token, std::string_view allowed = "0123456789.+-eE");
 
 inline std::string plural(std::size_t n, const char* one, const char* many) {
   return std::to_string(n) + " " + (n == 1 ? one : many);
@@ -256,6 +262,12 @@ class Loader {
 
   // A name the format knows anywhere: a tag, a light type's element or one of its fields.
   static bool isKnownName(std::string_view canonical);
+  // The known element name nearest `canonical` when it is a likely misspelling of one (at most 2 edits, letters
+  // swapped counting as one), else "".
+  static std::string nearestKnownName(std::string_view canonical);
+  // Fails because `parent` lacks <missing>: at the line of a child that misspells it, with "did you mean", when
+  // there is one; else at `line` with `message`.
+  [[noreturn]] void failMissing(const XMLElement* parent, int line, std::string_view missing, const std::string& message);
 
   void unknownElement(const XMLElement* e, const std::string& where);
 
@@ -366,7 +378,7 @@ class Loader {
   // One of <camera>'s values by its tag (false for another tag), and the checks once all are read.
   bool readCameraField(const XMLElement* e, Tag tag);
   static unsigned cameraBit(Tag tag) { return 1u << (static_cast<unsigned>(tag) - static_cast<unsigned>(Tag::Position)); }
-  void checkCamera(int line, unsigned have);
+  void checkCamera(const tinyxml2::XMLElement* cameraElement, int line, unsigned have);
   void readMaxRayDepth(const XMLElement* e);
   void readShadowRayEpsilon(const XMLElement* e);
 

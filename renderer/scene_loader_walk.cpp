@@ -1,6 +1,7 @@
 // The scene loader's element walk: <scene> and its children into Scene, faces kept in file numbering
 // until the checks after the walk (scene_loader_checks.cpp) know the index base.
 
+#include "rayview/image_limits.h"
 #include "scene_loader_internal.h"
 
 namespace rayview::scene_loading {
@@ -61,7 +62,7 @@ void Loader::readCamera(const XMLElement* cameraElement) {
     have |= cameraBit(tag);
     return true;
   });
-  checkCamera(line, have);
+  checkCamera(cameraElement, line, have);
 }
 
 bool Loader::readCameraField(const XMLElement* e, Tag tag) {
@@ -80,10 +81,9 @@ bool Loader::readCameraField(const XMLElement* e, Tag tag) {
     case Tag::ImageResolution: {
       std::int64_t v[2];
       readIntegers(e, 2, v, INT64_MIN, "2 integers (nx ny)");
-      if (v[0] > 0 && v[1] > 0 && (v[0] > kMaxImagePixels || v[1] > kMaxImagePixels || v[0] * v[1] > kMaxImagePixels))
-        fail(e->GetLineNum(), elementName(e) + ": " + std::to_string(v[0]) + " x " + std::to_string(v[1]) +
-                                  " pixels is too large (the limit is " + std::to_string(kMaxImagePixels) +
-                                  " pixels, 16384 x 16384)");
+      // More than any buffer of that size can hold, at the element's own line (not positive: the camera's check).
+      if (const std::string problem = imageSizeProblem(v[0], v[1]); v[0] > 0 && v[1] > 0 && !problem.empty())
+        fail(e->GetLineNum(), elementName(e) + ": " + problem);
       camera.width = static_cast<int>(std::clamp<std::int64_t>(v[0], INT32_MIN, INT32_MAX));
       camera.height = static_cast<int>(std::clamp<std::int64_t>(v[1], INT32_MIN, INT32_MAX));
       break;
@@ -93,14 +93,15 @@ bool Loader::readCameraField(const XMLElement* e, Tag tag) {
   return true;
 }
 
-void Loader::checkCamera(int line, unsigned have) {
+void Loader::checkCamera(const XMLElement* cameraElement, int line, unsigned have) {
   const Camera& camera = result_.scene.camera;
   constexpr Tag kFields[] = {Tag::Position, Tag::Gaze, Tag::Up, Tag::NearPlane, Tag::NearDistance, Tag::ImageResolution};
   constexpr const char* kCeng477Names[] = {"Position", "Gaze", "Up", "NearPlane", "NearDistance", "ImageResolution"};
   for (std::size_t i = 0; i < std::size(kFields); ++i)
-    if (!(have & cameraBit(kFields[i])))
-      fail(line, ceng477_ ? "<Camera> has no <" + std::string(kCeng477Names[i]) + ">"
-                          : "<camera> has no <" + std::string(tagName(kFields[i])) + ">");
+    if (!(have & cameraBit(kFields[i]))) {
+      if (ceng477_) fail(line, "<Camera> has no <" + std::string(kCeng477Names[i]) + ">");
+      failMissing(cameraElement, line, tagName(kFields[i]), "<camera> has no <" + std::string(tagName(kFields[i])) + ">");
+    }
 
   // SPEC section 3: a camera that cannot make an image.
   if (glm::length(camera.gaze) == 0.0) fail(line, "camera: <gaze> is the zero vector");
@@ -167,7 +168,8 @@ void Loader::readLight(const XMLElement* e, std::vector<Light>& into) {
     else light.*fields[i].intensity = readColor(child);
   }
   for (std::size_t i = 0; i < fields.size(); ++i)
-    if (firstLine[i] == 0) fail(e->GetLineNum(), describe(e) + " has no <" + std::string(fields[i].element) + ">");
+    if (firstLine[i] == 0)
+      failMissing(e, e->GetLineNum(), fields[i].element, describe(e) + " has no <" + std::string(fields[i].element) + ">");
   into.push_back(std::move(light));
 }
 
@@ -204,9 +206,10 @@ void Loader::readMaterials(const XMLElement* materials) {
       }
       return true;
     });
-    const char* names[] = {"<ambient>", "<diffuse>", "<specular>", "<phongexponent>"};
+    const char* names[] = {"ambient", "diffuse", "specular", "phongexponent"};
     for (int i = 0; i < 4; ++i)
-      if (!(have & (1u << i))) fail(e->GetLineNum(), describe(e) + " has no " + names[i]);
+      if (!(have & (1u << i)))
+        failMissing(e, e->GetLineNum(), names[i], describe(e) + " has no <" + std::string(names[i]) + ">");
     if (!(have & 16))
       warn(e->GetLineNum(), describe(e) + " has no <mirrorreflectance>; using 0 0 0 (not a mirror)");
     materialIndex_.emplace(material.id, static_cast<std::uint32_t>(scene.materials.size()));
@@ -293,8 +296,8 @@ void Loader::readObjects(const XMLElement* objects) {
       }
       return true;
     });
-    if (!haveMaterial) fail(mesh.line, describe(e) + " has no <materialid>");
-    if (!mesh.faces) fail(mesh.line, describe(e) + " has no <faces>");
+    if (!haveMaterial) failMissing(e, mesh.line, "materialid", describe(e) + " has no <materialid>");
+    if (!mesh.faces) failMissing(e, mesh.line, "faces", describe(e) + " has no <faces>");
     readFaces(mesh);
     meshes_.push_back(std::move(mesh));
     return true;
@@ -350,7 +353,7 @@ void Loader::readFaces(PendingMesh& mesh) {
         if (token.find_first_not_of("+-0123456789/") == std::string_view::npos && token.find('-') != token.npos)
           fail(line, meshName(mesh) + ": " + elementName(e) + ": face indices must be positive, found " + quoted(token));
         fail(line, meshName(mesh) + ": " + elementName(e) + ": expected a vertex index (v, v/t, v//n or v/t/n), found " +
-                       quoted(token));
+                       quotedNumber(token, "0123456789/+-"));
       }
       ++indexCount;
       if (++cornerCount < 3) continue;

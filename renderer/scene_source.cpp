@@ -1,6 +1,7 @@
 #include "rayview/scene_source.h"
 
 #include "rayview/file_read.h"
+#include "rayview/input_files.h"
 #include "texture_image.h"
 
 
@@ -16,8 +17,11 @@ std::string outputOverwritesInput(const std::filesystem::path& output, const std
   if (!scenePath.empty() && detail::sameFile(output, scenePath))
     return "the output " + output.string() + " is the scene file " + scenePath + "; choose another name";
   if (!loaded) return {};
+  // Every file the load found, read or not (a texture that did not decode), and what the command read before it.
+  if (std::string problem = outputReplacesInput(output); !problem.empty()) return problem;
   const Scene& scene = *loaded;
-  if (!scene.textureImage.empty() && scene.texture) {
+  // A texture the load did not look for (LoadOptions::loadTexture off) is the scene's all the same.
+  if (!scene.textureImage.empty()) {
     const std::filesystem::path dir = scene.sourcePath.parent_path();
     for (const std::filesystem::path& candidate : detail::textureCandidates(dir.empty() ? "." : dir, scene.textureImage))
       if (detail::sameFile(output, candidate))

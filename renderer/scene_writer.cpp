@@ -1,9 +1,11 @@
 #include "rayview/scene_writer.h"
 
+#include <cctype>
 #include <charconv>
 #include <system_error>
 
 #include "rayview/image.h"
+#include "rayview/scene_source.h"
 #include "texture_image.h"
 
 namespace rayview {
@@ -267,6 +269,14 @@ std::string textureReferenceFor(const Scene& scene, const fs::path& outputPath) 
 }
 
 void writeSceneFile(const fs::path& outputPath, const SceneParameters& parameters, const Scene& loaded) {
+  // A scene is XML: a name that says image (or anything else) would make a file no viewer of that kind opens.
+  std::string extension = outputPath.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension != ".xml")
+    throw ImageIoError("cannot write " + outputPath.string() + ": a scene is saved as .xml, not " +
+                       (extension.empty() ? std::string("a name without an extension") : "'" + extension + "'"));
+  if (const std::string problem = outputOverwritesInput(outputPath, loaded.sourcePath.string(), &loaded); !problem.empty())
+    throw ImageIoError(problem);
   writeFileAtomically(outputPath, sceneToXml(parameters, loaded.geometry(), textureReferenceFor(loaded, outputPath)));
 }
 

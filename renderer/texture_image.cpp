@@ -14,9 +14,9 @@ namespace rayview::detail {
 
 namespace fs = std::filesystem;
 
-std::optional<Texture> readTextureImage(const fs::path& path, std::string& reason) {
+std::optional<Texture> readTextureImage(const fs::path& path, std::string& reason, std::string_view role) {
   // The size is checked before reading and the file is never opened for a blocking read (file_read.h).
-  UserFileRead file = readUserFile(path, kMaxTextureFileBytes);
+  UserFileRead file = readUserFile(path, kMaxTextureFileBytes, {}, role);
   if (file.notFound) {
     reason = "not found";
     return std::nullopt;

@@ -9,19 +9,22 @@
 #include <string_view>
 #include <vector>
 
+#include "rayview/file_read.h"
+#include "rayview/image_limits.h"
 #include "rayview/scene.h"
 
 namespace rayview::detail {
 
-// Largest texture accepted, in pixels (refused before decoding, from the header alone).
-inline constexpr long long kMaxTexturePixels = 1LL << 28;
+// Largest texture accepted, in pixels (refused before decoding, from the header alone): the one image limit.
+inline constexpr long long kMaxTexturePixels = kMaxImagePixels;
 // Largest texture file read, in bytes (refused from its size, before reading): 1 GiB holds the largest
 // accepted image even uncompressed (2^28 pixels x 3 bytes).
 inline constexpr std::uintmax_t kMaxTextureFileBytes = 1ULL << 30;
 
 // Reads (as every user file: file_read.h) and decodes an image file to 8-bit RGB. On failure returns nullopt
-// and sets `reason` (never throws).
-std::optional<Texture> readTextureImage(const std::filesystem::path& path, std::string& reason);
+// and sets `reason` (never throws). The file is recorded as `role` (rayview/input_files.h).
+std::optional<Texture> readTextureImage(const std::filesystem::path& path, std::string& reason,
+                                        std::string_view role = kInputRole);
 // Decodes an image file's bytes: PNG with libpng, JPEG with libjpeg-turbo, binary PPM/PGM (P6, P5) with
 // rayview's own reader. Other formats are refused.
 std::optional<Texture> decodeImage(std::string_view bytes, std::string& reason);

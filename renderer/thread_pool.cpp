@@ -1,6 +1,7 @@
 #include "rayview/thread_pool.h"
 
 #include <algorithm>
+#include <utility>
 
 namespace rayview {
 
@@ -31,6 +32,7 @@ void ThreadPool::parallelFor(std::size_t count, const std::function<void(std::si
   wake_.notify_all();
   done_.wait(lock, [&] { return finishedWorkers_ == workers_.size(); });
   task_ = nullptr;
+  if (failure_) std::rethrow_exception(std::exchange(failure_, nullptr));
 }
 
 void ThreadPool::workerLoop() {
@@ -43,8 +45,15 @@ void ThreadPool::workerLoop() {
     const auto* task = task_;
     const std::size_t count = count_;
     lock.unlock();
-    for (std::size_t index = next_.fetch_add(1); index < count; index = next_.fetch_add(1)) (*task)(index);
+    std::exception_ptr failure;
+    try {
+      for (std::size_t index = next_.fetch_add(1); index < count; index = next_.fetch_add(1)) (*task)(index);
+    } catch (...) {
+      failure = std::current_exception();
+      next_.store(count);  // no further index is handed out
+    }
     lock.lock();
+    if (failure && !failure_) failure_ = failure;
     if (++finishedWorkers_ == workers_.size()) done_.notify_one();
   }
 }

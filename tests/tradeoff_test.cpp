@@ -349,9 +349,9 @@ TEST(MeasureTradeoff, TheBaselineIsTheUsersSettingsAndTheReportSaysWhichInThePan
   EXPECT_GT(full.rays, pointOf(report, TradeoffKnob::PixelSamples, "1").rays);
   const std::string traversal = availableAccel(AccelKind::Embree) == AccelKind::Embree ? "Embree" : "packet BVH";
   EXPECT_EQ(report.baselineText, "Max ray depth 2, Tri-light model area, Light samples 4, Traversal " + traversal +
-                                     ", Ray start offset off the surface, Samples per pixel 2");
+                                     ", Ray start offset off the surface, Samples per pixel 2, Quantisation round to nearest");
   EXPECT_EQ(report.bestText, "Max ray depth 2, Tri-light model area, Light samples 8, Traversal reference BVH, Ray "
-                             "start offset off the surface, Samples per pixel 2");
+                             "start offset off the surface, Samples per pixel 2, Quantisation round to nearest");
 }
 
 TEST(MeasureTradeoff, LightSamplesConvergeToTheReference) {

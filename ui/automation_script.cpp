@@ -243,6 +243,10 @@ Script parseScript(const std::string& text, const std::string& file) {
       else p.fail("unknown command '" + c.name + "' (see docs/viewer.md)");
     }
     if (c.name == "sleep" && c.numbers[0] < 0) p.fail("sleep needs a time that is not negative");
+    // A time beyond the limit would overflow the clock's deadline: a false timeout, or no wait at all.
+    const bool timed = c.name == "sleep" || c.name == "wait-final" || c.name == "measure-tradeoff";
+    if (timed && !c.numbers.empty() && c.numbers.back() > kMaxScriptSeconds)
+      p.fail(c.name + ": a time of at most " + std::to_string(static_cast<long>(kMaxScriptSeconds)) + " seconds");
     if (c.name == "wait-final" && !c.numbers.empty() && c.numbers[0] <= 0) p.fail("wait-final needs a positive timeout");
     script.commands.push_back(std::move(c));
   }
@@ -251,7 +255,7 @@ Script parseScript(const std::string& text, const std::string& file) {
 
 Script readScriptFile(const std::filesystem::path& path) {
   // As every file a user names: a FIFO or a device is refused without blocking, the size is checked first.
-  const detail::UserFileRead read = detail::readUserFile(path, kMaxScriptBytes);
+  const detail::UserFileRead read = detail::readUserFile(path, kMaxScriptBytes, {}, "the script");
   if (!read.problem.empty()) throw ScriptError(path.string() + ": " + read.problem);
   return parseScript(read.bytes, path.string());
 }

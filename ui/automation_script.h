@@ -41,6 +41,8 @@ Script readScriptFile(const std::filesystem::path& path);
 inline constexpr double kDefaultWaitFinalSeconds = 120.0;
 inline constexpr double kDefaultLoadSeconds = 300.0;
 inline constexpr double kDefaultTradeoffSeconds = 600.0;
+// The longest time a script may give (about 11.6 days): far below where a deadline overflows the clock (~9e9 s).
+inline constexpr double kMaxScriptSeconds = 1e6;
 // measure-tradeoff without a scale measures at this share of the image's resolution (as the panel's default).
 inline constexpr double kDefaultTradeoffScale = 0.25;
 

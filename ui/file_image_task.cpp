@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <new>
+#include <string>
 
 #include "rayview/grid_render.h"
 
@@ -27,6 +29,20 @@ FileImageResult FileImageTask::run(std::uint64_t id, const std::shared_ptr<const
                                    const std::atomic<bool>& cancel) {
   FileImageResult result;
   result.id = id;
+  try {
+    render(result, source, cancel);
+  } catch (const std::bad_alloc&) {
+    // The save reports it (its failure line), and the viewer goes on.
+    result.image = Image();
+    result.cancelled = true;
+    result.error = "out of memory rendering the file's image (" + std::to_string(source->width()) + "x" +
+                   std::to_string(source->height()) + ")";
+  }
+  return result;
+}
+
+void FileImageTask::render(FileImageResult& result, const std::shared_ptr<const PixelSource>& source,
+                                      const std::atomic<bool>& cancel) {
   if (!pool_) pool_ = std::make_unique<ThreadPool>(threads_);
   const auto start = std::chrono::steady_clock::now();
   result.image = Image(source->width(), source->height());
@@ -39,11 +55,11 @@ FileImageResult FileImageTask::run(std::uint64_t id, const std::shared_ptr<const
         source->pixels(pixels, count, out, counts);
         pixelsDone_.fetch_add(count, std::memory_order_relaxed);
       },
-      1, 0, *pool_, result.image, rays, [&] { return cancel.load(std::memory_order_relaxed); });
+      1, 0, *pool_, result.image, rays, [&] { return cancel.load(std::memory_order_relaxed); }, source->quantization());
   result.cancelled = !complete;
   if (!complete) result.image = Image();
   result.renderMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  return result;
+
 }
 
 }  // namespace rayview

@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <string>
 
 #include "rayview/image.h"
 #include "rayview/pixel_source.h"
@@ -22,6 +23,7 @@ struct FileImageResult {
   bool cancelled = false;
   Image image;  // the source's whole image, when not cancelled
   double renderMs = 0.0;
+  std::string error;  // why there is no image when the render failed (out of memory); "" otherwise
 };
 
 class FileImageTask {
@@ -40,6 +42,7 @@ class FileImageTask {
 
  private:
   FileImageResult run(std::uint64_t id, const std::shared_ptr<const PixelSource>& source, const std::atomic<bool>& cancel);
+  void render(FileImageResult& result, const std::shared_ptr<const PixelSource>& source, const std::atomic<bool>& cancel);
 
   const int threads_;
   std::unique_ptr<ThreadPool> pool_;  // made by the worker at its first request, then kept

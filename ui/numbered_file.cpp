@@ -4,6 +4,7 @@
 #include <system_error>
 #include <unistd.h>
 
+#include "rayview/scene_source.h"
 #include "rayview/scene_writer.h"
 
 namespace rayview {
@@ -68,6 +69,12 @@ fs::path saveSceneNumbered(const SceneParameters& parameters, const Scene& loade
     // The texture reference is computed for the final directory, which is the temporary's directory.
     writeSceneFile(temporary, parameters, loaded);
   });
+}
+
+const std::string& refusingInputs(const std::string& path, const std::string& scenePath, const Scene* loaded) {
+  if (const std::string problem = outputOverwritesInput(path, scenePath, loaded); !problem.empty())
+    throw ImageIoError(problem);
+  return path;
 }
 
 }  // namespace rayview

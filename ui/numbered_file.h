@@ -31,4 +31,9 @@ std::filesystem::path saveFrameNumbered(const Image& image, const std::string& s
 std::filesystem::path saveSceneNumbered(const SceneParameters& parameters, const Scene& loaded,
                                         const std::string& scenePath);
 
+// `path` for a save the user named, when writing it replaces nothing the open scene (`loaded`, read from
+// `scenePath`) or the viewer read: the scene, its texture (loaded or not), the reference, the script. Else throws
+// ImageIoError saying which input it is.
+const std::string& refusingInputs(const std::string& path, const std::string& scenePath, const Scene* loaded);
+
 }  // namespace rayview

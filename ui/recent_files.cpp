@@ -2,10 +2,12 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <fstream>
+#include <sstream>
 #include <system_error>
 
+#include "rayview/file_read.h"
 #include "rayview/image.h"
+#include "rayview/input_files.h"
 
 namespace rayview {
 
@@ -13,7 +15,9 @@ namespace fs = std::filesystem;
 
 RecentFiles::RecentFiles(fs::path storage) : storage_(std::move(storage)) {
   if (storage_.empty()) return;
-  std::ifstream in(storage_);
+  // Through the one reader of user files: a FIFO or /dev/zero in its place is refused at once, not read forever.
+  const detail::UserFileRead read = detail::readUserFile(storage_, kMaxRecentFilesBytes, {}, kRecentFilesRole);
+  std::istringstream in(read.bytes);
   std::string line;
   while (std::getline(in, line) && paths_.size() < kMaxRecentFiles)
     if (!line.empty() && std::find(paths_.begin(), paths_.end(), line) == paths_.end()) paths_.push_back(line);
@@ -45,7 +49,8 @@ bool RecentFiles::save() const {
   std::error_code ec;
   fs::create_directories(storage_.parent_path(), ec);
   try {
-    writeFileAtomically(storage_, text);
+    // The list may replace itself (and only itself); a symlinked list is written through its link.
+    writeFileAtomically(storage_, text, kRecentFilesRole);
   } catch (const ImageIoError&) {
     return false;  // a read-only home must not stop the viewer
   }

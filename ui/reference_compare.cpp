@@ -32,7 +32,7 @@ const char* toString(ImageView view) {
 bool ReferenceComparison::load(const std::string& path, int imageWidth, int imageHeight) {
   Image image;
   try {
-    image = readImageFile(path);  // its message names the file
+    image = readImageFile(path, "the reference image");  // its message names the file
   } catch (const ImageIoError& error) {
     loadError_ = error.what();
     return false;

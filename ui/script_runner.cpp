@@ -1,5 +1,6 @@
 #include "script_runner.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <utility>
 
@@ -25,7 +26,9 @@ std::string idList(const std::vector<T>& items) {
 }
 
 std::chrono::steady_clock::duration seconds(double s) {
-  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+  // Saturated as well as refused when parsed (kMaxScriptSeconds): a cast past the clock's range is undefined.
+  return std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(std::clamp(s, 0.0, kMaxScriptSeconds)));
 }
 
 }  // namespace
@@ -112,6 +115,14 @@ bool ScriptRunner::waitIsOver(ScriptHost& host) {
       return false;
     case Wait::Frames:
       return framesLeft_ == 0 || --framesLeft_ == 0;
+    case Wait::Capture:
+      // Taken after the next frame is drawn: the script goes on once it is written, and fails when it was not.
+      if (const std::optional<std::string> outcome = host.captureOutcome()) {
+        if (!outcome->empty()) fail(current_->name + ": " + *outcome);
+        return outcome->empty();
+      }
+      if (late) fail(current_->name + ": not taken within " + std::to_string(kDefaultWaitFinalSeconds) + " s");
+      return false;
     case Wait::Until:
       return late;
     case Wait::Tradeoff: {
@@ -168,8 +179,12 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     host.saveScene(c.args.empty() ? std::string() : c.args[0]);
   } else if (name == "screenshot") {
     host.screenshot(c.args[0]);
+    wait_ = Wait::Capture;
+    deadline_ = Clock::now() + seconds(kDefaultWaitFinalSeconds);
   } else if (name == "save-view") {
     host.saveView(c.args.empty() ? std::string() : c.args[0]);
+    wait_ = Wait::Capture;
+    deadline_ = Clock::now() + seconds(kDefaultWaitFinalSeconds);
   } else if (name == "measure-tradeoff") {
     host.measureTradeoff(c.numbers[0]);
     wait_ = Wait::Tradeoff;

@@ -52,6 +52,9 @@ class ScriptHost {
   virtual void screenshot(const std::string& path) = 0;  // taken when this frame has been drawn
   // The image area as seen, without panels and overlays, when this frame has been drawn ("": numbered).
   virtual void saveView(const std::string& path) = 0;
+  // The newest screenshot or view save asked for: nullopt while it is still to be taken, "" when it was written,
+  // else why not (which fails the script).
+  virtual std::optional<std::string> captureOutcome() const { return std::string(); }
   virtual std::string stateLine() const = 0;
   virtual void resizeWindow(int width, int height) = 0;
   // Measure the speed-for-accuracy trade of the scene on screen at this share of its resolution (the render
@@ -87,7 +90,7 @@ class ScriptRunner {
 
  private:
   using Clock = std::chrono::steady_clock;
-  enum class Wait { None, Final, Load, Frames, Until, Tradeoff, SaveFrame, Compare };
+  enum class Wait { None, Final, Load, Frames, Until, Tradeoff, SaveFrame, Compare, Capture };
 
   void start(const ScriptCommand& command, ScriptHost& host);
   bool waitIsOver(ScriptHost& host);

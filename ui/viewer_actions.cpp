@@ -162,6 +162,10 @@ bool ViewerApp::pollFileImage() {
   std::optional<FileImageResult> result = fileImageTask_.takeResult();
   if (!result || result->id != awaitedFileImage_) return false;
   awaitedFileImage_ = 0;
+  if (!result->error.empty()) {
+    reportSaveFailure(ImageIoError(result->error));
+    return true;
+  }
   if (result->cancelled) return true;
   fileImage_ = std::move(result->image);
   fileImageOf_ = awaitedFileImageKey_;
@@ -185,7 +189,7 @@ std::filesystem::path ViewerApp::saveFrame(const std::string& path, FrameSave wh
   const Image& image = what == FrameSave::Displayed ? mapped : fileImage();
   std::filesystem::path saved = path;
   if (path.empty()) saved = saveFrameNumbered(image, scenePath_, what);
-  else writeImageFile(path, image);
+  else writeImageFile(refusingInputs(path, scenePath_, session_ ? &session_->loaded() : nullptr), image);
   filePanel_.frameSavePending = false;
   filePanel_.lastSaveFailed = false;
   filePanel_.lastSaved = "saved " + saved.string();

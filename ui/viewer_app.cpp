@@ -250,9 +250,11 @@ void ViewerApp::drawFrame() {
     const std::string path = std::exchange(pendingScreenshot_, {});
     try {
       writeImageFile(path, readWindowPixels(framebufferWidth, framebufferHeight));
+      captureOutcome_ = std::string();
       std::printf("screenshot %s\n", path.c_str());
       std::fflush(stdout);
     } catch (const ImageIoError& error) {
+      captureOutcome_ = error.what();
       filePanel_.lastSaved = std::string("screenshot failed: ") + error.what();
       filePanel_.lastSaveFailed = true;
       std::fprintf(stderr, "rayview: %s\n", error.what());

@@ -74,8 +74,9 @@ class ViewerApp final : public ScriptHost {
   std::filesystem::path saveFrame(const std::string& path, FrameSave what) override;
   void setImageView(bool imageView) override;
   std::filesystem::path saveScene(const std::string& path) override;
-  void screenshot(const std::string& path) override { pendingScreenshot_ = path; }
-  void saveView(const std::string& path) override { pendingViewSave_ = path; }
+  void screenshot(const std::string& path) override { pendingScreenshot_ = path, captureOutcome_.reset(); }
+  void saveView(const std::string& path) override { pendingViewSave_ = path, captureOutcome_.reset(); }
+  std::optional<std::string> captureOutcome() const override { return captureOutcome_; }
   std::string stateLine() const override;
   void resizeWindow(int width, int height) override { window_.setSize(width, height); }
   void measureTradeoff(double resolutionScale) override;
@@ -255,6 +256,7 @@ class ViewerApp final : public ScriptHost {
   std::string shownTitle_;
 
   std::string pendingScreenshot_;
+  std::optional<std::string> captureOutcome_;  // the newest screenshot or view save: "" written, else why not
   std::optional<std::string> pendingViewSave_;  // "Save view as seen" ("": a numbered file), after this frame
   // Writes the image area of the frame just drawn (before the swap) as pendingViewSave_ says.
   void writeViewSave(int framebufferWidth, int framebufferHeight, const Layout& layout);

@@ -28,7 +28,11 @@ std::string ViewerApp::loadReference(const std::string& path) {
 
 std::optional<ImageError> ViewerApp::finalComparison() const {
   if (!finalFrameShown() || !comparison_.figures() || comparison_.figuresVersion() != frame_.version) return std::nullopt;
-  return comparison_.figures();
+  std::optional<ImageError> figures = comparison_.figures();
+  // A reference is of the file's camera: the figures say when the one on screen is not that any more.
+  if (session_ && !(session_->committedEdits().camera == session_->loaded().camera))
+    figures->cameraMismatch = "the viewer's camera is not the scene file's";
+  return figures;
 }
 
 std::string ViewerApp::comparisonProblem() const {

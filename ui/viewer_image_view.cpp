@@ -185,14 +185,16 @@ void ViewerApp::writeViewSave(int framebufferWidth, int framebufferHeight, const
       std::copy_n(window.pixel(x0, y), static_cast<std::size_t>(x1 - x0) * 3, view.pixel(0, y - y0));
     std::filesystem::path saved = path;
     if (path.empty()) saved = saveFrameNumbered(view, scenePath_, FrameSave::View);
-    else writeImageFile(path, view);
+    else writeImageFile(refusingInputs(path, scenePath_, session_ ? &session_->loaded() : nullptr), view);
     filePanel_.lastSaveFailed = false;
     filePanel_.lastSaved = "saved the view as seen: " + saved.string();
+    captureOutcome_ = std::string();
     std::printf("saved view %s\n", saved.string().c_str());
     std::fflush(stdout);
   } catch (const ImageIoError& error) {
     filePanel_.lastSaved = std::string("view not saved: ") + error.what();
     filePanel_.lastSaveFailed = true;
+    captureOutcome_ = error.what();
     std::fprintf(stderr, "rayview: view not saved: %s\n", error.what());
   }
 }

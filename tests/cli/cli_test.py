@@ -32,6 +32,9 @@ def main():
     parser.add_argument("--rayview", required=True)
     parser.add_argument("--shared", required=True)
     parser.add_argument("--scratch", required=True)
+    # The sanitizers a build has ("" for none): under them an allocation that fails is the sanitizer's report,
+    # and a limit on the address space stops the sanitizer itself from starting.
+    parser.add_argument("--sanitizers", default="")
     a = parser.parse_args()
     if not os.path.isdir(os.path.join(a.shared, "conformance", "ceng477")):
         print(f"SKIPPED: needs {a.shared} (the course's scenes and images; configure with -DRAYVIEW_SHARED_DIR=PATH)")
@@ -145,6 +148,12 @@ def main():
     r = run(["compare", out_png], a.rayview)
     check(r.returncode == 2, "compare with one image is a usage error (exit 2)")
     check_bench_words(a, scene)
+    check_inputs_are_never_replaced(a)
+    check_signals_and_names(a)
+    check_image_readers(a)
+    check_out_of_memory_and_limits(a)
+    check_compare_never_rounds_up(a)
+    check_quantize_knob(a)
     check_far_scene_falls_back(a)
     check_embree_loaded_only_when_needed(a)
     check_lean_scene(a)
@@ -378,6 +387,167 @@ def check_output_is_never_an_input(a):
     for n, data in before.items():
         check(open(os.path.join(d, n), "rb").read() == data, f"{n} is byte-identical afterwards")
     check(not [n for n in os.listdir(d) if ".tmp-" in n], "no temporary file is left behind")
+
+
+def png_bytes(width, height, rows, bit_depth=8, colour_type=2):
+    """A PNG of `rows` (bytes each, filter 0 added here), no colour chunks: what a 16-bit export without gAMA is."""
+    import struct
+    import zlib
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    header = struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
+    raw = b"".join(b"\0" + row for row in rows)
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", zlib.compress(raw)) +
+            chunk(b"IEND", b""))
+
+
+def write(path, data):
+    with open(path, "wb" if isinstance(data, bytes) else "w") as f:
+        f.write(data)
+    return path
+
+
+def read(path):
+    with open(path, "rb") as f:
+        return f.read()
+
+
+def check_inputs_are_never_replaced(a):
+    """No output replaces a file the command reads, by any path: compare's reference, a texture that did not decode."""
+    d = os.path.join(a.scratch, "inputs")
+    os.makedirs(os.path.join(d, "sub"))
+    image = os.path.join(d, "img.png")
+    run(["render", "-o", image, "--quiet"], a.rayview)
+    ref = write(os.path.join(d, "ref.png"), read(image))
+    for diff in (ref, "./ref.png", os.path.join("sub", "..", "ref.png"), os.path.join("..", "inputs", "ref.png")):
+        r = subprocess.run([a.rayview, "compare", "img.png", "ref.png", "--diff", diff], capture_output=True, text=True,
+                           timeout=60, cwd=d)
+        check(r.returncode == 2 and "is the reference image" in r.stderr and r.stdout == "" and read(ref) == read(image),
+              f"compare --diff {diff} (the reference) exits 2 and leaves it as it was")
+    scene = write(os.path.join(d, "s.xml"), SLOW_SCENE.replace("1024 1024", "8 8").replace(
+        "</scene>", "<textureimage>tex.ppm</textureimage></scene>"))
+    texture = write(os.path.join(d, "tex.ppm"), b"P6\n2 2\n255\n truncated")
+    for out in ("tex.ppm", "./tex.ppm", os.path.join("sub", "..", "tex.ppm")):
+        r = subprocess.run([a.rayview, "render", "s.xml", "-o", out, "--quiet"], capture_output=True, text=True,
+                           timeout=60, cwd=d)
+        check(r.returncode == 2 and "is the scene's texture image" in r.stderr
+              and read(texture) == b"P6\n2 2\n255\n truncated",
+              f"render -o {out} (a texture that did not decode) exits 2 and leaves it as it was")
+    check(not [n for n in os.listdir(d) if ".tmp-" in n], "no temporary file is left behind")
+
+
+def check_signals_and_names(a):
+    """Writes are whole or absent under every signal that ends the process, and any legal name works."""
+    import resource
+    d = os.path.join(a.scratch, "signals")
+    os.makedirs(d)
+    out = write(os.path.join(d, "out.png"), b"the previous image")
+    # A file-size limit makes the kernel send SIGXFSZ in the middle of the image's write itself.
+    limit = lambda: resource.setrlimit(resource.RLIMIT_FSIZE, (4096, 4096))
+    r = subprocess.run([a.rayview, "render", "-o", out, "--quiet"], capture_output=True, timeout=120, preexec_fn=limit)
+    check(r.returncode == 128 + signal.SIGXFSZ and read(out) == b"the previous image" and os.listdir(d) == ["out.png"],
+          f"SIGXFSZ during the write exits {128 + signal.SIGXFSZ} (was {r.returncode}), the old output intact, "
+          "no temporary file")
+    slow = os.path.join(a.scratch, "slow.xml")
+    for sig in (signal.SIGHUP, signal.SIGQUIT):
+        p = subprocess.Popen([a.rayview, "render", slow, "-o", out, "--light-samples", "4096", "--threads", "1"],
+                             stdout=subprocess.PIPE, stderr=subprocess.PIPE)
+        time.sleep(1.0)
+        p.send_signal(sig)
+        p.communicate(timeout=60)
+        check(p.returncode == 128 + sig and read(out) == b"the previous image" and os.listdir(d) == ["out.png"],
+              f"{sig.name} during a render exits {128 + sig}, the old output intact, no temporary file")
+    for length in (241, 250, 255):
+        name = os.path.join(d, "n" * (length - 4) + ".png")
+        r = run(["render", "-o", name, "--quiet"], a.rayview)
+        check(r.returncode == 0 and os.path.getsize(name) > 1000, f"an output name of {length} bytes is written")
+
+
+def check_image_readers(a):
+    """Every reader gives the values the file holds: 16-bit PNG as stored, PPM maxval scaled; truncated data refused."""
+    d = os.path.join(a.scratch, "readers")
+    os.makedirs(d)
+    width, height = 64, 8
+    rows8 = [b"".join(bytes((x * 4, y * 30, (x * y) % 256)) for x in range(width)) for y in range(height)]
+    rows16 = [b"".join(bytes((v, v)) for v in row) for row in rows8]  # v * 257: the same value in 16 bits
+    png8 = write(os.path.join(d, "a8.png"), png_bytes(width, height, rows8))
+    png16 = write(os.path.join(d, "a16.png"), png_bytes(width, height, rows16, bit_depth=16))
+    r = run(["compare", png8, png16], a.rayview)
+    check(r.returncode == 0 and r.stdout.startswith("exact=100.000%"), "a 16-bit copy of an 8-bit PNG compares exact")
+    ppm = write(os.path.join(d, "a.ppm"), b"P6\n%d %d\n255\n" % (width, height) + b"".join(rows8))
+    ppm16 = write(os.path.join(d, "a16.ppm"), b"P6\n%d %d\n65535\n" % (width, height) + b"".join(rows16))
+    r = run(["compare", ppm, ppm16], a.rayview)
+    check(r.returncode == 0 and r.stdout.startswith("exact=100.000%"), "a 16-bit PPM reads as its 8-bit copy")
+    white1 = write(os.path.join(d, "white1.ppm"), b"P6\n2 1\n1\n\1\1\1\1\1\1")
+    white = write(os.path.join(d, "white.ppm"), b"P6\n2 1\n255\n" + b"\xff" * 6)
+    r = run(["compare", white1, white], a.rayview)
+    check(r.returncode == 0 and r.stdout.startswith("exact=100.000%"), "a maxval-1 white PPM reads as white")
+    jpeg = os.path.join(a.shared, "peer-scenes", "aeakyuz__ray_tracer", "textures", "capsule0.jpg")
+    if os.path.exists(jpeg):
+        half = write(os.path.join(d, "half.jpg"), read(jpeg)[: len(read(jpeg)) // 2])
+        r = run(["compare", half, half], a.rayview)
+        check(r.returncode == 2 and "half.jpg" in r.stderr and r.stdout == "", "a truncated JPEG is refused (exit 2)")
+    truncated = write(os.path.join(d, "cut.png"), read(png8)[:-30])
+    r = run(["compare", truncated, png8], a.rayview)
+    check(r.returncode == 2 and "cut.png" in r.stderr, "a truncated PNG is refused (exit 2)")
+
+
+def check_out_of_memory_and_limits(a):
+    """Declared sizes are checked before allocating, against one limit; an allocation that fails is a message and
+    exit 3, never an abort."""
+    import resource
+    import struct
+    import zlib
+    d = os.path.join(a.scratch, "memory")
+    os.makedirs(d)
+    tall = write(os.path.join(d, "tall.ppm"), b"P6\n1 268435456\n255\n")
+    r = run(["compare", tall, tall], a.rayview)
+    check(r.returncode == 2 and "1 x 268435456 pixels is too large" in r.stderr, "a 1 x 268435456 image is refused")
+    # A valid 16384 x 16384 header with too little memory to hold it: the allocation fails, cleanly.
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xffffffff)
+    big = write(os.path.join(d, "big.png"), b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 16384, 16384, 8, 2, 0, 0, 0))
+                + chunk(b"IDAT", zlib.compress(b"\0" * 1000)) + chunk(b"IEND", b""))
+    limit = lambda: resource.setrlimit(resource.RLIMIT_AS, (600 << 20, 600 << 20))
+    huge = write(os.path.join(d, "huge.xml"), SLOW_SCENE.replace("1024 1024", "16384 16384"))
+    for args in [] if a.sanitizers else (["compare", big, big],
+                                          ["render", huge, "-o", os.path.join(d, "huge.png"), "--quiet"]):
+        r = subprocess.run([a.rayview] + args, capture_output=True, text=True, timeout=120, preexec_fn=limit)
+        print(f"  $ rayview {args[0]} ... (600 MiB of address space) -> exit {r.returncode}")
+        check(r.returncode == 3 and "out of memory" in r.stderr, f"{args[0]} out of memory: a message and exit 3, "
+              f"not an abort ({r.stderr.strip()[-200:]})")
+    check(not os.path.exists(os.path.join(d, "huge.png")), "nothing is written")
+    r = run(["bench", "tradeoff", huge, "--out", os.path.join(d, "t"), "--scale", "4"], a.rayview)
+    check(r.returncode == 2 and "65536 x 65536 pixels is too large" in r.stderr,
+          "bench tradeoff --scale refuses a scaled image over the limit before any work")
+
+
+def check_compare_never_rounds_up(a):
+    """One pixel in 262 144 off by 2: 99.9996 % within 1 is printed as 99.999 %, never as the 100 % required."""
+    d = os.path.join(a.scratch, "rounding")
+    os.makedirs(d)
+    size = 512
+    zeros = bytearray(size * size * 3)
+    write(os.path.join(d, "a.ppm"), b"P6\n512 512\n255\n" + bytes(zeros))
+    zeros[0] = 2
+    write(os.path.join(d, "b.ppm"), b"P6\n512 512\n255\n" + bytes(zeros))
+    r = run(["compare", os.path.join(d, "b.ppm"), os.path.join(d, "a.ppm"), "--min-within1", "100"], a.rayview)
+    check(r.returncode == 1 and "within1=99.999%" in r.stdout and "100.000" not in r.stdout + r.stderr
+          and "262143 of 262144" in r.stderr, f"a failing figure never reads as the requirement met: {r.stderr.strip()}")
+
+
+def check_quantize_knob(a):
+    """--quantize: round (the default, images unchanged) or truncate (the 2017-2020 course references)."""
+    d = os.path.join(a.scratch, "quantize")
+    os.makedirs(d)
+    paths = {q: os.path.join(d, q + ".ppm") for q in ("default", "round", "truncate")}
+    for q, path in paths.items():
+        run(["render", "-o", path, "--quiet"] + ([] if q == "default" else ["--quantize", q]), a.rayview)
+    default, rounded, truncated = (read(paths[q])[15:] for q in ("default", "round", "truncate"))
+    check(default == rounded, "--quantize round is the default")
+    check(truncated != rounded and all(t <= r <= t + 1 for t, r in zip(truncated, rounded)),
+          "--quantize truncate gives each channel the rounded value or one less")
 
 
 # A quad under a triangular light at 1024 x 1024: with 4096 light samples a render takes minutes.

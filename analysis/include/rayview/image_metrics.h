@@ -1,6 +1,7 @@
 #pragma once
 // How far an image is from a reference image: the figures the speed-for-accuracy trade is judged by.
 
+#include <cstddef>
 #include <limits>
 #include <string>
 
@@ -16,6 +17,12 @@ struct ImageError {
   double pctOffByMoreThan1 = 0.0;  // % of pixels with any channel differing by more than 1
   double pctExact = 100.0;         // % of pixels identical in every channel
   int maxChannelDifference = 0;
+  // The counts the percentages come from: a percentage is printed from them (formatPercent), never rounded up.
+  std::size_t pixels = 0, exactPixels = 0, within1Pixels = 0;
+  // "" when the image was made with the reference's camera; else why not ("the camera was moved in the viewer",
+  // "the image is 640x480, the reference 512x512"), which the figures then say. The comparer sets it, knowing
+  // where the image came from.
+  std::string cameraMismatch;
 };
 
 // 20 log10(255 / rmse); +inf for rmse 0.
@@ -27,8 +34,13 @@ inline double pctWithin1(const ImageError& error) { return 100.0 - error.pctOffB
 // PSNR in dB with two decimals, "inf" for identical images.
 std::string formatPsnr(double psnrDb);
 
+// `count` of `total` as a percentage with three decimals, truncated, not rounded: "100.000" only when count is
+// total, "0.000" only when it is 0 (99.9996 % is "99.999").
+std::string formatPercent(std::size_t count, std::size_t total);
+
 // The figures as `rayview compare` prints them and the viewer's `compare` script command repeats them:
-// "exact=97.370% within1=98.321% maxdiff=37 psnr=48.08".
+// "exact=97.370% within1=98.321% maxdiff=37 psnr=48.08" (percentages by formatPercent), followed by
+// " camera=differs (WHY)" when cameraMismatch says the camera is not the reference's.
 std::string comparisonSummary(const ImageError& error);
 
 // Throws std::invalid_argument when the sizes differ.

@@ -175,10 +175,16 @@ using TradeoffProgressFn = std::function<void(const TradeoffProgress&)>;
 // - Raising `*cancel` stops within one tile of rendering; the report then says cancelled.
 // - `progress` is called on the calling thread before every BVH build, every render timed alone and every
 //   round's quick renders timed in turn.
-// Throws std::invalid_argument for a camera without pixels or a resolution scale <= 0.
+// Throws std::invalid_argument for a camera without pixels or a resolution scale <= 0, or a scaled image
+// scaledImageProblem refuses.
 TradeoffReport measureTradeoff(const SceneParameters& parameters, std::shared_ptr<const SceneGeometry> geometry,
                                const std::string& sceneName, const TradeoffOptions& options, ThreadPool& pool,
                                const std::atomic<bool>* cancel = nullptr, const TradeoffProgressFn& progress = {});
+
+// Why `camera` at `scale` times its resolution cannot be measured ("" when it can): the scaled image meets the one
+// image limit (rayview/image_limits.h), so neither 0 pixels nor more than its buffers hold. Callers check it before
+// any work.
+std::string scaledImageProblem(const Camera& camera, double scale);
 
 // The CSV the bench writes: a header line, then one line per point of every report.
 // Columns: scene, knob, setting, time_ms, rmse, psnr_db ("inf" when exact), pct_off_by_more_than_1, rays.

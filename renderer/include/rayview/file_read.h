@@ -16,6 +16,9 @@ struct UserFileRead {
   bool notFound = false;
 };
 
+// What a file read is recorded as (rayview/input_files.h) when its reader names no role.
+inline constexpr std::string_view kInputRole = "a file this command reads";
+
 // How many bytes `checkStart` sees before the rest of the file is read.
 inline constexpr std::size_t kFileStartBytes = 64 * 1024;
 
@@ -24,8 +27,9 @@ inline constexpr std::size_t kFileStartBytes = 64 * 1024;
 class UserFile {
  public:
   // Opens `path` as readUserFile does (regular files only, never a blocking open, at most `maxBytes`); on
-  // failure `problem()` says why, as readUserFile's `problem` would.
-  UserFile(const std::filesystem::path& path, std::uintmax_t maxBytes);
+  // failure `problem()` says why, as readUserFile's `problem` would. A file found is recorded as `role`
+  // (rayview/input_files.h) whether or not it can then be read, so no output replaces it.
+  UserFile(const std::filesystem::path& path, std::uintmax_t maxBytes, std::string_view role = kInputRole);
   ~UserFile();
   UserFile(const UserFile&) = delete;
   UserFile& operator=(const UserFile&) = delete;
@@ -37,7 +41,8 @@ class UserFile {
   long read(std::uintmax_t offset, char* into, std::size_t count) const;
 
  private:
-  std::string open(const std::filesystem::path& path, std::uintmax_t maxBytes);  // the problem, "" when open
+  // The problem, "" when open.
+  std::string open(const std::filesystem::path& path, std::uintmax_t maxBytes, std::string_view role);
 
   int fd_ = -1;
   std::uintmax_t size_ = 0;
@@ -50,8 +55,10 @@ class UserFile {
 // check it is the same regular file. Refuses a file larger than `maxBytes` from its size before reading,
 // and stops reading at the limit should the file grow meanwhile. `checkStart`, when given, sees the first
 // bytes (at most kFileStartBytes) and can refuse the file before the rest is read by returning a problem.
+// A file found is recorded as `role` (UserFile).
 UserFileRead readUserFile(const std::filesystem::path& path, std::uintmax_t maxBytes,
-                          const std::function<std::string(std::string_view start)>& checkStart = {});
+                          const std::function<std::string(std::string_view start)>& checkStart = {},
+                          std::string_view role = kInputRole);
 
 // What a file's first bytes say it is when it cannot be the text of a scene: "is a PNG image, not a scene
 // file", "is UTF-16 text; save it as UTF-8". "" when it may be text (NUL bytes are the caller's check,

@@ -17,10 +17,11 @@ using PixelBatchFunction = std::function<void(const PixelXY* pixels, int count, 
 inline constexpr int kPixelBatch = kRayPacket;
 
 // Traces the pixels (gx * stride, gy * stride) of `image` (already width x height) that are not also on the
-// `skipStride` grid (0: skip none; a coarser pass computed those), quantizing into `image`. `stopped` is
-// checked before each tile. Returns false when it stopped early (the image is then partial).
+// `skipStride` grid (0: skip none; a coarser pass computed those), quantizing into `image` as `quantization`
+// says (the render settings'). `stopped` is checked before each tile. Returns false when it stopped early (the
+// image is then partial).
 bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, ThreadPool& pool, Image& image,
-                RayCounts& rays, const std::function<bool()>& stopped);
+                RayCounts& rays, const std::function<bool()>& stopped, Quantization quantization);
 
 // Gives every pixel the colour of the sample at the top-left corner of its stride x stride block: the
 // blocky (never blurred) upscale of a coarse pass. In place.

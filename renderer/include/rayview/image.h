@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rayview {
@@ -44,14 +45,26 @@ void writeImageFile(const std::filesystem::path& path, const Image& image);
 // The same, taking the image: its pixels are freed once encoded, before the file is written.
 void writeImageFile(const std::filesystem::path& path, Image&& image);
 
-// Reads PNG, PPM, JPEG... as 8-bit RGB. Throws ImageIoError.
-Image readImageFile(const std::filesystem::path& path);
+// Reads PNG, JPEG, binary PPM/PGM as 8-bit RGB (the values the file holds, scaled from its bit depth; refused
+// when truncated or too large). The file is recorded as `role` (rayview/input_files.h), so no output replaces it.
+// Throws ImageIoError.
+Image readImageFile(const std::filesystem::path& path, std::string_view role = "an image this command reads");
 
 // True when `path` has an extension writeImageFile understands.
 bool isSupportedImageExtension(const std::filesystem::path& path);
 
-// Writes `bytes` to `path` whole (temporary file + rename). Throws ImageIoError.
-void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes);
+// Writes `bytes` to `path` whole (temporary file + rename). Refuses a `path` that is, by any spelling or link, a
+// file this process read (rayview/input_files.h) unless it was read as `mayReplaceRole`. A symlink is written
+// through (its target is replaced, the link stays). The temporary name, in the same directory, never exceeds
+// NAME_MAX. Throws ImageIoError.
+void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes,
+                         std::string_view mayReplaceRole = {});
+
+// Makes every catchable signal that would end the process (SIGHUP, SIGINT, SIGQUIT, SIGPIPE, SIGTERM, ..., and the
+// faults: one list, renderer/temporary_cleanup.cpp) remove the temporary file being written before the process
+// ends, so that an output is whole or absent. A signal already ignored or handled (nohup, a sanitizer) is left as
+// it is. The asynchronous ones exit 128 + the signal, as a shell reports it.
+void removeTemporaryFileOnSignals();
 
 // The temporary file writeFileAtomically() is writing right now, or nullptr. Safe to call from a signal
 // handler (a lock-free atomic and a static buffer), which can remove the file before the process exits:

@@ -19,6 +19,8 @@ class PixelSource {
   // Anti-aliasing: pixel() is the mean of samplesPerPixel() samples, (sample(0) + sample(1) + ...) / N summed
   // in that order in float, so the progressive renderer can accumulate them pass by pass and end bit-identical.
   virtual int samplesPerPixel() const { return 1; }
+  // How the radiance becomes 8-bit channels (RenderSettings::quantization).
+  virtual Quantization quantization() const { return Quantization::Round; }
   virtual Color sample(int x, int y, int k, RayCounts& counts) const { return k == 0 ? pixel(x, y, counts) : Color(0.0f); }
   // The same for `count` pixels at once (out[n] for pixels[n]), bit for bit: a source may trace them together.
   virtual void pixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const {
@@ -39,6 +41,7 @@ class TracedImage final : public PixelSource {
   int height() const override { return parameters_->camera.height; }
   Color pixel(int x, int y, RayCounts& counts) const override { return tracer_.tracePixel(x, y, counts); }
   int samplesPerPixel() const override { return tracer_.pixelSamples(); }
+  Quantization quantization() const override { return tracer_.quantization(); }
   Color sample(int x, int y, int k, RayCounts& counts) const override { return tracer_.traceSample(x, y, k, counts); }
   void pixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const override {
     tracer_.tracePixels(pixels, count, out, counts);

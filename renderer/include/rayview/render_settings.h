@@ -20,6 +20,10 @@ static_assert(static_cast<int>(AccelKind::Packet) + 1 == kAccelKindCount);
 // triangle they leave, which is what the 2017-2019 CENG477 reference renderer did.
 enum class SecondaryRayStart { Offset, ExcludeHitTriangle };
 
+// How a pixel's radiance becomes an 8-bit channel: rounded to nearest (rayview's images), or truncated, as the
+// 2017-2020 course reference renderers did (their images are the truncated ones).
+enum class Quantization { Round, Truncate };
+
 inline constexpr int kMaxPixelSamples = 256;
 
 struct RenderSettings {
@@ -28,6 +32,7 @@ struct RenderSettings {
   AccelKind accel = AccelKind::Embree;  // the packet BVH in its place when built without Embree (availableAccel)
   SecondaryRayStart secondaryRayStart = SecondaryRayStart::Offset;
   int pixelSamples = 1;       // anti-aliasing: stratified camera rays per pixel; 1 = the pixel's centre
+  Quantization quantization = Quantization::Round;  // radiance to 8 bits (quantizeChannel)
 
   bool operator==(const RenderSettings&) const = default;
 };

@@ -18,7 +18,8 @@ std::string_view defaultSceneXml();
 LoadedScene loadSceneOrDefault(const std::string& path, const LoadOptions& options);
 
 // Why writing `output` would destroy an input ("" when it would not): it is the scene file `scenePath`, or
-// (once the scene is loaded) the texture image it read, by any path (hard link, symlink, ./).
+// (once the scene is loaded) any file the process read (rayview/input_files.h: the texture image, loaded or not,
+// a reference, a script) or any place the scene's texture could be, by any path (hard link, symlink, ./).
 std::string outputOverwritesInput(const std::filesystem::path& output, const std::string& scenePath,
                                   const Scene* loaded);
 

@@ -21,7 +21,8 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage);
 // scene was loaded with: unchanged in the scene's own directory, else a path to the file that was found.
 std::string textureReferenceFor(const Scene& scene, const std::filesystem::path& outputPath);
 
-// Writes the file whole (temporary file + rename). Throws ImageIoError (the file-writing error type).
+// Writes the file whole (temporary file + rename). Throws ImageIoError (the file-writing error type) when the name
+// does not end in .xml, or is a file the scene or the process read (outputOverwritesInput): the scene, its texture.
 // `parameters` (the viewer's edits) over the geometry of `loaded`, the scene as it was read (its texture is
 // found relative to the file it came from): no copy of the meshes.
 void writeSceneFile(const std::filesystem::path& outputPath, const SceneParameters& parameters, const Scene& loaded);

@@ -5,6 +5,7 @@
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
+#include <exception>
 #include <functional>
 #include <mutex>
 #include <thread>
@@ -24,7 +25,8 @@ class ThreadPool {
 
   // Runs task(index) for every index in [0, count) on the workers and returns when all have finished.
   // Indices are handed out in increasing order. Concurrent calls are served one after another.
-  // The calling thread only waits: the viewer's UI thread never calls this.
+  // The calling thread only waits: the viewer's UI thread never calls this. A task that throws (std::bad_alloc)
+  // stops the handing out of further indices, and the first exception is rethrown here once all have finished.
   void parallelFor(std::size_t count, const std::function<void(std::size_t index)>& task);
 
  private:
@@ -40,6 +42,7 @@ class ThreadPool {
   std::size_t count_ = 0;
   std::atomic<std::size_t> next_{0};
   std::size_t finishedWorkers_ = 0;
+  std::exception_ptr failure_;  // the job's first exception, under mutex_
   std::uint64_t jobGeneration_ = 0;
   bool stopping_ = false;
 };

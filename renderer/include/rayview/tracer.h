@@ -51,6 +51,13 @@ inline std::uint8_t quantizeChannel(float value) {
   if (value >= 255.0f) return 255;
   return static_cast<std::uint8_t>(static_cast<int>(value + 0.5f));  // truncation is floor: the sum is positive
 }
+// The same with the knob's choice: Truncate clamps and drops the fraction (floor) instead.
+inline std::uint8_t quantizeChannel(float value, Quantization quantization) {
+  if (quantization == Quantization::Round) return quantizeChannel(value);
+  if (!(value > 0.0f)) return 0;
+  if (value >= 255.0f) return 255;
+  return static_cast<std::uint8_t>(static_cast<int>(value));
+}
 
 struct PreparedGeometry;
 struct LitPoint;
@@ -72,6 +79,7 @@ class Tracer {
   // pixelSamples(), summed in that order in float, so a running sum over passes ends bit-identical to it.
   Color traceSample(int i, int j, int k, RayCounts& counts) const;
   int pixelSamples() const;
+  Quantization quantization() const { return settings_.quantization; }
   // out[n] = tracePixel(pixels[n]) (traceSample(pixels[n], k)) for n < count, bit for bit: the camera rays of
   // up to kRayPacket pixels (best a 4x4 block) traverse the scene as one packet.
   void tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const;
