@@ -8,6 +8,7 @@
 #include "bench_command.h"
 #include "command_line.h"
 #include "compare_command.h"
+#include "mpi_handoff.h"
 #include "process_start.h"
 #include "program_exec.h"
 #include "render_command.h"
@@ -34,6 +35,7 @@ int main(int argc, char** argv) {
       std::fputs(versionText().c_str(), stdout);
       return kExitOk;
     case CommandKind::Render:
+      if (const int code = handOffToMpi(argv); code >= 0) return code;
       return runRenderCommand(command);
     case CommandKind::Bench:
       return runBenchCommand(command);

@@ -1,0 +1,40 @@
+// libexec/rayview-mpi: `rayview render` on the ranks of an MPI job. `rayview` becomes this program when it finds
+// itself started by mpirun (app/mpi_handoff.h), so that a render outside MPI never loads libmpi.
+#include <mpi.h>
+
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "cluster_job.h"
+#include "command_line.h"
+#include "process_start.h"
+
+int main(int argc, char** argv) {
+  using namespace rayview;
+  captureProcessStart();
+  int provided = 0;
+  if (MPI_Init_thread(&argc, &argv, MPI_THREAD_FUNNELED, &provided) != MPI_SUCCESS) {
+    std::fprintf(stderr, "rayview: error: MPI could not start\n");
+    return kExitIoFailure;
+  }
+  CommandLine command;
+  int code = kExitOk;
+  try {
+    command = parseCommandLine(std::vector<std::string>(argv + 1, argv + argc));
+  } catch (const UsageError& error) {
+    std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    code = kExitBadInput;
+  }
+  if (code == kExitOk && command.kind != CommandKind::Render) {
+    std::fprintf(stderr, "rayview: error: under mpirun only `rayview render` runs on several ranks\n");
+    code = kExitBadInput;
+  }
+  if (code == kExitOk)
+    code = cluster::runClusterRender(
+        {command.scenePath, command.outputPath, command.strict, command.quiet, command.threads, command.knobs});
+  std::fflush(stdout);
+  std::fflush(stderr);
+  MPI_Finalize();
+  return code;
+}
