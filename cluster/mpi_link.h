@@ -16,6 +16,8 @@ enum Tag : int {
 };
 
 inline constexpr std::int32_t kNoMoreTiles = -1;
+// The same, and a rank was lost: end without MPI_Finalize, which would wait for it.
+inline constexpr std::int32_t kNoMoreTilesRankLost = -3;
 
 struct TileResultHeader {
   std::int32_t tile = 0;

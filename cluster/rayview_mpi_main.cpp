@@ -2,6 +2,8 @@
 // itself started by mpirun (app/mpi_handoff.h), so that a render outside MPI never loads libmpi.
 #include <mpi.h>
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -9,6 +11,7 @@
 #include "cluster_job.h"
 #include "command_line.h"
 #include "process_start.h"
+#include "tile_exchange.h"
 
 int main(int argc, char** argv) {
   using namespace rayview;
@@ -35,6 +38,8 @@ int main(int argc, char** argv) {
         {command.scenePath, command.outputPath, command.strict, command.quiet, command.threads, command.knobs});
   std::fflush(stdout);
   std::fflush(stderr);
+  // With a rank gone, MPI_Finalize would wait for it: end here (the image, if any, is written whole already).
+  if (cluster::peerLost()) ::_exit(code);
   MPI_Finalize();
   return code;
 }

@@ -20,6 +20,7 @@ using Clock = std::chrono::steady_clock;
 
 std::atomic<std::size_t> gPlaced{0};
 std::atomic<std::size_t> gPlanned{0};
+std::atomic<bool> gPeerLost{false};
 
 // Tiles a worker holds at once: one to render, one on its way, so that it never waits for the next.
 constexpr int kDepth = 2;
@@ -47,7 +48,7 @@ class Coordinator {
       std::this_thread::sleep_for(kProbePause);
     }
     for (int w = 1; w < ranks(); ++w)
-      if (!tally_[w].lost) send(w, kNoMoreTiles);
+      if (!tally_[w].lost) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
     local.join();
     finishSends();
     return {tally_, dealer_.allFinished()};
@@ -105,7 +106,22 @@ class Coordinator {
     int bytes = 0;
     MPI_Get_count(&status, MPI_BYTE, &bytes);
     inbox_.resize(static_cast<std::size_t>(bytes) + 1);
-    MPI_Recv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    // A big message is read from the sender's memory: if the sender dies meanwhile, a blocking receive would
+    // never return, so the receive is waited for with a deadline and abandoned (its buffer with it) after it.
+    MPI_Request request;
+    MPI_Irecv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, &request);
+    const auto deadline = Clock::now() + kLostAfter;
+    for (int done = 0; !done;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) break;
+      if (Clock::now() > deadline) {
+        abandoned_.push_back(std::move(inbox_));
+        inbox_ = {};
+        loseWorker(worker);
+        return true;
+      }
+      std::this_thread::sleep_for(kProbePause);
+    }
     lastHeard_[worker] = Clock::now();
     if (status.MPI_TAG == kTagResult && static_cast<std::size_t>(bytes) >= sizeof(TileResultHeader)) takeResult(worker);
     return true;
@@ -143,7 +159,9 @@ class Coordinator {
   }
 
   void loseWorker(int worker) {
+    if (tally_[worker].lost) return;
     tally_[worker].lost = true;
+    gPeerLost.store(true);
     held_[worker] = 0;
     const std::vector<std::size_t> back = dealer_.reclaim(worker);
     std::fprintf(stderr,
@@ -179,6 +197,7 @@ class Coordinator {
   std::vector<Clock::time_point> lastHeard_, lastSent_;
   std::deque<Outgoing> outbox_;  // a deque: each value stays where its send reads it
   std::vector<std::uint8_t> inbox_;
+  std::vector<std::vector<std::uint8_t>> abandoned_;  // buffers of receives given up on: never freed under MPI
 };
 
 }  // namespace
@@ -193,5 +212,7 @@ ExchangeResult coordinateTiles(const Tracer& tracer, const std::vector<Tile>& ti
 
 std::size_t tilesPlaced() { return gPlaced.load(std::memory_order_relaxed); }
 std::size_t tilesPlanned() { return gPlanned.load(std::memory_order_relaxed); }
+bool peerLost() { return gPeerLost.load(); }
+void notePeerLost() { gPeerLost.store(true); }
 
 }  // namespace rayview::cluster

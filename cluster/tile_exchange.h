@@ -37,4 +37,9 @@ int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, 
 std::size_t tilesPlaced();
 std::size_t tilesPlanned();
 
+// Whether a rank of this job was lost (or, on a worker, rank 0 said so or fell silent): MPI_Finalize would
+// wait for it for ever, so the process ends without it.
+bool peerLost();
+void notePeerLost();
+
 }  // namespace rayview::cluster

@@ -111,7 +111,8 @@ int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, 
       std::int32_t value = 0;
       MPI_Recv(&value, 1, MPI_INT32_T, 0, kTagTile, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       lastFromZero = Clock::now();
-      if (value == kNoMoreTiles) ended = true;
+      if (value == kNoMoreTilesRankLost) notePeerLost();
+      if (value == kNoMoreTiles || value == kNoMoreTilesRankLost) ended = true;
       else if (value >= 0 && static_cast<std::size_t>(value) < tiles.size()) queue.push_back(value);
     }
     if (rendering) {
@@ -141,6 +142,7 @@ int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, 
     if (Clock::now() - lastFromZero > kRankZeroLostAfter) break;
     std::this_thread::sleep_for(kProbePause);
   }
+  notePeerLost();
   std::fprintf(stderr, "rayview: rank %d: no word from rank 0 for %.0f s; stopping\n", rank,
                std::chrono::duration<double>(kRankZeroLostAfter).count());
   return kExitIoFailure;
