@@ -8,6 +8,8 @@
 #include "bench_command.h"
 #include "command_line.h"
 #include "compare_command.h"
+#include "frame_plan.h"
+#include "frames_command.h"
 #include "mpi_handoff.h"
 #include "process_start.h"
 #include "program_exec.h"
@@ -36,6 +38,7 @@ int main(int argc, char** argv) {
       return kExitOk;
     case CommandKind::Render:
       if (const int code = handOffToMpi(argv); code >= 0) return code;
+      if (isFrameCommand(command)) return runFramesCommand(command);
       return runRenderCommand(command);
     case CommandKind::Bench:
       return runBenchCommand(command);

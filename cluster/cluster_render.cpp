@@ -81,7 +81,8 @@ void printSummary(const ClusterJob& job, const Scene& scene, const PreparedGeome
               clusterTileEdge(scene.camera.width, scene.camera.height, static_cast<int>(ranks)),
               clusterTileEdge(scene.camera.width, scene.camera.height, static_cast<int>(ranks)),
               std::string(toString(geometry.accel->kind())).c_str());
-  std::printf("time       load %.1f ms (rank 0, with the broadcast and check), BVH build %.1f ms, render %.1f ms, write %.1f ms\n",
+  // Load on rank 0 counts its read, the broadcast, its load and the check of every rank's hash.
+  std::printf("time       load %.1f ms, BVH build %.1f ms, render %.1f ms, write %.1f ms\n",
               loadMs, geometry.buildMs, renderMs, writeMs);
   for (std::size_t r = 0; r < ranks; ++r)
     std::printf("rank %-5zu busy %.1f ms, %s%s\n", r, result.ranks[r].busyMs,
@@ -116,11 +117,12 @@ int runClusterRender(const ClusterJob& job) {
   ThreadPool pool(job.threads);
   const Tracer tracer(scene.parameters(), *geometry, settings);
   const std::vector<Tile> tiles = clusterTiles(scene.camera.width, scene.camera.height, ranks);
-  if (rank != 0) return workOnTiles(tracer, tiles, rank, pool);
+  if (rank != 0) return workOnTiles(tracer, tiles, rank, pool, 0);
 
   Image image(scene.camera.width, scene.camera.height);
   const auto renderStart = Clock::now();
-  const ExchangeResult result = coordinateTiles(tracer, tiles, ranks, pool, image, job.quiet);
+  std::vector<bool> lost(static_cast<std::size_t>(ranks), false);
+  const ExchangeResult result = coordinateTiles(tracer, tiles, ranks, pool, image, 0, lost);
   const double renderMs = msSince(renderStart);
   const auto writeStart = Clock::now();
   try {

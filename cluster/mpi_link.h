@@ -21,7 +21,7 @@ inline constexpr std::int32_t kNoMoreTilesRankLost = -3;
 
 struct TileResultHeader {
   std::int32_t tile = 0;
-  std::int32_t unused = 0;
+  std::int32_t frame = 0;  // which of the job's frames: a late result of an earlier frame is dropped
   double busyMs = 0.0;
   std::uint64_t camera = 0, shadow = 0, reflection = 0;
 };

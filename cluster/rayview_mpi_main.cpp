@@ -10,8 +10,32 @@
 
 #include "cluster_job.h"
 #include "command_line.h"
+#include "frames_command.h"
 #include "process_start.h"
 #include "tile_exchange.h"
+
+namespace {
+
+// Rank 0 plans the frames (only it sees the output directory); every rank renders them.
+int runFrames(const rayview::CommandLine& command, const rayview::cluster::ClusterJob& job) {
+  using namespace rayview;
+  int rank = 0;
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  std::vector<cluster::ClusterFrame> frames;
+  int planCode = kExitOk;
+  if (rank == 0) {
+    std::vector<FrameJob> pending;
+    std::size_t asked = 0;
+    planCode = pendingFrames(command, pending, asked);
+    for (const FrameJob& f : pending) frames.push_back({f.scenePath, f.frame, f.frames, f.output});
+    if (planCode == kExitOk && !command.quiet)
+      std::printf("frames     %zu asked, %zu complete already, %zu to render\n", asked, asked - pending.size(),
+                  pending.size());
+  }
+  return cluster::runClusterFrames(job, frames, planCode);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace rayview;
@@ -33,9 +57,13 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rayview: error: under mpirun only `rayview render` runs on several ranks\n");
     code = kExitBadInput;
   }
-  if (code == kExitOk)
-    code = cluster::runClusterRender(
-        {command.scenePath, command.outputPath, command.strict, command.quiet, command.threads, command.knobs});
+  const cluster::ClusterJob job{command.scenePath, command.outputPath, command.strict, command.quiet, command.threads,
+                                command.knobs};
+  if (code == kExitOk && isFrameCommand(command)) {
+    code = runFrames(command, job);
+  } else if (code == kExitOk) {
+    code = cluster::runClusterRender(job);
+  }
   std::fflush(stdout);
   std::fflush(stderr);
   // With a rank gone, MPI_Finalize would wait for it: end here (the image, if any, is written whole already).

@@ -34,12 +34,13 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
 
 class Coordinator {
  public:
-  Coordinator(const std::vector<Tile>& tiles, int ranks, Image& image, bool quiet)
-      : tiles_(tiles), image_(image), quiet_(quiet), dealer_(tiles.size()), tally_(static_cast<std::size_t>(ranks)),
+  Coordinator(const std::vector<Tile>& tiles, int ranks, Image& image, int frame)
+      : tiles_(tiles), image_(image), frame_(frame), dealer_(tiles.size()), tally_(static_cast<std::size_t>(ranks)),
         held_(static_cast<std::size_t>(ranks), 0), lastHeard_(static_cast<std::size_t>(ranks), Clock::now()),
         lastSent_(static_cast<std::size_t>(ranks), Clock::now()) {}
 
-  ExchangeResult run(const Tracer& tracer, ThreadPool& pool) {
+  ExchangeResult run(const Tracer& tracer, ThreadPool& pool, std::vector<bool>& lost) {
+    for (int w = 1; w < ranks(); ++w) tally_[w].lost = lost[w];
     std::thread local([&] { renderOwnShare(tracer, pool); });
     for (int w = 1; w < ranks(); ++w) deal(w);
     while (!dealer_.allFinished()) {
@@ -51,6 +52,7 @@ class Coordinator {
       if (!tally_[w].lost) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
     local.join();
     finishSends();
+    for (int w = 1; w < ranks(); ++w) lost[w] = tally_[w].lost;
     return {tally_, dealer_.allFinished()};
   }
 
@@ -130,6 +132,7 @@ class Coordinator {
   void takeResult(int worker) {
     TileResultHeader header;
     std::memcpy(&header, inbox_.data(), sizeof header);
+    if (header.frame != frame_) return;  // a late result of an earlier frame
     const auto tile = static_cast<std::size_t>(header.tile);
     const Tile& t = tiles_.at(tile);
     const std::size_t expected = sizeof header + static_cast<std::size_t>(t.x1 - t.x0) * (t.y1 - t.y0) * 3;
@@ -169,7 +172,6 @@ class Coordinator {
                  "other ranks\n",
                  worker, std::chrono::duration<double>(kLostAfter).count(), back.size(), back.size() == 1 ? "" : "s",
                  back.size() == 1 ? "it" : "them");
-    (void)quiet_;
   }
 
   // The last sends (the end of the tiles) are small and go eagerly; a lost rank's are not waited for.
@@ -190,7 +192,7 @@ class Coordinator {
 
   const std::vector<Tile>& tiles_;
   Image& image_;
-  bool quiet_;
+  int frame_;
   TileDealer dealer_;
   std::vector<RankTally> tally_;
   std::vector<int> held_;
@@ -203,11 +205,11 @@ class Coordinator {
 }  // namespace
 
 ExchangeResult coordinateTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int ranks, ThreadPool& pool,
-                               Image& image, bool quiet) {
+                               Image& image, int frame, std::vector<bool>& lost) {
   gPlanned.store(tiles.size());
   gPlaced.store(0);
-  Coordinator coordinator(tiles, ranks, image, quiet);
-  return coordinator.run(tracer, pool);
+  Coordinator coordinator(tiles, ranks, image, frame);
+  return coordinator.run(tracer, pool, lost);
 }
 
 std::size_t tilesPlaced() { return gPlaced.load(std::memory_order_relaxed); }

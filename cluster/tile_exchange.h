@@ -26,12 +26,14 @@ struct ExchangeResult {
 
 // Rank 0: deals `tiles` to the other ranks and to its own render thread until every tile is in `image`
 // (width x height, already sized). Never blocks on another rank: a silent rank's tiles go to the others.
+// `frame` numbers the job's frames (0 for a single image); `lost` (one per rank) carries the ranks lost in
+// earlier frames, and gains those lost in this one.
 ExchangeResult coordinateTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int ranks, ThreadPool& pool,
-                               Image& image, bool quiet);
+                               Image& image, int frame, std::vector<bool>& lost);
 
 // Every other rank: renders the tiles rank 0 deals until it says there are no more. Returns the exit code
 // (kExitIoFailure when rank 0 fell silent).
-int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, ThreadPool& pool);
+int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, ThreadPool& pool, int frame);
 
 // For the signal handler: tiles in the image so far, and in all.
 std::size_t tilesPlaced();

@@ -23,8 +23,8 @@ using Clock = std::chrono::steady_clock;
 // rank 0 told that this rank is alive.
 class TileRenderThread {
  public:
-  TileRenderThread(const Tracer& tracer, const std::vector<Tile>& tiles, ThreadPool& pool)
-      : thread_([this, &tracer, &tiles, &pool] { loop(tracer, tiles, pool); }) {}
+  TileRenderThread(const Tracer& tracer, const std::vector<Tile>& tiles, ThreadPool& pool, int frame)
+      : frame_(frame), thread_([this, &tracer, &tiles, &pool] { loop(tracer, tiles, pool); }) {}
   ~TileRenderThread() {
     {
       std::lock_guard lock(mutex_);
@@ -68,7 +68,7 @@ class TileRenderThread {
       renderTile(tracer, tiles.at(static_cast<std::size_t>(tile)), pool, pixels_, rays);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
       lock.lock();
-      header_ = {tile, 0, ms, rays.camera, rays.shadow, rays.reflection};
+      header_ = {tile, frame_, ms, rays.camera, rays.shadow, rays.reflection};
       done_ = true;
       changed_.notify_all();
     }
@@ -80,6 +80,7 @@ class TileRenderThread {
   bool done_ = false, quit_ = false;
   TileResultHeader header_;
   Image pixels_;
+  int frame_;
   std::thread thread_;  // last: starts once the members it uses exist
 };
 
@@ -98,8 +99,8 @@ bool completeSend(MPI_Request& request, std::chrono::milliseconds patience) {
 
 }  // namespace
 
-int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, ThreadPool& pool) {
-  TileRenderThread renderer(tracer, tiles, pool);
+int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, ThreadPool& pool, int frame) {
+  TileRenderThread renderer(tracer, tiles, pool, frame);
   std::deque<std::int32_t> queue;
   bool ended = false, rendering = false;
   auto lastFromZero = Clock::now();
