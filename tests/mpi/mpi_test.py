@@ -41,6 +41,7 @@ def main():
     for scene, options, ranks, threads in cases:
         t.identical(scene, options, min(ranks, args.max_ranks), threads)
     t.bad_scene()
+    t.frames(os.path.join(scenes, "triangular_light.xml"), min(3, args.max_ranks))
     slow = [os.path.join(conformance, "monkey.xml"), "--samples", "9"]
     t.killed_rank(slow, recovery=False)
     t.killed_rank(slow, recovery=True)
@@ -83,6 +84,25 @@ class Tester:
         self.check(f"rank {ranks - 1}" in run.stdout and "balance" in run.stdout, f"{what}: summary:\n{run.stdout}")
         same = os.path.exists(spread) and open(single, "rb").read() == open(spread, "rb").read()
         self.check(same, f"{what}: the image differs from the single process's")
+
+    def frames(self, scene, ranks):
+        """A turntable under MPI: the single process's frames byte for byte; a rerun renders only the missing one."""
+        single = os.path.join(self.args.scratch, "frames_single", "f_%d.png")
+        spread = os.path.join(self.args.scratch, "frames_mpi", "f_%d.png")
+        options = ["--turntable", "3", "--light-samples", "2"]
+        subprocess.run([self.args.rayview, "render", scene, *options, "-o", single, "--quiet"], check=True)
+        run = subprocess.run(self.mpirun(ranks, [scene, *options, "-o", spread, "--threads", "1"]),
+                             capture_output=True, text=True, timeout=120)
+        self.check(run.returncode == 0 and "3 to render" in run.stdout and "frame 3 of 3 written" in run.stderr,
+                   f"turntable on {ranks} ranks: exit {run.returncode}: {run.stdout}{run.stderr}")
+        same = lambda: all(os.path.exists(spread % k) and open(spread % k, "rb").read() == open(single % k, "rb").read()
+                           for k in range(3))
+        self.check(same(), f"turntable on {ranks} ranks: frames differ from the single process's")
+        os.remove(spread % 1)
+        run = subprocess.run(self.mpirun(ranks, [scene, *options, "-o", spread]), capture_output=True, text=True,
+                             timeout=120)
+        self.check(run.returncode == 0 and "2 complete already, 1 to render" in run.stdout and same(),
+                   f"turntable rerun on {ranks} ranks: {run.stdout}{run.stderr}")
 
     def bad_scene(self):
         bad = os.path.join(self.args.scratch, "bad.xml")
