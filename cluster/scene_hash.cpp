@@ -15,13 +15,14 @@ class Hasher {
   void add(const void* data, std::size_t bytes) {
     const auto* p = static_cast<const unsigned char*>(data);
     mix(bytes);
+    if (bytes == 0) return;  // an empty array's data() may be null, which memcpy must not see
     for (; bytes >= 8; bytes -= 8, p += 8) {
       std::uint64_t word;
       std::memcpy(&word, p, 8);
       mix(word);
     }
     std::uint64_t tail = 0;
-    std::memcpy(&tail, p, bytes);
+    if (bytes > 0) std::memcpy(&tail, p, bytes);
     mix(tail);
   }
   template <class T>

@@ -26,6 +26,11 @@ def main():
     shutil.rmtree(args.scratch, ignore_errors=True)
     os.makedirs(args.scratch)
     os.environ.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    # Under ASan, OpenMPI's components keep allocations to the end and are unloaded before the leak check, so LSan
+    # reports them from "<unknown module>", which no suppression can name: the rest of the suite checks the same
+    # renderer code for leaks in one process; here ASan and UBSan check every access and operation.
+    if os.environ.get("ASAN_OPTIONS") is not None:
+        os.environ["ASAN_OPTIONS"] += ":detect_leaks=0"
     conformance = os.path.join(args.shared, "conformance", "ceng477")
     scenes = os.path.join(args.source, "scenes")
     t = Tester(args)
@@ -141,7 +146,9 @@ class Tester:
             job.kill()
             self.check(False, f"{name}: the job hangs after rank 1 was killed")
             return
-        self.check(time.monotonic() - killed < 10, f"{name}: the job took {time.monotonic() - killed:.1f} s to end")
+        # Ending is bounded; finishing (recovery) takes the survivors' render time, which a sanitizer build stretches.
+        if not recovery:
+            self.check(time.monotonic() - killed < 10, f"{name}: the job took {time.monotonic() - killed:.1f} s to end")
         leftovers = [f for f in os.listdir(self.args.scratch) if f.startswith(os.path.basename(output)) and f != os.path.basename(output)]
         self.check(not leftovers, f"{name}: temporary files left: {leftovers}")
         self.check(not any(rank_process(job.pid, r) for r in range(3)), f"{name}: a rank is still running")
