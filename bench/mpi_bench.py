@@ -17,6 +17,7 @@ import argparse
 import glob
 import os
 import re
+import resource
 import statistics
 import subprocess
 import sys
@@ -26,21 +27,32 @@ TIME_LINE = re.compile(r"time\s+load ([\d.]+) ms[^,]*, BVH build ([\d.]+) ms, re
 BALANCE = re.compile(r"balance\s+([\d.]+)")
 
 
+def cpu_seconds():
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
 def run(command, env=None):
-    start = time.monotonic()
+    """Wall ms, CPU ms of the whole process tree (mpirun and its ranks included), stdout."""
+    start, cpu = time.monotonic(), cpu_seconds()
     done = subprocess.run(command, capture_output=True, text=True, env=env)
     wall = (time.monotonic() - start) * 1000.0
     if done.returncode != 0:
         sys.exit(f"failed: {' '.join(command)}\n{done.stderr}")
-    return wall, done.stdout
+    return wall, (cpu_seconds() - cpu) * 1000.0, done.stdout
+
+
+CPU = {}
 
 
 def best(repeat, command, env=None):
-    """(best wall ms, best render ms, best load+build ms, balances) over `repeat` runs."""
-    walls, renders, startups, balances = [], [], [], []
+    """(best wall ms, best render ms, best load+build ms, balances) over `repeat` runs; the best CPU ms in CPU."""
+    walls, renders, startups, balances, cpus = [], [], [], [], []
     for _ in range(repeat):
-        wall, out = run(command, env)
+        wall, cpu, out = run(command, env)
         walls.append(wall)
+        cpus.append(cpu)
+        CPU[tuple(command)] = min(cpus)
         m = TIME_LINE.search(out)
         if m:
             renders.append(float(m.group(3)))
@@ -70,14 +82,22 @@ def main():
     mpirun = lambda n: ["mpirun", "--bind-to", "none", "-n", str(n)]
     rows = []
 
+    launch = best(args.repeat, mpirun(1) + ["true"])
+    launch_cpu = CPU[tuple(mpirun(1) + ["true"])]
+    rows.append(("mpirun's own launch (`mpirun -n 1 true`): wall, CPU", "", f"{launch[0]:.0f} ms", f"CPU {launch_cpu:.0f} ms"))
+
     small = [rayview, "render", os.path.join(source, "scenes", "triangular_light.xml"), "-o", out, "--threads", "2"]
     libmpi = sorted(glob.glob("/usr/lib/*/libmpi.so.40") + glob.glob("/usr/lib/*/openmpi/lib/libmpi.so.40"))
     plain = best(args.repeat * 3, small)[0]
+    plain_cpu = CPU[tuple(small)]
     if libmpi:
         env = dict(os.environ, LD_PRELOAD=libmpi[0])
         loaded = best(args.repeat * 3, small, env)[0]
-        rows.append(("libmpi loaded into a small render (wall)", f"{plain:.1f} ms", f"{loaded:.1f} ms",
+        loaded_cpu = CPU[tuple(small)]
+        rows.append(("libmpi loaded into a small render: wall", f"{plain:.1f} ms", f"{loaded:.1f} ms",
                      f"{loaded / plain:.3f}x"))
+        rows.append(("libmpi loaded into a small render: CPU", f"{plain_cpu:.1f} ms", f"{loaded_cpu:.1f} ms",
+                     f"{loaded_cpu / plain_cpu:.3f}x"))
 
     heavy = [monkey, "-o", out, "--samples", "9"]
     single2 = best(args.repeat, [rayview, "render", *heavy, "--threads", "2"])
@@ -86,13 +106,20 @@ def main():
                  f"{one_rank[1] / single2[1]:.3f}x"))
     rows.append(("1 rank x 2 threads vs no MPI, wall", f"{single2[0]:.0f} ms", f"{one_rank[0]:.0f} ms",
                  f"{one_rank[0] / single2[0]:.3f}x"))
+    cpu_single = CPU[tuple([rayview, "render", *heavy, "--threads", "2"])]
+    cpu_one = CPU[tuple(mpirun(1) + [rayview, "render", *heavy, "--threads", "2"])]
+    rows.append(("1 rank x 2 threads vs no MPI, CPU time less mpirun's launch", f"{cpu_single:.0f} ms",
+                 f"{cpu_one - launch_cpu:.0f} ms", f"{(cpu_one - launch_cpu) / cpu_single:.3f}x"))
     two_ranks = best(args.repeat, mpirun(2) + [rayview, "render", *heavy, "--threads", "1"])
     rows.append(("2 ranks x 1 thread vs 1 process x 2 threads, render", f"{single2[1]:.0f} ms",
                  f"{two_ranks[1]:.0f} ms", f"{single2[1] / two_ranks[1] * 100:.1f} %"))
     rows.append(("2 ranks x 1 thread vs 1 process x 2 threads, wall", f"{single2[0]:.0f} ms",
                  f"{two_ranks[0]:.0f} ms", f"{single2[0] / two_ranks[0] * 100:.1f} %"))
+    cpu_two = CPU[tuple(mpirun(2) + [rayview, "render", *heavy, "--threads", "1"])]
+    rows.append(("2 ranks x 1 thread vs 1 process x 2 threads, CPU time less mpirun's launch", f"{cpu_single:.0f} ms",
+                 f"{cpu_two - launch_cpu:.0f} ms", f"{cpu_single / (cpu_two - launch_cpu) * 100:.1f} %"))
 
-    imbalanced = [bunny, "-o", out, "--samples", "4", "--threads", "1"]
+    imbalanced = [bunny, "-o", out, "--samples", "36", "--threads", "1"]
     for n in (2, 4):
         balances = best(args.repeat, mpirun(n) + [rayview, "render", *imbalanced])[3]
         rows.append((f"balance, bunny (object in the middle) on {n} ranks", "", f"median {statistics.median(balances):.3f}",

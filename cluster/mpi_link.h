@@ -33,6 +33,7 @@ inline constexpr auto kLostAfter = std::chrono::milliseconds(3000);
 inline constexpr auto kRankZeroLostAfter = std::chrono::milliseconds(6000);
 // How long a waiting rank sleeps between probes: short next to a tile, long next to a probe's cost.
 inline constexpr auto kProbePause = std::chrono::microseconds(200);
+inline constexpr auto kLongestProbePause = std::chrono::microseconds(2000);
 
 // A message waiting from `source` (MPI_ANY_SOURCE) with `tag` (MPI_ANY_TAG)? Fills `status` when there is.
 inline bool messageWaiting(int source, int tag, MPI_Status& status) {

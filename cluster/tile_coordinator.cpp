@@ -1,5 +1,6 @@
 #include <mpi.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cstdio>
@@ -41,12 +42,23 @@ class Coordinator {
 
   ExchangeResult run(const Tracer& tracer, ThreadPool& pool, std::vector<bool>& lost) {
     for (int w = 1; w < ranks(); ++w) tally_[w].lost = lost[w];
+    if (ranks() == 1) {  // nobody to deal to: no coordinator polling beside the render
+      renderOwnShare(tracer, pool);
+      return {tally_, dealer_.allFinished()};
+    }
     std::thread local([&] { renderOwnShare(tracer, pool); });
     for (int w = 1; w < ranks(); ++w) deal(w);
+    // Each probe runs MPI's progress engine (microseconds of a core): the pause grows while nothing arrives, up to
+    // where a worker, holding its next tile already, still never waits.
+    auto pause = kProbePause;
     while (!dealer_.allFinished()) {
-      if (receiveOne()) continue;
+      if (receiveOne()) {
+        pause = kProbePause;
+        continue;
+      }
       watchWorkers();
-      std::this_thread::sleep_for(kProbePause);
+      std::this_thread::sleep_for(pause);
+      pause = std::min(pause * 2, kLongestProbePause);
     }
     for (int w = 1; w < ranks(); ++w)
       if (!tally_[w].lost) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
