@@ -99,7 +99,7 @@ def main():
         rows.append(("libmpi loaded into a small render: CPU", f"{plain_cpu:.1f} ms", f"{loaded_cpu:.1f} ms",
                      f"{loaded_cpu / plain_cpu:.3f}x"))
 
-    heavy = [monkey, "-o", out, "--samples", "9"]
+    heavy = [monkey, "-o", out, "--samples", "25"]
     single2 = best(args.repeat, [rayview, "render", *heavy, "--threads", "2"])
     one_rank = best(args.repeat, mpirun(1) + [rayview, "render", *heavy, "--threads", "2"])
     rows.append(("1 rank x 2 threads vs no MPI, render", f"{single2[1]:.0f} ms", f"{one_rank[1]:.0f} ms",
