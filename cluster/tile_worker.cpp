@@ -108,7 +108,8 @@ int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, 
   MPI_Request pending = MPI_REQUEST_NULL;
   for (;;) {
     MPI_Status status;
-    while (messageWaiting(0, kTagTile, status)) {
+    // Nothing past the end of this frame's tiles is read: what follows belongs to the next frame.
+    while (!ended && messageWaiting(0, kTagTile, status)) {
       std::int32_t value = 0;
       MPI_Recv(&value, 1, MPI_INT32_T, 0, kTagTile, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       lastFromZero = Clock::now();
