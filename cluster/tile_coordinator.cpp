@@ -60,8 +60,8 @@ class Coordinator {
       std::this_thread::sleep_for(pause);
       pause = std::min(pause * 2, kLongestProbePause);
     }
-    for (int w = 1; w < ranks(); ++w)
-      if (!tally_[w].lost) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
+    // Lost ranks too: one only slow (starved of CPU) then ends cleanly; to a dead one the send never completes.
+    for (int w = 1; w < ranks(); ++w) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
     local.join();
     finishSends();
     for (int w = 1; w < ranks(); ++w) lost[w] = tally_[w].lost;
