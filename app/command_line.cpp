@@ -146,6 +146,12 @@ std::vector<OptionSpec> makeOptionTable() {
        }},
       {"--camera", "N", kRender, "which camera of a CENG477 scene's <Cameras> to render (1 is the first, the default)",
        [](CommandLine& c, const std::string& v) { c.camera = parseInt("--camera", v, 1, 1000000); }},
+      {"--turntable", "N", kRender,
+       "render N frames orbiting the camera around the scene's centre (the viewer's orbit pivot); -o names them "
+       "with a printf number, e.g. -o frames/spin_%04d.png",
+       [](CommandLine& c, const std::string& v) { c.turntableFrames = parseInt("--turntable", v, 1, 100000); }},
+      {"--overwrite", "", kRender, "with several frames or scenes: render them all, not only those whose file is missing or incomplete",
+       [](CommandLine& c, const std::string&) { c.overwrite = true; }},
       {"--quiet", "", kRender | kBench, "print only errors",
        [](CommandLine& c, const std::string&) { c.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",
@@ -242,8 +248,10 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       command.scenePaths.push_back(arg);  // compare: the image, then the reference
       continue;
     }
-    if (!command.scenePath.empty()) throw UsageError("more than one scene given: '" + command.scenePath + "' and '" + arg + "'");
-    command.scenePath = arg;
+    if (command.kind == CommandKind::Render) command.scenePaths.push_back(arg);  // several: a batch to a directory
+    else if (!command.scenePath.empty())
+      throw UsageError("more than one scene given: '" + command.scenePath + "' and '" + arg + "'");
+    if (command.scenePath.empty()) command.scenePath = arg;
   }
   if (command.kind == CommandKind::Render) {
     if (command.outputPath.empty()) throw UsageError("'rayview render' needs -o OUT.png or -o OUT.ppm");
@@ -283,8 +291,12 @@ std::string helpText(CommandKind kind) {
   switch (kind) {
     case CommandKind::Render:
       return "usage: rayview render [SCENE] -o OUT.png|OUT.ppm [options]\n"
+             "       rayview render SCENE --turntable N -o DIR/NAME_%04d.png [options]\n"
+             "       rayview render SCENE... -o DIR/ [options]\n"
              "\n"
-             "Renders SCENE (the embedded default scene without it) headless and prints timings.\n"
+             "Renders SCENE (the embedded default scene without it) headless and prints timings. Frames of a turntable or\n"
+             "a batch of scenes whose file is already complete are not rendered again (--overwrite renders them).\n"
+             "Under mpirun, the ranks share the work (docs/scale-out.md).\n"
              "\n"
              "options:\n" +
              optionLines(kRender) +

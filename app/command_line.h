@@ -32,10 +32,12 @@ struct CommandLine {
   // --depth, --tri-light, ...: one per knob given (the last wins), written into the render settings at once
   // and into the scene's parameters once it is loaded (see knobs.h).
   std::vector<KnobAssignment> knobs;
+  int turntableFrames = 0;  // render: --turntable N (0: one image of the scene's own camera)
+  bool overwrite = false;   // render, frames: render every frame, even those whose file is already complete
   std::string scriptPath;  // view: --script FILE (automation, see docs/viewer.md)
   std::string comparePath;  // view: --compare REF (a reference image, see docs/viewer.md)
   std::string benchName;                // bench: the benchmark to run ("tradeoff")
-  std::vector<std::string> scenePaths;  // bench: every SCENE given
+  std::vector<std::string> scenePaths;  // bench, and render of several scenes: every SCENE given
   std::string outputDirectory;          // bench: --out DIR
   double resolutionScale = 1.0;         // bench: --scale F
   std::string diffPath;                 // compare: --diff OUT.png

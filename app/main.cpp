@@ -8,6 +8,9 @@
 #include "bench_command.h"
 #include "command_line.h"
 #include "compare_command.h"
+#include "frame_plan.h"
+#include "frames_command.h"
+#include "mpi_handoff.h"
 #include "process_start.h"
 #include "rayview/image.h"
 #include "render_command.h"
@@ -15,7 +18,7 @@
 #ifdef RAYVIEW_HAVE_VIEWER
 #include "rayview/viewer.h"
 #else
-#include "viewer_start.h"
+#include "libexec_start.h"
 #endif
 
 namespace {
@@ -64,6 +67,8 @@ int main(int argc, char** argv) try {
       std::fputs(versionText().c_str(), stdout);
       return kExitOk;
     case CommandKind::Render:
+      if (const int code = handOffToMpi(argv); code >= 0) return code;
+      if (isFrameCommand(command)) return runFramesCommand(command);
       return runRenderCommand(command);
     case CommandKind::Bench:
       return runBenchCommand(command);

@@ -50,6 +50,14 @@ std::string outputReplacesInput(const std::filesystem::path& output, std::string
   return {};
 }
 
+void forgetInput(const std::filesystem::path& path) {
+  struct stat st {};
+  if (::stat(path.c_str(), &st) != 0) return;
+  Inputs& all = inputs();
+  const std::lock_guard lock(all.mutex);
+  std::erase_if(all.files, [&](const Input& input) { return input.device == st.st_dev && input.inode == st.st_ino; });
+}
+
 void forgetInputs() {
   Inputs& all = inputs();
   const std::lock_guard lock(all.mutex);

@@ -8,18 +8,10 @@
 namespace rayview {
 namespace {
 
-// Below this fraction of the scene's radius the eye would sit on the pivot: dolly stops there.
-constexpr double kMinimumDistanceFraction = 1e-4;
 // frame() leaves this much room around the bounding sphere.
 constexpr double kFrameMargin = 1.02;
 
 bool isUsable(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && glm::length(v) > 0.0; }
-
-// Rodrigues' rotation of `v` by `angle` radians about the unit `axis` (right-handed).
-glm::dvec3 rotate(const glm::dvec3& v, const glm::dvec3& axis, double angle) {
-  const double c = std::cos(angle), s = std::sin(angle);
-  return v * c + glm::cross(axis, v) * s + axis * glm::dot(axis, v) * (1.0 - c);
-}
 
 // The camera's right and true-up axes (SPEC section 3: u = up x w, v = w x u), tolerant of degenerate input.
 void rightAndUp(const Camera& camera, glm::dvec3& u, glm::dvec3& v) {
@@ -32,26 +24,6 @@ void rightAndUp(const Camera& camera, glm::dvec3& u, glm::dvec3& v) {
 }
 
 }  // namespace
-
-double Bounds::radius() const { return empty ? 0.0 : glm::length(max - min) * 0.5; }
-
-void Bounds::add(const glm::dvec3& p) {
-  if (empty) {
-    min = max = p;
-    empty = false;
-    return;
-  }
-  min = glm::min(min, p);
-  max = glm::max(max, p);
-}
-
-Bounds sceneBounds(const Scene& scene) {
-  Bounds bounds;
-  for (const Triangle& triangle : scene.triangles)
-    for (std::uint32_t index : triangle.vertex)
-      if (index < scene.vertices.size()) bounds.add(scene.vertices[index]);
-  return bounds;
-}
 
 double fittingHalfAngleTangent(const Camera& camera) {
   const double d = camera.nearDistance > 0.0 ? camera.nearDistance : 1.0;
@@ -66,11 +38,7 @@ void OrbitCamera::setHome(const Camera& fileCamera, const Bounds& bounds) {
   home_ = fileCamera;
   worldUp_ = isUsable(fileCamera.up) ? glm::normalize(fileCamera.up) : glm::dvec3(0, 1, 0);
   sceneRadius_ = bounds.radius() > 0.0 ? bounds.radius() : 1.0;
-  const glm::dvec3 forward = isUsable(fileCamera.gaze) ? glm::normalize(fileCamera.gaze) : glm::dvec3(0, 0, -1);
-  // The pivot is the point of the gaze line nearest the scene's centre, unless that lies behind the eye.
-  double along = bounds.empty ? 0.0 : glm::dot(bounds.center() - fileCamera.position, forward);
-  if (!(along > kMinimumDistanceFraction * sceneRadius_)) along = sceneRadius_;
-  homePivot_ = fileCamera.position + forward * along;
+  homePivot_ = orbitPivot(fileCamera, bounds);
   reset();
 }
 
@@ -111,7 +79,7 @@ void OrbitCamera::orbit(double yawRadians, double pitchRadians) {
   glm::dvec3 offset = camera_.position - pivot_;
   const double d = glm::length(offset);
   if (!(d > 0.0)) return;
-  offset = rotate(offset, worldUp_, yawRadians);
+  offset = rotateAbout(offset, worldUp_, yawRadians);
 
   // Pitch about the right axis, clamped so the eye never passes over a pole of world up.
   const glm::dvec3 direction = offset / d;
@@ -122,7 +90,7 @@ void OrbitCamera::orbit(double yawRadians, double pitchRadians) {
   if (isUsable(right)) {
     right = glm::normalize(right);
     // Rotating about `right` by a negative angle turns the offset toward world up (smaller elevation).
-    offset = rotate(offset, right, -(elevationFromUp - target));
+    offset = rotateAbout(offset, right, -(elevationFromUp - target));
   }
   offset *= d / glm::length(offset);  // rotations keep the length; this removes rounding drift
   lookAtPivot(pivot_ + offset);

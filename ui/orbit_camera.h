@@ -9,21 +9,11 @@
 #include <glm/vec3.hpp>
 
 #include "rayview/scene.h"
+#include "rayview/scene_bounds.h"
 
 namespace rayview {
 
-// Axis-aligned bounds of what the scene draws (the vertices its triangles use).
-struct Bounds {
-  glm::dvec3 min{0.0};
-  glm::dvec3 max{0.0};
-  bool empty = true;
-
-  glm::dvec3 center() const { return (min + max) * 0.5; }
-  double radius() const;  // of the bounding sphere through the corners
-  void add(const glm::dvec3& p);
-};
-
-Bounds sceneBounds(const Scene& scene);
+// Bounds, sceneBounds and the orbit pivot's rule are in rayview/scene_bounds.h (turntables use them too).
 
 // Navigation speeds: one pixel of mouse motion in a window `viewportHeight` pixels tall.
 inline constexpr double kOrbitRadiansPerViewportHeight = 3.14159265358979323846;  // a full-height drag: 180 degrees

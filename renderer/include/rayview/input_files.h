@@ -20,6 +20,10 @@ void rememberInput(const std::filesystem::path& path, std::string_view role);
 // scene file Y; choose another name". A file recorded as `mayReplaceRole` (non-empty) is not refused.
 std::string outputReplacesInput(const std::filesystem::path& output, std::string_view mayReplaceRole = {});
 
+// Forgets `path` (by any spelling): a command that read one of its own earlier outputs only to see whether it is
+// whole (a frame of a resumed turntable) may then replace it.
+void forgetInput(const std::filesystem::path& path);
+
 // Forgets every recorded file: for tests that reuse one name for a new input.
 void forgetInputs();
 

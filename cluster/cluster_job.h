@@ -1,0 +1,40 @@
+#pragma once
+// `rayview render` on several MPI ranks: what every rank is asked to do (each parses the same command line).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rayview/knobs.h"
+
+namespace rayview::cluster {
+
+struct ClusterJob {
+  std::string scenePath;  // "" for the embedded default scene
+  std::filesystem::path output;
+  bool strict = false;
+  bool quiet = false;
+  int threads = 0;  // per rank; 0: one per hardware thread
+  std::vector<KnobAssignment> knobs;
+};
+
+// One frame of a turntable or a batch: the scene, the turntable's frame (frames 0: the scene's own camera) and
+// the file it goes to.
+struct ClusterFrame {
+  std::string scenePath;
+  int frame = 0;
+  int frames = 0;
+  std::filesystem::path output;
+};
+
+// Frames under MPI: rank 0 passes the frames still to render (its plan; `planCode` not kExitOk: the plan's
+// error, printed), the other ranks nothing; rank 0 broadcasts them. Each frame is split into tiles dealt to all
+// ranks; the scene of consecutive frames is loaded once. Returns this rank's exit code. A rank lost ends the
+// job after the frame it was lost in (finished frames stay written; a rerun renders the rest).
+int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& frames, int planCode);
+
+// Runs on every rank between MPI_Init_thread (MPI_THREAD_FUNNELED at least) and MPI_Finalize; returns this
+// rank's exit code. Rank 0 reads the scene, deals the tiles, renders too, writes the image and the summary.
+int runClusterRender(const ClusterJob& job);
+
+}  // namespace rayview::cluster

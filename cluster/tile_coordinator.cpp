@@ -1,0 +1,232 @@
+#include <mpi.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <string>
+#include <thread>
+
+#include "mpi_link.h"
+#include "tile_dealer.h"
+#include "tile_exchange.h"
+#include "tile_render.h"
+
+namespace rayview::cluster {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+std::atomic<std::size_t> gPlaced{0};
+std::atomic<std::size_t> gPlanned{0};
+std::atomic<bool> gPeerLost{false};
+
+// Tiles a worker holds at once: one to render, one on its way, so that it never waits for the next.
+constexpr int kDepth = 2;
+// An idle worker hears from rank 0 this often, so that its own watch on rank 0 stays quiet.
+constexpr auto kNudgeEvery = std::chrono::milliseconds(1000);
+constexpr std::int32_t kStillWorking = -2;
+
+double msBetween(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
+
+class Coordinator {
+ public:
+  Coordinator(const std::vector<Tile>& tiles, int ranks, Image& image, int frame)
+      : tiles_(tiles), image_(image), frame_(frame), dealer_(tiles.size()), tally_(static_cast<std::size_t>(ranks)),
+        held_(static_cast<std::size_t>(ranks), 0), lastHeard_(static_cast<std::size_t>(ranks), Clock::now()),
+        lastSent_(static_cast<std::size_t>(ranks), Clock::now()) {}
+
+  ExchangeResult run(const Tracer& tracer, ThreadPool& pool, std::vector<bool>& lost) {
+    for (int w = 1; w < ranks(); ++w) tally_[w].lost = lost[w];
+    if (ranks() == 1) {  // nobody to deal to: no coordinator polling beside the render
+      renderOwnShare(tracer, pool);
+      return {tally_, dealer_.allFinished()};
+    }
+    std::thread local([&] { renderOwnShare(tracer, pool); });
+    for (int w = 1; w < ranks(); ++w) deal(w);
+    // Each probe runs MPI's progress engine (microseconds of a core): the pause grows while nothing arrives, up to
+    // where a worker, holding its next tile already, still never waits.
+    auto pause = kProbePause;
+    while (!dealer_.allFinished()) {
+      if (receiveOne()) {
+        pause = kProbePause;
+        continue;
+      }
+      watchWorkers();
+      std::this_thread::sleep_for(pause);
+      pause = std::min(pause * 2, kLongestProbePause);
+    }
+    // Lost ranks too: one only slow (starved of CPU) then ends cleanly; to a dead one the send never completes.
+    for (int w = 1; w < ranks(); ++w) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
+    local.join();
+    finishSends();
+    for (int w = 1; w < ranks(); ++w) lost[w] = tally_[w].lost;
+    return {tally_, dealer_.allFinished()};
+  }
+
+ private:
+  int ranks() const { return static_cast<int>(tally_.size()); }
+
+  // Rank 0's own share, on a thread of its own: the main thread stays free to deal.
+  void renderOwnShare(const Tracer& tracer, ThreadPool& pool) {
+    Image pixels;
+    while (const auto tile = dealer_.takeOrWait(0)) {
+      const auto start = Clock::now();
+      RayCounts rays;
+      renderTile(tracer, tiles_[*tile], pool, pixels, rays);
+      tally_[0].busyMs += msBetween(start, Clock::now());
+      tally_[0].rays += rays;
+      ++tally_[0].tiles;
+      if (dealer_.finish(*tile, 0)) place(*tile, pixels.rgb.data());
+    }
+  }
+
+  void place(std::size_t tile, const std::uint8_t* rgb) {
+    placeTile(tiles_[tile], rgb, image_);
+    gPlaced.fetch_add(1, std::memory_order_relaxed);
+  }
+
+  void send(int worker, std::int32_t value) {
+    outbox_.push_back({value, MPI_REQUEST_NULL});
+    MPI_Isend(&outbox_.back().value, 1, MPI_INT32_T, worker, kTagTile, MPI_COMM_WORLD, &outbox_.back().request);
+    lastSent_[worker] = Clock::now();
+    // Completed sends leave the front; a send to a lost rank may never complete and is left alone.
+    while (outbox_.size() > 64) {
+      int done = 0;
+      MPI_Test(&outbox_.front().request, &done, MPI_STATUS_IGNORE);
+      if (!done) break;
+      outbox_.pop_front();
+    }
+  }
+
+  void deal(int worker) {
+    while (!tally_[worker].lost && held_[worker] < kDepth) {
+      const auto tile = dealer_.take(worker);
+      if (!tile) return;
+      if (held_[worker] == 0) lastHeard_[worker] = Clock::now();  // its silence counts from now
+      ++held_[worker];
+      send(worker, static_cast<std::int32_t>(*tile));
+    }
+  }
+
+  bool receiveOne() {
+    MPI_Status status;
+    if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) return false;
+    const int worker = status.MPI_SOURCE;
+    int bytes = 0;
+    MPI_Get_count(&status, MPI_BYTE, &bytes);
+    inbox_.resize(static_cast<std::size_t>(bytes) + 1);
+    // A big message is read from the sender's memory: if the sender dies meanwhile, a blocking receive would
+    // never return, so the receive is waited for with a deadline and abandoned (its buffer with it) after it.
+    MPI_Request request;
+    MPI_Irecv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, &request);
+    const auto deadline = Clock::now() + kLostAfter;
+    for (int done = 0; !done;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) break;
+      if (Clock::now() > deadline) {
+        abandoned_.push_back(std::move(inbox_));
+        inbox_ = {};
+        loseWorker(worker);
+        return true;
+      }
+      std::this_thread::sleep_for(kProbePause);
+    }
+    lastHeard_[worker] = Clock::now();
+    if (status.MPI_TAG == kTagResult && static_cast<std::size_t>(bytes) >= sizeof(TileResultHeader)) takeResult(worker);
+    return true;
+  }
+
+  void takeResult(int worker) {
+    TileResultHeader header;
+    std::memcpy(&header, inbox_.data(), sizeof header);
+    if (header.frame != frame_) return;  // a late result of an earlier frame
+    const auto tile = static_cast<std::size_t>(header.tile);
+    const Tile& t = tiles_.at(tile);
+    const std::size_t expected = sizeof header + static_cast<std::size_t>(t.x1 - t.x0) * (t.y1 - t.y0) * 3;
+    if (inbox_.size() - 1 != expected) return;
+    RankTally& tally = tally_[worker];
+    tally.busyMs += header.busyMs;
+    ++tally.tiles;
+    tally.rays += RayCounts{header.camera, header.shadow, header.reflection};
+    // A late result from a rank declared lost still counts, if no one else finished the tile first.
+    if (dealer_.finish(tile, worker)) place(tile, inbox_.data() + sizeof header);
+    if (held_[worker] > 0) --held_[worker];
+    deal(worker);
+  }
+
+  // Silent workers holding tiles are lost and their tiles dealt again; idle ones get work or a nudge.
+  void watchWorkers() {
+    const auto now = Clock::now();
+    for (int w = 1; w < ranks(); ++w) {
+      if (tally_[w].lost) continue;
+      if (held_[w] > 0 && now - lastHeard_[w] > kLostAfter) {
+        loseWorker(w);
+        continue;
+      }
+      deal(w);
+      if (held_[w] == 0 && now - lastSent_[w] > kNudgeEvery) send(w, kStillWorking);
+    }
+  }
+
+  void loseWorker(int worker) {
+    if (tally_[worker].lost) return;
+    tally_[worker].lost = true;
+    gPeerLost.store(true);
+    held_[worker] = 0;
+    const std::vector<std::size_t> back = dealer_.reclaim(worker);
+    std::fprintf(stderr,
+                 "rayview: warning: rank %d fell silent for %.0f s holding %zu unfinished tile%s; dealing %s to the "
+                 "other ranks\n",
+                 worker, std::chrono::duration<double>(kLostAfter).count(), back.size(), back.size() == 1 ? "" : "s",
+                 back.size() == 1 ? "it" : "them");
+  }
+
+  // The last sends (the end of the tiles) are small and go eagerly; a lost rank's are not waited for.
+  void finishSends() {
+    const auto deadline = Clock::now() + std::chrono::seconds(1);
+    while (!outbox_.empty() && Clock::now() < deadline) {
+      int done = 0;
+      MPI_Test(&outbox_.front().request, &done, MPI_STATUS_IGNORE);
+      if (done) outbox_.pop_front();
+      else std::this_thread::sleep_for(kProbePause);
+    }
+  }
+
+  struct Outgoing {
+    std::int32_t value;
+    MPI_Request request;
+  };
+
+  const std::vector<Tile>& tiles_;
+  Image& image_;
+  int frame_;
+  TileDealer dealer_;
+  std::vector<RankTally> tally_;
+  std::vector<int> held_;
+  std::vector<Clock::time_point> lastHeard_, lastSent_;
+  std::deque<Outgoing> outbox_;  // a deque: each value stays where its send reads it
+  std::vector<std::uint8_t> inbox_;
+  std::vector<std::vector<std::uint8_t>> abandoned_;  // buffers of receives given up on: never freed under MPI
+};
+
+}  // namespace
+
+ExchangeResult coordinateTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int ranks, ThreadPool& pool,
+                               Image& image, int frame, std::vector<bool>& lost) {
+  gPlanned.store(tiles.size());
+  gPlaced.store(0);
+  Coordinator coordinator(tiles, ranks, image, frame);
+  return coordinator.run(tracer, pool, lost);
+}
+
+std::size_t tilesPlaced() { return gPlaced.load(std::memory_order_relaxed); }
+std::size_t tilesPlanned() { return gPlanned.load(std::memory_order_relaxed); }
+bool peerLost() { return gPeerLost.load(); }
+void notePeerLost() { gPeerLost.store(true); }
+
+}  // namespace rayview::cluster

@@ -1,0 +1,189 @@
+#!/usr/bin/env python3
+"""rayview render under mpirun: the image is the single process's byte for byte, a bad scene fails once, a killed
+rank ends the job cleanly (or, with mpirun --enable-recovery, the survivors finish the same image)."""
+import argparse
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+SKIP = 77
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--rayview", required=True)
+    parser.add_argument("--shared", required=True)
+    parser.add_argument("--source", required=True)
+    parser.add_argument("--scratch", required=True)
+    parser.add_argument("--max-ranks", type=int, default=4)
+    args = parser.parse_args()
+    if shutil.which("mpirun") is None:
+        print("mpirun not found: skipped")
+        return SKIP
+    shutil.rmtree(args.scratch, ignore_errors=True)
+    os.makedirs(args.scratch)
+    os.environ.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    # Under ASan, OpenMPI's components keep allocations to the end and are unloaded before the leak check, so LSan
+    # reports them from "<unknown module>", which no suppression can name: the rest of the suite checks the same
+    # renderer code for leaks in one process; here ASan and UBSan check every access and operation.
+    if os.environ.get("ASAN_OPTIONS") is not None:
+        os.environ["ASAN_OPTIONS"] += ":detect_leaks=0"
+    conformance = os.path.join(args.shared, "conformance", "ceng477")
+    scenes = os.path.join(args.source, "scenes")
+    t = Tester(args)
+    # (scene, options, ranks, threads per rank): point lights, mirrors, area lights with samples, a texture (the
+    # workers get it from rank 0), the default scene, every traversal back-end.
+    cases = [
+        (os.path.join(conformance, "bunny.xml"), [], 1, 2),
+        (os.path.join(conformance, "monkey.xml"), ["--accel", "reference", "--depth", "3"], 2, 1),
+        (os.path.join(scenes, "triangular_light.xml"), ["--light-samples", "4", "--samples", "2"], 3, 2),
+        (os.path.join(scenes, "textured_2025.xml"), ["--accel", "embree"], args.max_ranks, 1),
+        ("", ["--tri-light", "directional", "--accel", "packet"], 2, 2),
+    ]
+    for scene, options, ranks, threads in cases:
+        t.identical(scene, options, min(ranks, args.max_ranks), threads)
+    t.bad_scene()
+    t.frames(os.path.join(scenes, "triangular_light.xml"), min(3, args.max_ranks))
+    slow = [os.path.join(conformance, "monkey.xml"), "--samples", "9"]
+    t.killed_rank(slow, recovery=False)
+    t.killed_rank(slow, recovery=True)
+    print(f"{t.passed} passed, {len(t.failures)} failed")
+    for failure in t.failures:
+        print("FAIL:", failure)
+    return 1 if t.failures else 0
+
+
+class Tester:
+    def __init__(self, args):
+        self.args = args
+        self.passed = 0
+        self.failures = []
+        self.count = 0
+
+    def check(self, ok, what):
+        if ok:
+            self.passed += 1
+        else:
+            self.failures.append(what)
+
+    def out(self, name):
+        self.count += 1
+        return os.path.join(self.args.scratch, f"{self.count:02d}_{name}.png")
+
+    def mpirun(self, ranks, arguments, extra=()):
+        return ["mpirun", *extra, "-n", str(ranks), self.args.rayview, "render", *arguments]
+
+    def identical(self, scene, options, ranks, threads):
+        name = os.path.basename(scene) or "default"
+        single = self.out(name + "_single")
+        scene_args = [scene] if scene else []
+        subprocess.run([self.args.rayview, "render", *scene_args, "-o", single, "--quiet", *options], check=True)
+        spread = self.out(f"{name}_{ranks}x{threads}")
+        run = subprocess.run(self.mpirun(ranks, [*scene_args, "-o", spread, "--threads", str(threads), *options]),
+                             capture_output=True, text=True, timeout=120)
+        what = f"{name} {options} on {ranks} ranks x {threads} threads"
+        self.check(run.returncode == 0, f"{what}: exit {run.returncode}: {run.stderr}")
+        self.check(f"rank {ranks - 1}" in run.stdout and "balance" in run.stdout, f"{what}: summary:\n{run.stdout}")
+        same = os.path.exists(spread) and open(single, "rb").read() == open(spread, "rb").read()
+        self.check(same, f"{what}: the image differs from the single process's")
+
+    def frames(self, scene, ranks):
+        """A turntable under MPI: the single process's frames byte for byte; a rerun renders only the missing one."""
+        single = os.path.join(self.args.scratch, "frames_single", "f_%d.png")
+        spread = os.path.join(self.args.scratch, "frames_mpi", "f_%d.png")
+        options = ["--turntable", "3", "--light-samples", "2"]
+        subprocess.run([self.args.rayview, "render", scene, *options, "-o", single, "--quiet"], check=True)
+        run = subprocess.run(self.mpirun(ranks, [scene, *options, "-o", spread, "--threads", "1"]),
+                             capture_output=True, text=True, timeout=120)
+        self.check(run.returncode == 0 and "3 to render" in run.stdout and "frame 3 of 3 written" in run.stderr,
+                   f"turntable on {ranks} ranks: exit {run.returncode}: {run.stdout}{run.stderr}")
+        same = lambda: all(os.path.exists(spread % k) and open(spread % k, "rb").read() == open(single % k, "rb").read()
+                           for k in range(3))
+        self.check(same(), f"turntable on {ranks} ranks: frames differ from the single process's")
+        os.remove(spread % 1)
+        run = subprocess.run(self.mpirun(ranks, [scene, *options, "-o", spread]), capture_output=True, text=True,
+                             timeout=120)
+        self.check(run.returncode == 0 and "2 complete already, 1 to render" in run.stdout and same(),
+                   f"turntable rerun on {ranks} ranks: {run.stdout}{run.stderr}")
+
+    def bad_scene(self):
+        bad = os.path.join(self.args.scratch, "bad.xml")
+        with open(bad, "w") as f:
+            f.write("<scene>\n<camera>\n<position>0 0 oops</position>\n</camera>\n</scene>\n")
+        single = subprocess.run([self.args.rayview, "render", bad, "-o", self.out("bad_single")],
+                                capture_output=True, text=True)
+        output = self.out("bad")
+        run = subprocess.run(self.mpirun(3, [bad, "-o", output]), capture_output=True, text=True, timeout=60)
+        self.check(run.returncode == 2, f"bad scene: exit {run.returncode}, not 2")
+        message = single.stderr.strip()
+        self.check(message and run.stderr.count(message) == 1,
+                   f"bad scene: the located message once, as a single process prints it:\n{message}\nbut:\n{run.stderr}")
+        self.check(not os.path.exists(output), "bad scene: an image was written")
+
+    def killed_rank(self, scene_args, recovery):
+        name = "recovered" if recovery else "killed"
+        output = self.out(name)
+        extra = ["--enable-recovery"] if recovery else []
+        start = time.monotonic()
+        job = subprocess.Popen(self.mpirun(3, [*scene_args, "-o", output, "--threads", "1"], extra),
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        victim = None
+        while victim is None and job.poll() is None and time.monotonic() - start < 20:
+            time.sleep(0.1)
+            victim = rank_process(job.pid, 1, started_rendering=True)
+        if victim is None:
+            job.kill()
+            self.check(False, f"{name}: rank 1 never started rendering")
+            return
+        os.kill(victim, signal.SIGKILL)
+        killed = time.monotonic()
+        try:
+            stdout, stderr = job.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            job.kill()
+            self.check(False, f"{name}: the job hangs after rank 1 was killed")
+            return
+        # Ending is bounded; finishing (recovery) takes the survivors' render time, which a sanitizer build stretches.
+        if not recovery:
+            self.check(time.monotonic() - killed < 10, f"{name}: the job took {time.monotonic() - killed:.1f} s to end")
+        leftovers = [f for f in os.listdir(self.args.scratch) if f.startswith(os.path.basename(output)) and f != os.path.basename(output)]
+        self.check(not leftovers, f"{name}: temporary files left: {leftovers}")
+        self.check(not any(rank_process(job.pid, r) for r in range(3)), f"{name}: a rank is still running")
+        if recovery:
+            single = self.out("recovered_single")
+            subprocess.run([self.args.rayview, "render", *scene_args, "-o", single, "--quiet"], check=True)
+            same = os.path.exists(output) and open(output, "rb").read() == open(single, "rb").read()
+            self.check(job.returncode == 0 and same, f"{name}: exit {job.returncode}, same image {same}:\n{stderr}")
+            self.check("rank 1 fell silent" in stderr, f"{name}: no message naming rank 1:\n{stderr}")
+        else:
+            self.check(job.returncode != 0, f"{name}: exit 0 after a rank was killed")
+            self.check(not os.path.exists(output), f"{name}: an image was written")
+            self.check("rank 1" in stderr and "not finished" in stderr,
+                       f"{name}: no message naming rank 1 and what was not finished:\n{stderr}")
+
+
+def rank_process(mpirun_pid, rank, started_rendering=False):
+    """The pid of `rank` among mpirun's children (None if it is not running)."""
+    try:
+        children = open(f"/proc/{mpirun_pid}/task/{mpirun_pid}/children").read().split()
+    except OSError:
+        children = []
+    for pid in children:
+        try:
+            environ = open(f"/proc/{pid}/environ", "rb").read().split(b"\0")
+            if f"OMPI_COMM_WORLD_RANK={rank}".encode() not in environ:
+                continue
+            # Rendering: MPI's two threads, the tile thread and the pool's one.
+            if started_rendering and len(os.listdir(f"/proc/{pid}/task")) < 5:
+                continue
+            return int(pid)
+        except OSError:
+            continue
+    return None
+
+
+if __name__ == "__main__":
+    sys.exit(main())
