@@ -8,6 +8,7 @@
 #include "bench_command.h"
 #include "command_line.h"
 #include "compare_command.h"
+#include "model_commands.h"
 #include "process_start.h"
 #include "program_exec.h"
 #include "render_command.h"
@@ -39,6 +40,10 @@ int main(int argc, char** argv) {
       return runBenchCommand(command);
     case CommandKind::Compare:
       return runCompareCommand(command);
+    case CommandKind::Import:
+      return runImportCommand(command);
+    case CommandKind::Export:
+      return runExportCommand(command);
     case CommandKind::View:
 #ifdef RAYVIEW_HAVE_VIEWER
       return runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,

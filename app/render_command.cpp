@@ -16,6 +16,7 @@
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/lean_memory.h"
+#include "rayview/model_client.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/process_memory.h"
 #include "rayview/scene_source.h"
@@ -81,7 +82,8 @@ int runRenderCommand(const CommandLine& command) {
     LoadOptions options;
     options.strict = command.strict;
     options.beforeArrays = useLeanHeapForEstimate;
-    loaded = loadSceneOrDefault(command.scenePath, options);
+    loaded = isModelFile(command.scenePath) ? loadModelScene(command.scenePath, command.model)
+                                            : loadSceneOrDefault(command.scenePath, options);
   } catch (const SceneError& error) {
     std::fprintf(stderr, "%s\n", error.what());
     return kExitBadInput;
