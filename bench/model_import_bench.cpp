@@ -4,13 +4,14 @@
 //   assimp   Assimp's reader of the same file (the geometry only, the same way);
 //   worker   the import worker answering rayview (reading, framing, the answer written to /dev/null);
 //   import   `rayview import FILE.ply -o FILE.xml` end to end (its own peak; the worker's is the line above).
-// docs/dependencies.md records the figures.
+// Then the same grid as a binary STL, own reader against Assimp's. docs/dependencies.md records the figures.
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -48,6 +49,32 @@ void writeGridPly(const fs::path& path, long long triangles) {
       }
     }
   std::printf("file     %s: %lld triangles, %.1f MiB\n", path.c_str(), 2LL * n * n,
+              static_cast<double>(fs::file_size(path)) / (1024.0 * 1024.0));
+}
+
+// The same grid as a binary STL (a triangle soup: three corners per triangle).
+void writeGridStl(const fs::path& path, long long triangles) {
+  const int n = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(triangles) / 2.0)));
+  std::ofstream out(path, std::ios::binary);
+  out << std::string(80, ' ');
+  const auto count = static_cast<std::uint32_t>(2LL * n * n);
+  out.write(reinterpret_cast<const char*>(&count), 4);
+  auto corner = [n](int i, int j, float* v) {
+    v[0] = static_cast<float>(i) / n;
+    v[1] = 0.05f * std::sin(i * 0.05f) * std::cos(j * 0.07f);
+    v[2] = static_cast<float>(j) / n;
+  };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const int faces[2][3][2] = {{{i, j}, {i, j + 1}, {i + 1, j}}, {{i + 1, j}, {i, j + 1}, {i + 1, j + 1}}};
+      for (const auto& f : faces) {
+        float record[12] = {};
+        for (int k = 0; k < 3; ++k) corner(f[k][0], f[k][1], record + 3 + 3 * k);
+        out.write(reinterpret_cast<const char*>(record), sizeof record);
+        out.write("\0\0", 2);
+      }
+    }
+  std::printf("file     %s: %u triangles, %.1f MiB\n", path.c_str(), count,
               static_cast<double>(fs::file_size(path)) / (1024.0 * 1024.0));
 }
 
@@ -121,5 +148,9 @@ int main(int argc, char** argv) {
   measureInChild("assimp", [&] { return count(rayview::readModelGeometry(ply, true)); });
   measureProgram("worker", {RAYVIEW_IMPORT_WORKER, "read", ply.string()});
   measureProgram("import", {RAYVIEW_EXECUTABLE, "import", ply.string(), "-o", (dir / "grid.xml").string()});
+  const fs::path stl = dir / "grid.stl";
+  writeGridStl(stl, triangles);
+  measureInChild("own", [&] { return count(rayview::readModelGeometry(stl, false)); });
+  measureInChild("assimp", [&] { return count(rayview::readModelGeometry(stl, true)); });
   return 0;
 }
