@@ -269,7 +269,7 @@ void readPly(const std::string& bytes, const fs::path& path, SceneGeometry& g, N
   for (const Element& e : h.elements) {
     const std::size_t minimum = minimumBytes(e, h.ascii);
     if (minimum > 0 && e.count > in.remaining() / minimum)
-      fail(path, "PLY declares " + std::to_string(e.count) + " " + e.name + "s, more than the rest of the file (" +
+      fail(path, "PLY declares " + std::to_string(e.count) + " \"" + e.name + "\" elements, more than the rest of the file (" +
                      std::to_string(in.remaining()) + " bytes) can hold: truncated or corrupt");
     if (e.name == "vertex" && !haveVertices) {
       if (e.count > 0x7fffffffULL) fail(path, "too many vertices (over 2^31)");

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -78,6 +79,9 @@ void expectFramed(const Scene& scene, const std::string& name) {
   const Image image = render(scene);
   writeImageFile(modelDirectory() / (name + ".png"), image);
   EXPECT_FALSE(isBackground(image, image.width / 2, image.height / 2, scene.background)) << name;
+  // Lit, not ambient alone (ambient light 30 on a reflectance of at most 0.9 is at most 27).
+  const std::uint8_t* centre = image.pixel(image.width / 2, image.height / 2);
+  EXPECT_GT(std::max({centre[0], centre[1], centre[2]}), 60) << name;
   int x0 = image.width, x1 = -1, y0 = image.height, y1 = -1;
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x)
@@ -107,11 +111,11 @@ std::string boxObjWithTwoMaterials() {
   return obj.str();
 }
 
-std::string boxPly() {
+std::string boxPly(double scale = 1.0, double offset = 0.0) {
   std::string ply = "ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
                     "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n";
   for (const auto& v : kBox)
-    for (double c : v) put(ply, static_cast<float>(c));
+    for (double c : v) put(ply, static_cast<float>(c * scale + offset));
   for (const auto& q : kBoxQuads) {
     put(ply, static_cast<std::uint8_t>(4));
     for (int k : q) put(ply, static_cast<std::int32_t>(k));
@@ -165,6 +169,14 @@ TEST(ImportModel, BinaryPlyAndStlAreFramedAndLit) {
   const Scene stl = loadModelScene(writeFile("box.stl", boxStl()), small()).scene;
   EXPECT_EQ(stl.triangles.size(), 12u);
   expectFramed(stl, "box_stl");
+}
+
+// Sizes where a fixed epsilon would fail (docs/numerics.md): the made-up scene scales with the model, so the
+// picture is the same box, framed and lit.
+TEST(ImportModel, TinyAndHugeModelsAreFramedAndLit) {
+  expectFramed(loadModelScene(writeFile("tiny.ply", boxPly(1e-6)), small()).scene, "box_tiny");
+  expectFramed(loadModelScene(writeFile("huge.ply", boxPly(1e6)), small()).scene, "box_huge");
+  expectFramed(loadModelScene(writeFile("far.ply", boxPly(1e-2, 1e3)), small()).scene, "box_far");
 }
 
 TEST(ImportModel, UpZLooksAlongTheModelsZ) {
