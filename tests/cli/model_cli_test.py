@@ -65,9 +65,12 @@ def main():
           "import prints one summary line: " + r.stdout.strip())
     xml = open(s("box.xml")).read()
     check("<imageresolution>320 200</imageresolution>" in xml, "--resolution sets the image size")
-    numbers = re.findall(r"-?\d[\d.]*(?:e-?\d+)?", xml.split("<vertexdata>")[1].split("</vertexdata>")[0])
-    check(len(numbers) == 24 and all(len(re.sub(r"e.*|[-.]", "", n).lstrip("0")) <= 9 for n in numbers),
-          "vertices are written with at most 9 significant digits")
+    body = xml.split("-->", 1)[1]  # after the "written by rayview X.Y.Z" comment
+    numbers = re.findall(r">([^<]*\d[^<]*)<", body)
+    numbers = [n for text in numbers for n in text.split()]
+    vertices = xml.split("<vertexdata>")[1].split("</vertexdata>")[0].split()
+    check(len(vertices) == 24 and all(len(re.sub(r"e.*|[-.]", "", n).lstrip("0")) <= 9 for n in numbers),
+          f"every number ({len(numbers)}) is written with at most 9 significant digits")
     faces = [int(i) for i in re.findall(r"\d+", "".join(xml.split("<faces>")[1:]).split("</faces>")[0])]
     check(min(faces) == 1 and max(faces) == 8, "faces are 1-based")
     r = run(["render", s("box.xml"), "-o", s("from_xml.png")], a.rayview)
