@@ -314,6 +314,26 @@ TEST(ImportModel, PlyHeaderAfterABlankLineAndABigPlyReadWhole) {
   EXPECT_EQ(loadModelScene(writeFile("big.ply", big.str()), small()).scene.triangles.size(), 2000u);
 }
 
+// Normals and texture coordinates are kept as the 2025 format's, faces naming them.
+TEST(ImportModel, NormalsAndTextureCoordinatesAreKept) {
+  const Scene ply = loadModelScene(writeFile("normals.ply",
+                                             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                                             "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                                             "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                                             "0 0 0 0 0 2\n1 0 0 0 0 2\n0 1 0 0 0 2\n3 0 1 2\n"),
+                                   small())
+                       .scene;
+  ASSERT_EQ(ply.normals.size(), 3u);
+  EXPECT_EQ(ply.normals[0], glm::vec3(0, 0, 1));
+  EXPECT_TRUE(ply.attributesOf(0).hasNormals());
+  const Scene obj = loadModelScene(writeFile("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"),
+                                   small())
+                       .scene;
+  ASSERT_EQ(obj.texCoords.size(), 3u);
+  EXPECT_TRUE(obj.attributesOf(0).hasTexCoords());
+  EXPECT_EQ(obj.texCoords[obj.attributesOf(0).texCoord[1]], glm::vec2(1, 0));
+}
+
 // A worker that dies or answers garbage is a clean error about the file, never a crash of rayview.
 TEST(ImportModel, AWorkerThatDiesIsACleanError) {
   const fs::path model = writeFile("fine.ply", boxPly());
