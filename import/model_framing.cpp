@@ -29,9 +29,16 @@ Axes axesFor(ModelUpAxis up) {
 
 double radiusOf(const Bounds& b) {
   const double r = 0.5 * glm::length(b.hi - b.lo);
-  if (r > 0.0 && std::isfinite(r)) return r;
-  const double scale = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z)});
+  const double scale = std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x),
+                                 std::abs(b.hi.y), std::abs(b.hi.z)});
+  // At least a float's resolution at the model's distance from the origin, so the camera stands apart from it.
+  if (r > 0.0 && std::isfinite(r)) return std::max(r, scale * 1e-7);
   return scale > 0.0 ? scale * 1e-3 : 1.0;  // a single point: some size to look at it from
+}
+
+bool usable(const Camera& c) {
+  const double sum = c.position.x + c.position.y + c.position.z + c.left + c.right + c.bottom + c.top;
+  return std::isfinite(sum) && c.right > c.left && c.top > c.bottom && glm::length(c.gaze) > 0.0;
 }
 
 // The near-plane window that centres the box's projection and spans kFill of the tighter dimension.
@@ -193,6 +200,9 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
     notes.madeUp.push_back("key/fill/back lights");
   }
   roundToFloats(out, radius);
+  if (!usable(c))
+    fail(out.sourcePath, "no camera can frame this model (its size is " + std::to_string(radius) + " at " +
+                             std::to_string(glm::length(centre)) + " from the origin)");
   out.ambientLight = Color(30.0f);
   out.background = Color(46.0f, 50.0f, 58.0f);
   out.maxRayDepth = 3;

@@ -84,8 +84,8 @@ ModelScene readModel(const fs::path& path, const ModelImportOptions& options) {
     model::gatherGeometry(*assimp, path, scene, notes);
     model::mapMaterials(*assimp, path, scene, notes);
   }
-  model::frameScene(assimp, options, scene, notes);
   scene.sourcePath = path;
+  model::frameScene(assimp, options, scene, notes);
   result.warnings = std::move(notes.warnings);
   result.summary = summaryOf(scene, notes);
   return result;
