@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -200,9 +201,12 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
     notes.madeUp.push_back("key/fill/back lights");
   }
   roundToFloats(out, radius);
-  if (!usable(c))
-    fail(out.sourcePath, "no camera can frame this model (its size is " + std::to_string(radius) + " at " +
-                             std::to_string(glm::length(centre)) + " from the origin)");
+  if (!usable(c)) {
+    char why[160];
+    std::snprintf(why, sizeof why, "no camera can frame this model (its bounding box spans %.3g to %.3g)",
+                  std::min({bounds.lo.x, bounds.lo.y, bounds.lo.z}), std::max({bounds.hi.x, bounds.hi.y, bounds.hi.z}));
+    fail(out.sourcePath, why);
+  }
   out.ambientLight = Color(30.0f);
   out.background = Color(46.0f, 50.0f, 58.0f);
   out.maxRayDepth = 3;
