@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <string>
@@ -347,6 +348,15 @@ TEST(ImportModel, AWorkerThatDiesIsACleanError) {
     EXPECT_NE(errorOf(model).find(expected), std::string::npos) << name;
   }
   ::unsetenv("RAYVIEW_IMPORT_WORKER");
+}
+
+// A real crash of Assimp (its glTF binary reader on these bytes, found by fuzz_import): a clean error.
+TEST(ImportModel, AnAssimpCrashIsACleanError) {
+  std::ifstream in(testing::sourceDirectory() / "tests/fuzz_regressions/import/glb_assimp_segv_isolated_by_worker.bin",
+                   std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 1u);
+  EXPECT_NE(errorOf(writeFile("assimp_crash.glb", bytes.substr(1))), "");  // "the importer crashed ..." with 5.2.5
 }
 
 TEST(ImportModel, ModelFilesByExtension) {
