@@ -132,13 +132,13 @@ OptionSpec knobOption(const Knob& knob) {
 std::vector<OptionSpec> makeOptionTable() {
   std::vector<OptionSpec> table = {
       {"-o", "OUT.png|OUT.ppm", kRender | kImport | kExport,
-       "image to write (written whole: a temporary file renamed into place); import: the scene .xml; export: the model",
+       "image to write (written whole: a temporary file renamed into place); import: SCENE.xml; export: the model",
        [](CommandLine& c, const std::string& v) { c.outputPath = v; }},
-      {"--up", "y|z", kBoth | kImport, "a model's up axis, for the camera made up for it (z for CAD and scans)",
+      {"--up", "y|z", kRender | kImport, "a model's up axis, for the camera made up for it (z for CAD and scans)",
        [](CommandLine& c, const std::string& v) {
          if (!parseModelUpAxis(v, c.model.up)) throw UsageError("--up expects y or z, not '" + v + "'");
        }},
-      {"--resolution", "WxH", kBoth | kImport, "a model's image size (default 1280x720)",
+      {"--resolution", "WxH", kRender | kImport, "a model's image size (default 1280x720)",
        [](CommandLine& c, const std::string& v) {
          if (!parseResolution(v, c.model.width, c.model.height))
            throw UsageError("--resolution expects WIDTHxHEIGHT up to 32768x32768, not '" + v + "'");
@@ -346,8 +346,10 @@ std::string helpText(CommandKind kind) {
       "                                          DIR/<scene>_tradeoff.png (see docs/tradeoff.md)\n"
       "  rayview compare IMAGE REFERENCE [--diff OUT.png] [--min-within1 P]\n"
       "                                          how far IMAGE is from REFERENCE\n"
-      "  rayview import MODEL -o SCENE.xml       a model (OBJ, PLY, STL, glTF...) as a scene; SCENE may be a model\n"
+      "  rayview import MODEL -o SCENE.xml       a model (OBJ, PLY, STL, glTF...) as a scene in this format\n"
       "  rayview export SCENE.xml -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
+      "                                          the scene's geometry and materials for other tools\n"
+      "  (SCENE may also be a model file: it is opened with a camera and lights made up for it)\n"
       "  rayview COMMAND --help                  a command's own usage and options\n"
       "  rayview --help | --version\n"
       "\n"
