@@ -36,6 +36,8 @@ struct WorkerAnswer {
 };
 
 std::string describeStatus(int status) {
+  if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU || WTERMSIG(status) == SIGKILL))
+    return "the importer was stopped on this file (it ran past its time or memory bound)";
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     const char* name = sigdescr_np(signal);
