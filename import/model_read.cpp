@@ -40,9 +40,13 @@ std::string joined(const std::vector<std::string>& items) {
   return out.empty() ? "nothing" : out;
 }
 
+std::string counted(std::size_t count, const char* one, const char* many) {
+  return std::to_string(count) + " " + (count == 1 ? one : many);
+}
+
 std::string summaryOf(const Scene& scene, const model::Notes& notes) {
-  return std::to_string(scene.triangles.size()) + " triangles, " + std::to_string(scene.meshes.size()) + " meshes, " +
-         std::to_string(scene.materials.size()) + " materials, texture " + notes.texture +
+  return counted(scene.triangles.size(), "triangle", "triangles") + ", " + counted(scene.meshes.size(), "mesh", "meshes") +
+         ", " + counted(scene.materials.size(), "material", "materials") + ", texture " + notes.texture +
          "; made up: " + joined(notes.madeUp) + "; dropped: " + joined(notes.dropped);
 }
 

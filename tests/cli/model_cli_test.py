@@ -61,7 +61,7 @@ def main():
     check(ldd.returncode == 0 and "assimp" not in ldd.stdout, "rayview-cli does not load libassimp")
 
     r = run(["import", s("box.ply"), "-o", s("box.xml"), "--resolution", "320x200"], a.rayview)
-    check(r.returncode == 0 and re.search(r"12 triangles, 1 meshes, 1 materials, texture none; made up: .*camera", r.stdout),
+    check(r.returncode == 0 and re.search(r"12 triangles, 1 mesh, 1 material, texture none; made up: .*camera", r.stdout),
           "import prints one summary line: " + r.stdout.strip())
     xml = open(s("box.xml")).read()
     check("<imageresolution>320 200</imageresolution>" in xml, "--resolution sets the image size")
