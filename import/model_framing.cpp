@@ -100,26 +100,35 @@ aiMatrix4x4 worldOf(const aiScene& scene, const aiString& name) {
   return world;
 }
 
-// The file's first camera, when it is usable.
+// The file's first camera, when it is usable. Assimp's readers store the full horizontal angle in mHorizontalFOV
+// (glTF's: yfov times the aspect ratio), not the half its header says: the vertical angle is kept, the image's own
+// aspect ratio widens or narrows the view. Assimp 5.2.5's glTF reader also copies the node's translation into
+// mPosition, which the node's transform then applies a second time.
 bool fileCamera(const aiScene& scene, Camera& c) {
   if (scene.mNumCameras == 0 || !scene.mCameras || !scene.mCameras[0]) return false;
   const aiCamera& cam = *scene.mCameras[0];
+  const aiNode* node = scene.mRootNode ? scene.mRootNode->FindNode(cam.mName) : nullptr;
   const aiMatrix4x4 world = worldOf(scene, cam.mName);
   const aiMatrix3x3 turn(world);
-  c.position = dvec(world * cam.mPosition);
+  aiVector3D local = cam.mPosition;
+  if (node && local != aiVector3D() &&
+      local == aiVector3D(node->mTransformation.a4, node->mTransformation.b4, node->mTransformation.c4))
+    local = aiVector3D();
+  c.position = dvec(world * local);
   c.gaze = dvec(turn * cam.mLookAt);
   c.up = dvec(turn * cam.mUp);
-  const double halfWidth = std::tan(static_cast<double>(cam.mHorizontalFOV));
   const double aspect = static_cast<double>(c.width) / c.height;
-  if (!(halfWidth > 0.0) || !std::isfinite(halfWidth) || !(glm::length(c.gaze) > 0.0) ||
+  const double fileAspect = cam.mAspect > 0.0f ? cam.mAspect : aspect;
+  const double halfHeight = std::tan(static_cast<double>(cam.mHorizontalFOV) / fileAspect / 2.0);
+  if (!(halfHeight > 0.0) || !std::isfinite(halfHeight) || !(glm::length(c.gaze) > 0.0) ||
       !(glm::length(glm::cross(c.up, c.gaze)) > 1e-9) || !std::isfinite(c.position.x + c.position.y + c.position.z))
     return false;
   c.gaze = glm::normalize(c.gaze);
   c.nearDistance = 1.0;
-  c.left = -halfWidth;
-  c.right = halfWidth;
-  c.bottom = -halfWidth / aspect;
-  c.top = halfWidth / aspect;
+  c.top = halfHeight;
+  c.bottom = -halfHeight;
+  c.right = halfHeight * aspect;
+  c.left = -c.right;
   return true;
 }
 

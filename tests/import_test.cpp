@@ -335,6 +335,41 @@ TEST(ImportModel, NormalsAndTextureCoordinatesAreKept) {
   EXPECT_EQ(obj.texCoords[obj.attributesOf(0).texCoord[1]], glm::vec2(1, 0));
 }
 
+// A glTF's own camera and light are used (a triangle seen from 5 units away, a point light above it).
+TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
+  std::string buffer;
+  for (float v : {-1.f, -1.f, 0.f, 1.f, -1.f, 0.f, 0.f, 1.f, 0.f}) put(buffer, v);
+  // The 36 bytes in base64, by hand: no encoder in the test.
+  static const char kBase64[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string encoded;
+  for (std::size_t i = 0; i < buffer.size(); i += 3) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned>(static_cast<unsigned char>(buffer[i + k])); };
+    const unsigned triple = byte(0) << 16 | byte(1) << 8 | byte(2);
+    for (int k = 3; k >= 0; --k) encoded.push_back(kBase64[(triple >> (6 * k)) & 63]);
+  }
+  const std::string gltf =
+      R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_lights_punctual"],)"
+      R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":1,"color":[1,1,1]}]}},)"
+      R"("scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,5]},)"
+      R"({"extensions":{"KHR_lights_punctual":{"light":0}},"translation":[0,3,3]}],)"
+      R"("cameras":[{"type":"perspective","perspective":{"yfov":0.6,"znear":0.1,"aspectRatio":1.5}}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}],)"
+      R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
+      R"("uri":"data:application/octet-stream;base64,)" + encoded + R"("}]})";
+  const ImportedModel model = importModel(writeFile("camera.gltf", gltf), small());
+  const Scene& scene = model.loaded.scene;
+  EXPECT_EQ(model.summary.find("camera"), std::string::npos) << model.summary;
+  EXPECT_EQ(scene.camera.position, glm::dvec3(0, 0, 5));
+  EXPECT_NEAR(scene.camera.top, std::tan(0.3), 1e-6);
+  EXPECT_NEAR(scene.camera.right, std::tan(0.3) * 160.0 / 90.0, 1e-6);
+  ASSERT_EQ(scene.lights.of<PointLight>().size(), 1u);
+  EXPECT_EQ(scene.lights.of<PointLight>()[0].position, glm::dvec3(0, 3, 3));
+  const Image image = render(scene);
+  EXPECT_FALSE(isBackground(image, 80, 45, scene.background));
+  EXPECT_TRUE(isBackground(image, 5, 5, scene.background));
+}
+
 // A worker that dies or answers garbage is a clean error about the file, never a crash of rayview.
 TEST(ImportModel, AWorkerThatDiesIsACleanError) {
   const fs::path model = writeFile("fine.ply", boxPly());
