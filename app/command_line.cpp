@@ -18,7 +18,9 @@ enum Applies : unsigned {
   kBoth = kRender | kView,
   kBench = 4u,
   kAll = kBoth | kBench,
-  kCompare = 8u
+  kCompare = 8u,
+  kImport = 16u,
+  kExport = 32u
 };
 
 struct Subcommand {
@@ -29,7 +31,9 @@ struct Subcommand {
 constexpr Subcommand kSubcommands[] = {{"render", CommandKind::Render, kRender},
                                        {"view", CommandKind::View, kView},
                                        {"bench", CommandKind::Bench, kBench},
-                                       {"compare", CommandKind::Compare, kCompare}};
+                                       {"compare", CommandKind::Compare, kCompare},
+                                       {"import", CommandKind::Import, kImport},
+                                       {"export", CommandKind::Export, kExport}};
 
 struct OptionSpec {
   std::string name;
@@ -59,6 +63,7 @@ double parsePositive(const std::string& option, const std::string& text, double 
 
 const char* modeName(unsigned mode) {
   if (mode == kCompare) return "'rayview compare'";
+  if (mode == kImport || mode == kExport) return mode == kImport ? "'rayview import'" : "'rayview export'";
   return mode == kRender ? "'rayview render'" : (mode == kBench ? "'rayview bench'" : "the viewer");
 }
 
@@ -101,14 +106,15 @@ bool looksLikeCommand(const std::string& arg) {
     }
   if (nearest) throw UsageError("unknown command '" + word + "' (did you mean '" + nearest->name + "'?)");
   throw UsageError("unknown command '" + word +
-                   "' (commands: render, bench, compare, view; or the path of a scene file, see rayview --help)");
+                   "' (commands: render, bench, compare, import, export, view; or the path of a scene file, see rayview --help)");
 }
 
 // " [render]", " [render, bench]"; nothing for an option every mode takes.
 std::string whereTag(unsigned applies) {
   if ((applies & kAll) == kAll) return "";
   std::string tag;
-  for (auto [bit, name] : {std::pair{kRender, "render"}, std::pair{kView, "viewer"}, std::pair{kBench, "bench"}})
+  for (auto [bit, name] : {std::pair{kRender, "render"}, std::pair{kView, "viewer"}, std::pair{kBench, "bench"},
+                          std::pair{kImport, "import"}})
     if (applies & bit) tag += (tag.empty() ? "" : ", ") + std::string(name);
   return " [" + tag + "]";
 }
@@ -128,8 +134,18 @@ OptionSpec knobOption(const Knob& knob) {
 
 std::vector<OptionSpec> makeOptionTable() {
   std::vector<OptionSpec> table = {
-      {"-o", "OUT.png|OUT.ppm", kRender, "image to write (written whole: a temporary file renamed into place)",
+      {"-o", "OUT.png|OUT.ppm", kRender | kImport | kExport,
+       "image to write (written whole: a temporary file renamed into place); import: SCENE.xml; export: the model",
        [](CommandLine& c, const std::string& v) { c.outputPath = v; }},
+      {"--up", "y|z", kRender | kImport, "a model's up axis, for the camera made up for it (z for CAD and scans)",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseModelUpAxis(v, c.model.up)) throw UsageError("--up expects y or z, not '" + v + "'");
+       }},
+      {"--resolution", "WxH", kRender | kImport, "a model's image size (default 1280x720)",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseResolution(v, c.model.width, c.model.height))
+           throw UsageError("--resolution expects WIDTHxHEIGHT up to 32768x32768, not '" + v + "'");
+       }},
       {"--threads", "N", kAll, "render threads (default: one per hardware thread)",
        [](CommandLine& c, const std::string& v) { c.threads = parseInt("--threads", v, 1, 1024); }},
   };
@@ -187,6 +203,55 @@ RenderSettings renderSettingsOf(const CommandLine& command) {
   return settings;
 }
 
+namespace {
+
+// The option at arguments[i] (and its value, which may be the next argument: i moves past it) applied to `command`.
+void applyOption(const std::vector<std::string>& arguments, std::size_t& i, unsigned mode, CommandLine& command) {
+  const std::string& arg = arguments[i];
+  std::string name = arg, value;
+  bool hasInlineValue = false;
+  if (const auto eq = arg.find('='); eq != std::string::npos && arg.rfind("--", 0) == 0) {
+    name = arg.substr(0, eq);
+    value = arg.substr(eq + 1);
+    hasInlineValue = true;
+  }
+  const OptionSpec* spec = nullptr;
+  for (const OptionSpec& s : optionTable())
+    if (name == s.name) spec = &s;
+  if (!spec) {
+    const std::string help = mode == kView ? "rayview --help" : "rayview " + arguments[0] + " --help";
+    throw UsageError("unknown option '" + name + "' (see " + help + ")");
+  }
+  if (!(spec->applies & mode)) throw UsageError("option '" + name + "' does not apply to " + modeName(mode));
+  if (!spec->valueName.empty() && !hasInlineValue) {
+    if (i + 1 >= arguments.size()) throw UsageError("option '" + name + "' expects " + spec->valueName);
+    value = arguments[++i];
+  } else if (spec->valueName.empty() && hasInlineValue) {
+    throw UsageError("option '" + name + "' takes no value");
+  }
+  spec->apply(command, value);
+}
+
+// What each command cannot do without.
+void checkRequiredArguments(const CommandLine& command) {
+  if (command.kind == CommandKind::Render) {
+    if (command.outputPath.empty()) throw UsageError("'rayview render' needs -o OUT.png or -o OUT.ppm");
+  }
+  if (command.kind == CommandKind::Import && (command.scenePath.empty() || command.outputPath.empty()))
+    throw UsageError("'rayview import' needs MODEL -o SCENE.xml");
+  if (command.kind == CommandKind::Export && (command.scenePath.empty() || command.outputPath.empty()))
+    throw UsageError("'rayview export' needs SCENE.xml -o MODEL.obj|.ply|.stl|.gltf|.glb");
+  if (command.kind == CommandKind::Bench) {
+    if (command.scenePaths.empty()) throw UsageError("'rayview bench tradeoff' needs at least one SCENE");
+    if (command.outputDirectory.empty()) throw UsageError("'rayview bench tradeoff' needs --out DIR");
+  }
+  if (command.kind == CommandKind::Compare && command.scenePaths.size() != 2)
+    throw UsageError("'rayview compare' needs two images: IMAGE REFERENCE (" +
+                     std::to_string(command.scenePaths.size()) + " given)");
+}
+
+}  // namespace
+
 CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
   CommandLine command;
   std::size_t i = 0;
@@ -219,29 +284,7 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       return info;
     }
     if (!arg.empty() && arg[0] == '-' && arg != "-") {
-      std::string name = arg, value;
-      bool hasInlineValue = false;
-      if (const auto eq = arg.find('='); eq != std::string::npos && arg.rfind("--", 0) == 0) {
-        name = arg.substr(0, eq);
-        value = arg.substr(eq + 1);
-        hasInlineValue = true;
-      }
-      const OptionSpec* spec = nullptr;
-      for (const OptionSpec& s : optionTable())
-        if (name == s.name) spec = &s;
-      if (!spec) {
-        const std::string help = mode == kView ? "rayview --help" : "rayview " + arguments[0] + " --help";
-        throw UsageError("unknown option '" + name + "' (see " + help + ")");
-      }
-      if (!(spec->applies & mode))
-        throw UsageError("option '" + name + "' does not apply to " + modeName(mode));
-      if (!spec->valueName.empty() && !hasInlineValue) {
-        if (i + 1 >= arguments.size()) throw UsageError("option '" + name + "' expects " + spec->valueName);
-        value = arguments[++i];
-      } else if (spec->valueName.empty() && hasInlineValue) {
-        throw UsageError("option '" + name + "' takes no value");
-      }
-      spec->apply(command, value);
+      applyOption(arguments, i, mode, command);
       continue;
     }
     if (command.kind == CommandKind::Bench || command.kind == CommandKind::Compare) {
@@ -253,16 +296,7 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       throw UsageError("more than one scene given: '" + command.scenePath + "' and '" + arg + "'");
     if (command.scenePath.empty()) command.scenePath = arg;
   }
-  if (command.kind == CommandKind::Render) {
-    if (command.outputPath.empty()) throw UsageError("'rayview render' needs -o OUT.png or -o OUT.ppm");
-  }
-  if (command.kind == CommandKind::Bench) {
-    if (command.scenePaths.empty()) throw UsageError("'rayview bench tradeoff' needs at least one SCENE");
-    if (command.outputDirectory.empty()) throw UsageError("'rayview bench tradeoff' needs --out DIR");
-  }
-  if (command.kind == CommandKind::Compare && command.scenePaths.size() != 2)
-    throw UsageError("'rayview compare' needs two images: IMAGE REFERENCE (" +
-                     std::to_string(command.scenePaths.size()) + " given)");
+  checkRequiredArguments(command);
   return command;
 }
 
@@ -321,6 +355,22 @@ std::string helpText(CommandKind kind) {
              optionLines(kCompare) +
              "\nexit status: 0 within the threshold, 1 not, 2 bad arguments, an unreadable image or different sizes, 3 "
              "out of memory\n";
+    case CommandKind::Import:
+      return "usage: rayview import MODEL -o SCENE.xml [--up y|z] [--resolution WxH]\n"
+             "\n"
+             "Writes MODEL (OBJ, PLY, STL, glTF/GLB and the other formats Assimp reads) as a scene in the handout's\n"
+             "format, with a camera, lights and materials made up for what it lacks and its texture as a PNG beside\n"
+             "it; prints one summary line (see docs/scene-format.md, \"Opening models\").\n"
+             "\n"
+             "options:\n" +
+             optionLines(kImport) + "\nexit status: 0 success, 1 the output could not be written, 2 bad model or bad arguments\n";
+    case CommandKind::Export:
+      return "usage: rayview export SCENE.xml -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
+             "\n"
+             "Writes the scene's geometry and materials for other tools.\n"
+             "\n"
+             "options:\n" +
+             optionLines(kExport) + "\nexit status: 0 success, 2 bad scene, bad arguments or the model could not be written\n";
     default:
       break;
   }
@@ -335,6 +385,10 @@ std::string helpText(CommandKind kind) {
       "                                          DIR/<scene>_tradeoff.png (see docs/tradeoff.md)\n"
       "  rayview compare IMAGE REFERENCE [--diff OUT.png] [--min-within1 P]\n"
       "                                          how far IMAGE is from REFERENCE\n"
+      "  rayview import MODEL -o SCENE.xml       a model (OBJ, PLY, STL, glTF...) as a scene in this format\n"
+      "  rayview export SCENE.xml -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
+      "                                          the scene's geometry and materials for other tools\n"
+      "  (SCENE may also be a model file: it is opened with a camera and lights made up for it)\n"
       "  rayview COMMAND --help                  a command's own usage and options\n"
       "  rayview --help | --version\n"
       "\n"

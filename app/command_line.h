@@ -10,6 +10,7 @@
 #include "exit_codes.h"
 #include "rayview/knobs.h"
 #include "rayview/lean_memory.h"
+#include "rayview/model_options.h"
 
 namespace rayview {
 
@@ -18,7 +19,7 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-enum class CommandKind { Help, Version, Render, View, Bench, Compare };
+enum class CommandKind { Help, Version, Render, View, Bench, Compare, Import, Export };
 
 struct CommandLine {
   CommandKind kind = CommandKind::View;
@@ -42,6 +43,7 @@ struct CommandLine {
   double resolutionScale = 1.0;         // bench: --scale F
   std::string diffPath;                 // compare: --diff OUT.png
   double minWithin1 = 100.0;            // compare: --min-within1 P (% of pixels within 1 of the reference)
+  ModelImportOptions model;             // import, and a model rendered or viewed: --up, --resolution
   CommandKind helpFor = CommandKind::View;  // help: whose help (`rayview render --help`: render's own)
 };
 

@@ -11,6 +11,7 @@
 #include "frame_plan.h"
 #include "frames_command.h"
 #include "mpi_handoff.h"
+#include "model_commands.h"
 #include "process_start.h"
 #include "rayview/image.h"
 #include "render_command.h"
@@ -74,6 +75,10 @@ int main(int argc, char** argv) try {
       return runBenchCommand(command);
     case CommandKind::Compare:
       return runCompareCommand(command);
+    case CommandKind::Import:
+      return runImportCommand(command);
+    case CommandKind::Export:
+      return runExportCommand(command);
     case CommandKind::View:
       return runViewCommand(command, argv);
   }

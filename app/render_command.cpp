@@ -12,6 +12,7 @@
 #include "rayview/deflated_image.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/lean_memory.h"
+#include "rayview/model_client.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/process_memory.h"
 #include "rayview/scene_source.h"
@@ -74,7 +75,8 @@ std::optional<int> RenderRun::load() {
     LoadOptions options;
     options.strict = command_.strict;
     options.camera = command_.camera;
-    loaded_ = loadSceneOrDefault(command_.scenePath, options);
+    loaded_ = isModelFile(command_.scenePath) ? loadModelScene(command_.scenePath, command_.model)
+                                              : loadSceneOrDefault(command_.scenePath, options);
   } catch (const SceneError& error) {
     return fail(kExitBadInput, error.what());
   }

@@ -43,8 +43,13 @@ std::string escapeXml(const std::string& text) {
 // Appends numbers separated by single spaces.
 class Line {
  public:
-  explicit Line(std::string& out) : out_(out) {}
-  Line& operator<<(double v) { return put(formatNumber(v)); }
+  explicit Line(std::string& out, NumberText style = NumberText::Shortest) : out_(out), style_(style) {}
+  Line& operator<<(double v) {
+    // A double that is exactly a float is written as the float's text (at most 9 digits) when asked.
+    if (style_ == NumberText::FloatWhenExact && static_cast<double>(static_cast<float>(v)) == v)
+      return put(formatNumber(static_cast<float>(v)));
+    return put(formatNumber(v));
+  }
   Line& operator<<(float v) { return put(formatNumber(v)); }
   Line& operator<<(int v) { return put(std::to_string(v)); }
   Line& operator<<(const glm::dvec3& v) { return *this << v.x << v.y << v.z; }
@@ -59,12 +64,13 @@ class Line {
     return *this;
   }
   std::string& out_;
+  NumberText style_;
   bool first_ = true;
 };
 
 class XmlWriter {
  public:
-  explicit XmlWriter(std::string& out) : out_(out) {}
+  XmlWriter(std::string& out, NumberText style) : out_(out), style_(style) {}
 
   template <typename... Values>
   void element(int depth, std::string_view name, const Values&... values) {
@@ -72,7 +78,7 @@ class XmlWriter {
     out_ += '<';
     out_ += name;
     out_ += '>';
-    Line line(out_);
+    Line line(out_, style_);
     (line << ... << values);
     out_ += "</";
     out_ += name;
@@ -94,9 +100,11 @@ class XmlWriter {
   }
   void indent(int depth) { out_.append(static_cast<std::size_t>(depth) * 4, ' '); }
   std::string& raw() { return out_; }
+  NumberText style() const { return style_; }
 
  private:
   std::string& out_;
+  NumberText style_;
 };
 
 void appendIndex(std::string& out, std::int64_t zeroBased) {
@@ -190,12 +198,12 @@ void writeParameters(XmlWriter& xml, const SceneParameters& parameters) {
 }  // namespace
 
 std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& geometry,
-                       const std::string& textureImage) {
+                       const std::string& textureImage, NumberText style) {
   std::string out;
   // Faces dominate the size of big scenes: about 3 indices of up to 8 digits per triangle.
   out.reserve(4096 + geometry.vertices.size() * 64 + geometry.triangles.size() * 40 +
               (geometry.texCoords.size() + geometry.normals.size()) * 48);
-  XmlWriter xml(out);
+  XmlWriter xml(out, style);
   out += "<!-- written by rayview " RAYVIEW_VERSION " -->\n";
   xml.open(0, "scene");
   xml.element(1, "maxraytracedepth", parameters.maxRayDepth);
@@ -207,7 +215,7 @@ std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& g
   xml.open(1, "vertexdata");
   for (const glm::dvec3& v : geometry.vertices) {
     xml.indent(2);
-    Line(out) << v;
+    Line(out, style) << v;
     out += '\n';
   }
   xml.close(1, "vertexdata");

@@ -4,6 +4,7 @@
 #include <new>
 
 #include "rayview/camera_rays.h"
+#include "rayview/model_client.h"
 #include "rayview/scene_source.h"
 
 namespace rayview {
@@ -40,7 +41,9 @@ LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request, c
     std::shared_ptr<const Scene> scene = request.rebuildOf;
     if (!scene) {
       const auto readStart = std::chrono::steady_clock::now();
-      LoadedScene loaded = loadSceneOrDefault(request.path, request.options);
+      // A model (OBJ, PLY, glTF...) is read by the import worker, a child process: its crash is an error here.
+      LoadedScene loaded = isModelFile(request.path) ? loadModelScene(request.path)
+                                                     : loadSceneOrDefault(request.path, request.options);
       outcome.readMs = msSince(readStart);
       outcome.warnings = std::move(loaded.warnings);
       if (const std::string problem = cameraProblem(loaded.scene.camera); !problem.empty()) {

@@ -28,6 +28,8 @@ Cases:
   image-view   key 1 shows the image at 1:1 (pixels equal the headless render), the readout names the pixel under
                the cursor and its values, + zooms about the view's centre (4x4 blocks), Ctrl+wheel about the
                cursor, 0 fits (viewer_image_view_case.py)
+  model        a PLY given on the command line equals `rayview render` of it; a truncated model is an error
+               naming it and the model stays (viewer_model_case.py)
   display      exposure +1 by script: the image area is brighter as the mapping says, the render does not restart,
                raw saves (save-frame, Ctrl+S) equal `rayview render`, save-frame-displayed is mapped; the reference
                (Space) is mapped too, the difference (D) stays raw (viewer_display_case.py)
@@ -47,6 +49,7 @@ sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from viewer_compare_case import case_compare  # noqa: E402
 from viewer_image_view_case import case_image_view  # noqa: E402
 from viewer_display_case import case_display  # noqa: E402
+from viewer_model_case import case_model  # noqa: E402
 from viewer_window_view_case import case_window_view  # noqa: E402
 from viewer_harness import (  # noqa: E402
     run_script,
@@ -572,7 +575,8 @@ CASES = {"interaction": case_interaction, "script": case_script, "reload": case_
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
          "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
-         "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view}
+         "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view,
+         "model": case_model}
 
 
 def main():

@@ -13,8 +13,14 @@
 
 namespace rayview {
 
+// How doubles are written: the shortest text that reads back as the same double, or, for files other tools read
+// as float (an imported model's scene), the float's text (at most 9 significant digits) when the double is exactly a
+// float.
+enum class NumberText { Shortest, FloatWhenExact };
+
 // The whole file. `textureImage` is what to write in <textureimage> (nothing is written when empty).
-std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& geometry, const std::string& textureImage);
+std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& geometry, const std::string& textureImage,
+                       NumberText style = NumberText::Shortest);
 std::string sceneToXml(const Scene& scene, const std::string& textureImage);
 
 // What <textureimage> must say in a file written to `outputPath` so that it still finds the image the

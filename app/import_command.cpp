@@ -1,0 +1,84 @@
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <filesystem>
+#include <system_error>
+
+#include "model_commands.h"
+#include "rayview/image.h"
+#include "rayview/model_client.h"
+#include "rayview/scene_writer.h"
+
+namespace rayview {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool endsInXml(const fs::path& path) {
+  std::string extension = path.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  return extension == ".xml";
+}
+
+bool sameFile(const fs::path& a, const fs::path& b) {
+  std::error_code ec;
+  const bool same = fs::equivalent(a, b, ec);
+  return !ec && same;
+}
+
+// The texture as a PNG beside the scene; the scene then names it. Returns false (having said why) when it cannot.
+bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, fs::path& written) {
+  if (!scene.texture) {
+    scene.textureImage.clear();
+    return true;
+  }
+  scene.textureImage = output.stem().string() + "_texture.png";
+  written = output.parent_path() / scene.textureImage;
+  if (sameFile(written, model)) {
+    std::fprintf(stderr, "rayview: error: the texture %s would overwrite the model; choose another name\n",
+                 written.string().c_str());
+    return false;
+  }
+  Image image(scene.texture->width, scene.texture->height);
+  image.rgb = scene.texture->rgb;
+  writeImageFile(written, std::move(image));
+  return true;
+}
+
+}  // namespace
+
+int runImportCommand(const CommandLine& command) {
+  const fs::path model = command.scenePath, output = command.outputPath;
+  if (!endsInXml(output)) {
+    std::fprintf(stderr, "rayview: error: the output must end in .xml: %s\n", command.outputPath.c_str());
+    return kExitBadInput;
+  }
+  if (sameFile(output, model)) {
+    std::fprintf(stderr, "rayview: error: the output %s is the model; choose another name\n", output.string().c_str());
+    return kExitBadInput;
+  }
+  ImportedModel imported;
+  try {
+    imported = importModel(model, command.model);
+  } catch (const SceneError& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return kExitBadInput;
+  }
+  for (const Diagnostic& warning : imported.loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
+  Scene& scene = imported.loaded.scene;
+  fs::path texture;
+  try {
+    if (!writeTexture(scene, output, model, texture)) return kExitBadInput;
+    // Floats as floats (at most 9 significant digits): the handout's peers read them as float.
+    writeFileAtomically(output, sceneToXml(scene.parameters(), scene.geometry(), scene.textureImage, NumberText::FloatWhenExact));
+  } catch (const ImageIoError& error) {
+    std::error_code ec;
+    if (!texture.empty()) fs::remove(texture, ec);
+    std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitIoFailure;
+  }
+  std::printf("%s: %s\n", output.string().c_str(), imported.summary.c_str());
+  return kExitOk;
+}
+
+}  // namespace rayview

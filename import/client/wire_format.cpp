@@ -1,0 +1,194 @@
+#include "wire_format.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <limits>
+#include <type_traits>
+
+namespace rayview::wire {
+namespace {
+
+// The largest blob accepted: far above any scene rayview can render, far below what a garbage length reads as.
+constexpr std::uint64_t kMaxBlobBytes = 64ULL << 30;
+
+class Writer {
+ public:
+  explicit Writer(std::FILE* out) : out_(out) {}
+  void raw(const void* data, std::size_t bytes) {
+    if (ok_ && bytes > 0) ok_ = std::fwrite(data, 1, bytes, out_) == bytes;
+  }
+  void u32(std::uint32_t value) { raw(&value, sizeof value); }
+  void blob(const void* data, std::size_t bytes) {
+    const std::uint64_t size = bytes;
+    raw(&size, sizeof size);
+    raw(data, bytes);
+  }
+  void text(const std::string& s) { blob(s.data(), s.size()); }
+  template <class T>
+  void array(const std::vector<T>& items) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    blob(items.data(), items.size() * sizeof(T));
+  }
+  bool finish() {
+    raw(kEnd, sizeof kEnd);
+    return ok_ && std::fflush(out_) == 0;
+  }
+
+ private:
+  std::FILE* out_;
+  bool ok_ = true;
+};
+
+void header(Writer& w, Kind kind) {
+  w.raw(kMagic, sizeof kMagic);
+  w.u32(static_cast<std::uint32_t>(kind));
+}
+
+struct MeshRecord {
+  std::uint32_t material, firstTriangle, triangleCount, idBytes;
+};
+
+class Reader {
+ public:
+  explicit Reader(int fd) : fd_(fd) {}
+  bool raw(void* into, std::size_t bytes) {
+    auto* at = static_cast<char*>(into);
+    while (bytes > 0) {
+      const ssize_t got = ::read(fd_, at, bytes);
+      if (got < 0 && errno == EINTR) continue;
+      if (got <= 0) return false;
+      at += got;
+      bytes -= static_cast<std::size_t>(got);
+    }
+    return true;
+  }
+  bool size(std::uint64_t& bytes) { return raw(&bytes, sizeof bytes) && bytes <= kMaxBlobBytes; }
+  bool text(std::string& s) {
+    std::uint64_t bytes = 0;
+    if (!size(bytes) || bytes > (1ULL << 30)) return false;
+    s.resize(bytes);
+    return raw(s.data(), s.size());
+  }
+  template <class T>
+  bool array(std::vector<T>& items) {
+    std::uint64_t bytes = 0;
+    if (!size(bytes) || bytes % sizeof(T) != 0) return false;
+    items.resize(bytes / sizeof(T));
+    return raw(items.data(), bytes);
+  }
+
+ private:
+  int fd_;
+};
+
+bool readMeshes(Reader& r, std::vector<Mesh>& meshes) {
+  std::uint64_t count = 0;
+  if (!r.raw(&count, sizeof count) || count > std::numeric_limits<std::uint32_t>::max()) return false;
+  for (std::uint64_t i = 0; i < count; ++i) {
+    MeshRecord record{};
+    if (!r.raw(&record, sizeof record) || record.idBytes > 4096) return false;
+    Mesh mesh;
+    mesh.material = record.material;
+    mesh.firstTriangle = record.firstTriangle;
+    mesh.triangleCount = record.triangleCount;
+    mesh.id.resize(record.idBytes);
+    if (!r.raw(mesh.id.data(), mesh.id.size())) return false;
+    meshes.push_back(std::move(mesh));
+  }
+  return true;
+}
+
+bool readTexture(Reader& r, std::optional<Texture>& texture) {
+  std::int32_t size[2] = {0, 0};
+  if (!r.raw(size, sizeof size)) return false;
+  Texture t;
+  if (!r.array(t.rgb)) return false;
+  if (size[0] == 0 && size[1] == 0 && t.rgb.empty()) return true;
+  if (size[0] <= 0 || size[1] <= 0 || t.rgb.size() != static_cast<std::size_t>(size[0]) * size[1] * 3) return false;
+  t.width = size[0];
+  t.height = size[1];
+  texture = std::move(t);
+  return true;
+}
+
+}  // namespace
+
+bool writeScene(std::FILE* out, const SceneMessage& m) {
+  Writer w(out);
+  header(w, Kind::Scene);
+  w.text(m.parametersXml);
+  w.text(m.summary);
+  std::string warnings;
+  for (const std::string& warning : m.warnings) warnings.append(warning).push_back('\n');
+  w.text(warnings);
+  const SceneGeometry& g = m.geometry;
+  w.array(g.vertices);
+  w.array(g.texCoords);
+  w.array(g.normals);
+  const std::uint64_t meshes = g.meshes.size();
+  w.raw(&meshes, sizeof meshes);
+  for (const Mesh& mesh : g.meshes) {
+    const MeshRecord record{mesh.material, mesh.firstTriangle, mesh.triangleCount,
+                            static_cast<std::uint32_t>(std::min<std::size_t>(mesh.id.size(), 4096))};
+    w.raw(&record, sizeof record);
+    w.raw(mesh.id.data(), record.idBytes);
+  }
+  w.array(g.triangles);
+  w.array(g.faceAttributes);
+  const std::int32_t size[2] = {g.texture ? g.texture->width : 0, g.texture ? g.texture->height : 0};
+  w.raw(size, sizeof size);
+  w.array(g.texture ? g.texture->rgb : std::vector<std::uint8_t>{});
+  w.text(g.textureImage);
+  return w.finish();
+}
+
+bool writeError(std::FILE* out, const std::string& message) {
+  Writer w(out);
+  header(w, Kind::Error);
+  w.text(message);
+  return w.finish();
+}
+
+bool writeDone(std::FILE* out, const std::string& summary) {
+  Writer w(out);
+  header(w, Kind::Done);
+  w.text(summary);
+  return w.finish();
+}
+
+std::string readMessage(int fd, Kind& kind, SceneMessage& m, std::string& error) {
+  Reader r(fd);
+  char magic[sizeof kMagic];
+  if (!r.raw(magic, sizeof magic)) return "no answer";
+  if (std::memcmp(magic, kMagic, sizeof magic) != 0) return "not an import answer";
+  std::uint32_t k = 0;
+  if (!r.raw(&k, sizeof k)) return "truncated answer";
+  kind = static_cast<Kind>(k);
+  if (kind == Kind::Error) {
+    if (!r.text(error)) return "truncated answer";
+  } else if (kind == Kind::Done) {
+    if (!r.text(m.summary)) return "truncated answer";
+  } else if (kind == Kind::Scene) {
+    std::string warnings;
+    SceneGeometry& g = m.geometry;
+    if (!r.text(m.parametersXml) || !r.text(m.summary) || !r.text(warnings) || !r.array(g.vertices) ||
+        !r.array(g.texCoords) || !r.array(g.normals) || !readMeshes(r, g.meshes) || !r.array(g.triangles) ||
+        !r.array(g.faceAttributes) || !readTexture(r, g.texture) || !r.text(g.textureImage))
+      return "truncated or malformed answer";
+    for (std::size_t at = 0; at < warnings.size();) {
+      const std::size_t end = warnings.find('\n', at);
+      if (end == std::string::npos) break;
+      m.warnings.push_back(warnings.substr(at, end - at));
+      at = end + 1;
+    }
+  } else {
+    return "unknown answer kind";
+  }
+  char end[sizeof kEnd];
+  if (!r.raw(end, sizeof end) || std::memcmp(end, kEnd, sizeof end) != 0) return "truncated answer";
+  return {};
+}
+
+}  // namespace rayview::wire

@@ -1,0 +1,31 @@
+#pragma once
+// Opening models through the import worker (libexec/rayview-import), a child process: Assimp is never loaded into
+// rayview itself (start-up, and a crash on a malformed file ends the child, not rayview).
+
+#include <filesystem>
+#include <string>
+
+#include "rayview/model_options.h"
+#include "rayview/scene_loader.h"
+
+namespace rayview {
+
+struct ImportedModel {
+  LoadedScene loaded;   // the scene, as the XML loader would return it; sourcePath is the model file
+  std::string summary;  // "1234 triangles, 2 meshes, 2 materials, texture wood.png; made up: ...; dropped: ..."
+};
+
+// Throws SceneError naming the file for a model that cannot be read, and for a worker that dies or answers
+// garbage.
+ImportedModel importModel(const std::filesystem::path& path, const ModelImportOptions& options);
+LoadedScene loadModelScene(const std::filesystem::path& path, const ModelImportOptions& options = {});
+
+// Writes the geometry and materials of the scene file `scenePath` as `outputPath` (.obj, .ply, .stl, .gltf, .glb),
+// whole or not at all. Throws SceneError for a bad scene or a failed export.
+void exportSceneFile(const std::filesystem::path& scenePath, const std::filesystem::path& outputPath);
+
+// The worker's path: $RAYVIEW_IMPORT_WORKER, else libexec/rayview-import beside the running executable, else the
+// build tree's (for tests).
+std::filesystem::path importWorkerPath();
+
+}  // namespace rayview

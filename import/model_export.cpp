@@ -1,0 +1,159 @@
+// A scene as a model file through Assimp's exporters: one Assimp mesh per scene mesh, the handout's materials as
+// Phong colours and shininess.
+
+#include <assimp/Exporter.hpp>
+#include <assimp/material.h>
+#include <assimp/scene.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cctype>
+#include <map>
+#include <memory>
+#include <system_error>
+
+#include "model_parts.h"
+#include "rayview/model_import.h"
+
+namespace rayview {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string formatFor(const fs::path& output) {
+  std::string extension = output.extension().string();
+  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  static const std::map<std::string, std::string> kFormats = {
+      {".obj", "obj"}, {".ply", "plyb"}, {".stl", "stlb"}, {".gltf", "gltf2"}, {".glb", "glb2"}};
+  const auto found = kFormats.find(extension);
+  return found == kFormats.end() ? std::string() : found->second;
+}
+
+aiMaterial* toAssimp(const Material& m) {
+  auto* out = new aiMaterial;
+  const aiString name(m.id);
+  out->AddProperty(&name, AI_MATKEY_NAME);
+  const aiColor3D diffuse(m.diffuse.x, m.diffuse.y, m.diffuse.z), specular(m.specular.x, m.specular.y, m.specular.z),
+      ambient(m.ambient.x, m.ambient.y, m.ambient.z), mirror(m.mirror.x, m.mirror.y, m.mirror.z);
+  out->AddProperty(&diffuse, 1, AI_MATKEY_COLOR_DIFFUSE);
+  out->AddProperty(&specular, 1, AI_MATKEY_COLOR_SPECULAR);
+  out->AddProperty(&ambient, 1, AI_MATKEY_COLOR_AMBIENT);
+  out->AddProperty(&m.phongExponent, 1, AI_MATKEY_SHININESS);
+  if (m.isMirror()) {
+    const float reflectivity = std::max({m.mirror.x, m.mirror.y, m.mirror.z});
+    out->AddProperty(&mirror, 1, AI_MATKEY_COLOR_REFLECTIVE);
+    out->AddProperty(&reflectivity, 1, AI_MATKEY_REFLECTIVITY);
+  }
+  return out;
+}
+
+// One mesh's triangles with its own vertices: shared ones kept shared, unless faces carry normals or texture
+// coordinates, which Assimp keeps per vertex (then each corner is its own vertex).
+aiMesh* toAssimp(const Scene& s, const Mesh& mesh, std::vector<std::uint32_t>& localOf, std::vector<std::uint32_t>& stamp,
+                 std::uint32_t meshIndex) {
+  auto* out = new aiMesh;
+  out->mName = aiString(mesh.id);
+  out->mMaterialIndex = mesh.material;
+  out->mPrimitiveTypes = aiPrimitiveType_TRIANGLE;
+  const std::size_t first = mesh.firstTriangle, end = s.meshEnd(mesh);
+  const bool perCorner = !s.faceAttributes.empty();
+  std::vector<aiVector3D> positions, normals, uvs;
+  bool anyNormal = false, anyUv = false;
+  out->mNumFaces = static_cast<unsigned>(end - first);
+  out->mFaces = new aiFace[out->mNumFaces];
+  for (std::size_t t = first; t < end; ++t) {
+    aiFace& face = out->mFaces[t - first];
+    face.mNumIndices = 3;
+    face.mIndices = new unsigned[3];
+    const FaceAttributes& a = s.attributesOf(t);
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = s.triangles[t].vertex[k];
+      if (!perCorner && stamp[v] == meshIndex) {
+        face.mIndices[k] = localOf[v];
+        continue;
+      }
+      face.mIndices[k] = static_cast<unsigned>(positions.size());
+      stamp[v] = meshIndex;
+      localOf[v] = face.mIndices[k];
+      const glm::dvec3& p = s.vertices[v];
+      positions.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
+      if (perCorner) {
+        const glm::vec3 n = a.normal[k] != kNoIndex ? s.normals[a.normal[k]] : glm::vec3(0.0f);
+        const glm::vec2 uv = a.texCoord[k] != kNoIndex ? s.texCoords[a.texCoord[k]] : glm::vec2(0.0f);
+        anyNormal |= a.normal[k] != kNoIndex;
+        anyUv |= a.texCoord[k] != kNoIndex;
+        normals.emplace_back(n.x, n.y, n.z);
+        uvs.emplace_back(uv.x, uv.y, 0.0f);
+      }
+    }
+  }
+  out->mNumVertices = static_cast<unsigned>(positions.size());
+  out->mVertices = new aiVector3D[positions.size()];
+  std::copy(positions.begin(), positions.end(), out->mVertices);
+  if (anyNormal) {
+    out->mNormals = new aiVector3D[normals.size()];
+    std::copy(normals.begin(), normals.end(), out->mNormals);
+  }
+  if (anyUv) {
+    out->mTextureCoords[0] = new aiVector3D[uvs.size()];
+    out->mNumUVComponents[0] = 2;
+    std::copy(uvs.begin(), uvs.end(), out->mTextureCoords[0]);
+  }
+  return out;
+}
+
+std::unique_ptr<aiScene> toAssimp(const Scene& s) {
+  auto out = std::make_unique<aiScene>();
+  out->mRootNode = new aiNode("rayview");
+  out->mNumMaterials = static_cast<unsigned>(std::max<std::size_t>(s.materials.size(), 1));
+  out->mMaterials = new aiMaterial*[out->mNumMaterials];
+  for (unsigned i = 0; i < out->mNumMaterials; ++i)
+    out->mMaterials[i] = i < s.materials.size() ? toAssimp(s.materials[i]) : toAssimp(Material{"default", Color(0.8f), Color(0.8f)});
+  std::vector<const Mesh*> meshes;
+  for (const Mesh& mesh : s.meshes)
+    if (s.meshEnd(mesh) > mesh.firstTriangle) meshes.push_back(&mesh);
+  out->mNumMeshes = static_cast<unsigned>(meshes.size());
+  out->mMeshes = new aiMesh*[std::max<std::size_t>(meshes.size(), 1)];
+  std::vector<std::uint32_t> localOf(s.vertices.size()), stamp(s.vertices.size(), ~0u);
+  for (std::uint32_t i = 0; i < meshes.size(); ++i) out->mMeshes[i] = toAssimp(s, *meshes[i], localOf, stamp, i);
+  out->mRootNode->mNumMeshes = out->mNumMeshes;
+  out->mRootNode->mMeshes = new unsigned[std::max<std::size_t>(meshes.size(), 1)];
+  for (unsigned i = 0; i < out->mNumMeshes; ++i) out->mRootNode->mMeshes[i] = i;
+  return out;
+}
+
+// Assimp writes the file and its companions (.mtl, .bin) under names derived from the one it is given, so it
+// writes into a fresh directory beside the output, and each file is then renamed into place.
+void exportViaDirectory(const aiScene& scene, const std::string& format, const fs::path& output) {
+  const fs::path directory = output.parent_path().empty() ? fs::path(".") : output.parent_path();
+  const fs::path staging = directory / (".rayview-export-" + std::to_string(::getpid()));
+  std::error_code ec;
+  fs::remove_all(staging, ec);
+  if (!fs::create_directory(staging, ec)) model::fail(output, "cannot write here: " + ec.message());
+  Assimp::Exporter exporter;
+  if (exporter.Export(&scene, format, (staging / output.filename()).string()) != AI_SUCCESS) {
+    const std::string why = exporter.GetErrorString();
+    fs::remove_all(staging, ec);
+    model::fail(output, "cannot be written" + (why.empty() ? std::string() : ": " + why));
+  }
+  for (const fs::directory_entry& entry : fs::directory_iterator(staging, ec)) {
+    fs::rename(entry.path(), directory / entry.path().filename(), ec);
+    if (ec) {
+      const std::string why = ec.message();
+      fs::remove_all(staging, ec);
+      model::fail(output, "cannot be written: " + why);
+    }
+  }
+  fs::remove_all(staging, ec);
+}
+
+}  // namespace
+
+void exportScene(const Scene& scene, const fs::path& output) {
+  const std::string format = formatFor(output);
+  if (format.empty()) model::fail(output, "the output must end in .obj, .ply, .stl, .gltf or .glb");
+  if (scene.triangles.empty()) model::fail(output, "the scene has no triangles to write");
+  exportViaDirectory(*toAssimp(scene), format, output);
+}
+
+}  // namespace rayview

@@ -1,0 +1,207 @@
+// Assimp's materials as the handout's Blinn-Phong materials (the formula is in docs/scene-format.md, "Opening
+// models"), and the one texture the format keeps.
+
+#include <assimp/material.h>
+#include <assimp/scene.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "model_parts.h"
+#include "texture_image.h"
+
+namespace rayview::model {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr float kTextureFactor = 0.5f;  // half texel, half lit colour: the format blends rather than multiplies
+
+Color rgb(const aiColor4D& c) { return Color(c.r, c.g, c.b); }
+
+Color clamp01(Color c) { return glm::clamp(c, Color(0.0f), Color(1.0f)); }
+
+// The base-colour texture a material names ("" when none): glTF's base colour, else the diffuse map.
+std::string baseColorTexture(const aiMaterial& m) {
+  aiString path;
+  if (m.GetTextureCount(aiTextureType_BASE_COLOR) > 0 && m.GetTexture(aiTextureType_BASE_COLOR, 0, &path) == AI_SUCCESS)
+    return path.C_Str();
+  if (m.GetTextureCount(aiTextureType_DIFFUSE) > 0 && m.GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
+    return path.C_Str();
+  return {};
+}
+
+Material phongOf(const aiMaterial& m, bool& madeUpColor) {
+  Material out;
+  aiColor4D color;
+  float value = 0.0f;
+  if (m.Get(AI_MATKEY_BASE_COLOR, color) == AI_SUCCESS || m.Get(AI_MATKEY_COLOR_DIFFUSE, color) == AI_SUCCESS) {
+    out.diffuse = clamp01(rgb(color));
+  } else {
+    out.diffuse = Color(0.8f);
+    madeUpColor = true;
+  }
+  float metallic = 0.0f, roughness = 1.0f;
+  const bool hasMetallic = m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS;
+  const bool hasRoughness = m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS;
+  const bool pbr = hasMetallic || hasRoughness;
+  if (pbr) {
+    metallic = std::clamp(std::isfinite(metallic) ? metallic : 0.0f, 0.0f, 1.0f);
+    roughness = std::clamp(std::isfinite(roughness) ? roughness : 1.0f, 0.0f, 1.0f);
+    const Color base = out.diffuse;
+    // Roughness r as a Blinn-Phong exponent: 2/a^2 - 2 with a = r^2, the usual match of the two lobes.
+    const float alpha = std::max(roughness * roughness, 0.01f);
+    out.phongExponent = std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f);
+    out.specular = Color(0.04f) + (base - Color(0.04f)) * metallic;
+    out.diffuse = base * (1.0f - metallic);
+    out.mirror = base * (metallic * (1.0f - roughness));
+  } else {
+    if (m.Get(AI_MATKEY_COLOR_SPECULAR, color) == AI_SUCCESS) out.specular = clamp01(rgb(color));
+    float strength = 1.0f;
+    if (m.Get(AI_MATKEY_SHININESS_STRENGTH, strength) == AI_SUCCESS && std::isfinite(strength) && strength >= 0.0f)
+      out.specular = clamp01(out.specular * strength);
+    if (m.Get(AI_MATKEY_SHININESS, value) == AI_SUCCESS && std::isfinite(value) && value > 0.0f)
+      out.phongExponent = std::clamp(value, 1.0f, 10000.0f);
+    float reflectivity = 0.0f;
+    if (m.Get(AI_MATKEY_REFLECTIVITY, reflectivity) == AI_SUCCESS && std::isfinite(reflectivity) && reflectivity > 0.0f) {
+      aiColor4D reflective(1.0f, 1.0f, 1.0f, 1.0f);
+      m.Get(AI_MATKEY_COLOR_REFLECTIVE, reflective);
+      out.mirror = clamp01(rgb(reflective) * std::min(reflectivity, 1.0f));
+    }
+  }
+  out.ambient = out.diffuse;
+  return out;
+}
+
+std::string materialId(const aiMaterial& m, std::size_t index, std::map<std::string, int>& taken) {
+  aiString name;
+  std::string id = "material";
+  if (m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS && name.length > 0) id = name.C_Str();
+  else id.append(std::to_string(index + 1));
+  if (const int seen = taken[id]++; seen > 0) id.append(1, '_').append(std::to_string(seen + 1));
+  return id;
+}
+
+// A texture named by a material: embedded ("*0", or a .glb's own image by name), or a file beside the model.
+std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDir, const std::string& name,
+                                   std::string& reason) {
+  if (const aiTexture* embedded = scene.GetEmbeddedTexture(name.c_str())) {
+    if (!embedded->pcData) {
+      reason = "the embedded image is empty";
+      return std::nullopt;
+    }
+    if (embedded->mHeight == 0)  // compressed bytes (PNG, JPEG) of length mWidth
+      return detail::decodeImage(
+          std::string_view(reinterpret_cast<const char*>(embedded->pcData), embedded->mWidth), reason);
+    const std::size_t pixels = static_cast<std::size_t>(embedded->mWidth) * embedded->mHeight;
+    if (pixels > static_cast<std::size_t>(detail::kMaxTexturePixels)) {
+      reason = "the embedded image is too large";
+      return std::nullopt;
+    }
+    Texture t{static_cast<int>(embedded->mWidth), static_cast<int>(embedded->mHeight), {}};
+    t.rgb.reserve(pixels * 3);
+    for (std::size_t i = 0; i < pixels; ++i)
+      t.rgb.insert(t.rgb.end(), {embedded->pcData[i].r, embedded->pcData[i].g, embedded->pcData[i].b});
+    return t;
+  }
+  std::error_code ec;
+  for (const fs::path& candidate : detail::textureCandidates(modelDir, name))
+    if (fs::is_regular_file(candidate, ec)) return detail::readTextureImage(candidate, reason);
+  reason = "not found";
+  return std::nullopt;
+}
+
+Color averageOf(const Texture& t) {
+  double sum[3] = {0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i + 2 < t.rgb.size(); i += 3)
+    for (int c = 0; c < 3; ++c) sum[c] += t.rgb[i + static_cast<std::size_t>(c)];
+  const double n = std::max<double>(1.0, static_cast<double>(t.rgb.size() / 3) * 255.0);
+  return Color(static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n), static_cast<float>(sum[2] / n));
+}
+
+std::string fileNamePart(const std::string& name) {
+  const std::string base = fs::path(name).filename().string();
+  return base.empty() || base[0] == '*' ? "embedded" : base;
+}
+
+}  // namespace
+
+void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes& notes) {
+  // Assimp's material index -> ours, in order of first use; triangles per base-colour texture.
+  std::map<unsigned, std::uint32_t> ours;
+  std::map<std::string, std::size_t> textureUse;
+  std::map<std::string, int> taken;
+  bool madeUpColor = false;
+  for (Mesh& mesh : out.meshes) {
+    const unsigned index = mesh.material;
+    auto [it, added] = ours.emplace(index, static_cast<std::uint32_t>(out.materials.size()));
+    if (added) {
+      Material material;
+      if (index < scene.mNumMaterials && scene.mMaterials[index]) {
+        material = phongOf(*scene.mMaterials[index], madeUpColor);
+        material.id = materialId(*scene.mMaterials[index], index, taken);
+      } else {
+        material.diffuse = material.ambient = Color(0.8f);
+        material.id = std::string("material").append(std::to_string(index + 1));
+        madeUpColor = true;
+      }
+      out.materials.push_back(std::move(material));
+    }
+    mesh.material = it->second;
+    if (index < scene.mNumMaterials && scene.mMaterials[index])
+      if (std::string texture = baseColorTexture(*scene.mMaterials[index]); !texture.empty())
+        textureUse[texture] += mesh.triangleCount;
+  }
+  if (madeUpColor) notes.madeUp.push_back("material colours");
+
+  std::string chosen;
+  for (const auto& [name, triangles] : textureUse)
+    if (chosen.empty() || triangles > textureUse[chosen]) chosen = name;
+  std::vector<std::string> averaged;
+  std::map<std::string, std::optional<Color>> averageByName;
+  for (const auto& [name, triangles] : textureUse) {
+    std::string reason;
+    std::optional<Texture> texture = loadTexture(scene, path.parent_path(), name, reason);
+    if (!texture) {
+      notes.warnings.push_back("texture \"" + name + "\" cannot be used (" + reason + "); its material keeps its colour");
+      continue;
+    }
+    averageByName[name] = averageOf(*texture);
+    if (name == chosen) {
+      notes.texture = fileNamePart(name) + " (" + std::to_string(texture->width) + "x" +
+                      std::to_string(texture->height) + ")";
+      out.textureImage = path.stem().string() + "_texture.png";
+      out.texture = std::move(texture);
+    } else {
+      averaged.push_back(fileNamePart(name));
+    }
+  }
+  if (!averaged.empty()) {
+    std::string list;
+    for (const std::string& name : averaged) list += (list.empty() ? "" : ", ") + name;
+    notes.warnings.push_back(std::to_string(averaged.size()) +
+                             " more textures averaged to a colour each (the scene format keeps one texture): " + list);
+  }
+  // Each textured material: its colour times its texture's average; the kept texture blended in.
+  for (const auto& [index, our] : ours) {
+    if (index >= scene.mNumMaterials || !scene.mMaterials[index]) continue;
+    const std::string name = baseColorTexture(*scene.mMaterials[index]);
+    const auto average = averageByName.find(name);
+    if (name.empty() || average == averageByName.end() || !average->second) continue;
+    Material& material = out.materials[our];
+    material.diffuse *= *average->second;
+    material.ambient = material.diffuse;
+    if (name == chosen && out.texture) material.textureFactor = kTextureFactor;
+  }
+  if (out.texture && out.texCoords.empty()) {
+    notes.warnings.push_back("the model has a texture but no texture coordinates; it is left out");
+    out.texture.reset();
+    out.textureImage.clear();
+    notes.texture = "none";
+  }
+}
+
+}  // namespace rayview::model

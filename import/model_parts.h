@@ -1,0 +1,46 @@
+#pragma once
+// The steps of reading a model (private to rayview_import): geometry from Assimp's scene, the materials and the
+// texture, the made-up camera and lights.
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rayview/model_options.h"
+#include "rayview/scene.h"
+
+struct aiScene;
+
+namespace rayview::model {
+
+// What the summary line reports.
+struct Notes {
+  std::vector<std::string> madeUp;
+  std::vector<std::string> dropped;
+  std::vector<std::string> warnings;
+  std::string texture = "none";
+};
+
+struct Bounds {
+  glm::dvec3 lo{0.0}, hi{0.0};
+  bool empty = true;
+};
+Bounds boundsOf(const std::vector<glm::dvec3>& vertices);
+
+// Assimp's meshes as instanced by its node tree, transformed to world space. Each Mesh's `material` is Assimp's
+// material index until mapMaterials renumbers it. Throws SceneError for non-finite vertices, bad indices, too much.
+void gatherGeometry(const aiScene& scene, const std::filesystem::path& path, SceneGeometry& geometry, Notes& notes);
+
+// Each material the meshes use, in order of first use (mesh indices renumbered), with the chosen texture.
+void mapMaterials(const aiScene& scene, const std::filesystem::path& path, Scene& out, Notes& notes);
+
+// The file's own camera and lights when it has them (glTF, FBX, COLLADA), else made up from the bounds.
+void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& out, Notes& notes);
+
+// rayview's own readers: nullopt-like false when the file is not one they read (Assimp then reads it).
+bool readPlyOrStl(const std::filesystem::path& path, SceneGeometry& geometry, Notes& notes);
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& message);
+
+}  // namespace rayview::model

@@ -1,0 +1,103 @@
+// rayview-import: the worker that reads a model (or writes one) for rayview, in a process of its own, and
+// answers on its standard output in the form of wire_format.h. Not a user command: rayview starts it.
+//
+//   rayview-import read MODEL [--up y|z] [--resolution WxH]
+//   rayview-import export SCENE.xml OUTPUT
+
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+#include <string>
+
+#include "rayview/diagnostics.h"
+#include "rayview/model_import.h"
+#include "rayview/scene_loader.h"
+#include "rayview/scene_writer.h"
+#include "wire_format.h"
+
+namespace rayview {
+namespace {
+
+// Bounds on what reading one file may take: Assimp's glTF reader was seen to take 12.9 GB and 40 s for a 284-byte
+// file (fuzz_import). Past the memory bound an allocation fails (a clean "out of memory" answer); past the CPU
+// bound the kernel ends the worker, which rayview reports as a crash of the importer.
+void limitResources(const char* file) {
+  struct stat info {};
+  const double bytes = ::stat(file, &info) == 0 ? static_cast<double>(info.st_size) : 0.0;
+#ifndef RAYVIEW_SANITIZED  // a sanitizer's shadow memory needs terabytes of address space (see below instead)
+  const double memory = 2.0 * (1 << 30) + 32.0 * bytes;  // the 10M-triangle PLY peaks at 2.3 times its size
+  const rlimit as{static_cast<rlim_t>(memory), static_cast<rlim_t>(memory)};
+  ::setrlimit(RLIMIT_AS, &as);
+#endif
+  rlim_t seconds = static_cast<rlim_t>(20.0 + bytes / (1 << 20));  // 1M triangles (18 MiB) take 0.1 s
+  if (const char* given = std::getenv("RAYVIEW_IMPORT_CPU_SECONDS"); given && std::atoi(given) > 0)
+    seconds = static_cast<rlim_t>(std::atoi(given));  // the fuzz target's shorter bound
+  const rlimit cpu{seconds, seconds + 5};  // SIGXCPU at the bound, SIGKILL should that be caught
+  ::setrlimit(RLIMIT_CPU, &cpu);
+}
+
+int usage() {
+  wire::writeError(stdout, "0\nusage: rayview-import read MODEL [--up y|z] [--resolution WxH] | export SCENE OUTPUT");
+  return 2;
+}
+
+int readCommand(int argc, char** argv) {
+  ModelImportOptions options;
+  for (int i = 3; i + 1 < argc; i += 2) {
+    const std::string name = argv[i], value = argv[i + 1];
+    if (name == "--up" && parseModelUpAxis(value, options.up)) continue;
+    if (name == "--resolution" && parseResolution(value, options.width, options.height)) continue;
+    return usage();
+  }
+  ModelScene model = readModel(argv[2], options);
+  wire::SceneMessage message;
+  message.parametersXml = sceneToXml(model.scene.parameters(), SceneGeometry{}, model.scene.textureImage,
+                                     NumberText::FloatWhenExact);
+  message.summary = std::move(model.summary);
+  message.warnings = std::move(model.warnings);
+  message.geometry = std::move(static_cast<SceneGeometry&>(model.scene));
+  return wire::writeScene(stdout, message) ? 0 : 1;
+}
+
+int exportCommand(char** argv) {
+  LoadedScene loaded = loadSceneFile(argv[2]);
+  exportScene(loaded.scene, argv[3]);
+  return wire::writeDone(stdout, "") ? 0 : 1;
+}
+
+int run(int argc, char** argv) {
+  const std::string command = argc > 2 ? argv[1] : "";
+  try {
+    if (argc > 2 && std::getenv("RAYVIEW_IMPORT_NO_LIMITS") == nullptr) limitResources(argv[2]);
+    if (command == "read" && argc % 2 == 1) return readCommand(argc, argv);
+    if (command == "export" && argc == 4) return exportCommand(argv);
+    return usage();
+  } catch (const SceneError& error) {
+    // The line travels with the message, so the client's error is located as the loader's would be.
+    wire::writeError(stdout, std::to_string(error.diagnostic().where.line) + "\n" + error.diagnostic().message);
+  } catch (const std::bad_alloc&) {
+    wire::writeError(stdout, "0\nout of memory reading the model");
+  } catch (const std::exception& error) {
+    wire::writeError(stdout, std::string("0\ncannot be read as a model: ") + error.what());
+  }
+  return 2;
+}
+
+}  // namespace
+}  // namespace rayview
+
+#ifdef RAYVIEW_SANITIZED
+// The memory bound of sanitizer builds: an allocation over 4 GiB ends the worker, which rayview reports.
+extern "C" const char* __asan_default_options() { return "max_allocation_size_mb=4096:allocator_may_return_null=1"; }
+#endif
+
+int main(int argc, char** argv) {
+  const int status = rayview::run(argc, argv);
+  std::fflush(stdout);
+  // No destructors at exit: the answer is out, and nothing a broken file left behind can fail the exit now.
+  ::_exit(status == 2 ? 0 : status);
+}

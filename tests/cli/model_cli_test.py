@@ -1,0 +1,103 @@
+#!/usr/bin/env python3
+"""Models on the command line: `rayview import`, `rayview export`, `rayview render MODEL`, as a user meets them.
+
+Usage: model_cli_test.py --rayview PATH --scratch DIR
+Makes its own models; each check prints one line; exits 1 on the first failure.
+"""
+import argparse
+import os
+import re
+import shutil
+import struct
+import subprocess
+import sys
+
+
+def run(args, rayview):
+    result = subprocess.run([rayview] + args, capture_output=True, text=True, timeout=300)
+    print(f"  $ rayview {' '.join(args)} -> exit {result.returncode}")
+    return result
+
+
+def check(condition, message):
+    if not condition:
+        print(f"FAILED: {message}")
+        sys.exit(1)
+    print(f"  ok: {message}")
+
+
+def png_size(path):
+    with open(path, "rb") as f:
+        head = f.read(24)
+    return struct.unpack(">II", head[16:24])
+
+
+def write_ply(path):
+    # A box of 8 vertices and 6 quads at coordinates that need all 9 digits of a float.
+    box = [(0, 0, 0), (2, 0, 0), (2, 1, 0), (0, 1, 0), (0, 0, 1.5), (2, 0, 1.5), (2, 1, 1.5), (0, 1, 1.5)]
+    quads = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (2, 3, 7, 6), (1, 2, 6, 5), (0, 4, 7, 3)]
+    header = ("ply\nformat binary_little_endian 1.0\nelement vertex 8\nproperty float x\nproperty float y\n"
+              "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n")
+    with open(path, "wb") as f:
+        f.write(header.encode())
+        for v in box:
+            f.write(struct.pack("<3f", *(c + 0.123456789 for c in v)))
+        for q in quads:
+            f.write(struct.pack("<B4i", 4, *q))
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--rayview", required=True)
+    parser.add_argument("--scratch", required=True)
+    a = parser.parse_args()
+    shutil.rmtree(a.scratch, ignore_errors=True)
+    os.makedirs(a.scratch)
+    s = lambda name: os.path.join(a.scratch, name)
+    write_ply(s("box.ply"))
+
+    ldd = subprocess.run(["ldd", a.rayview], capture_output=True, text=True)
+    check(ldd.returncode == 0 and "assimp" not in ldd.stdout, "rayview does not load libassimp")
+
+    r = run(["import", s("box.ply"), "-o", s("box.xml"), "--resolution", "320x200"], a.rayview)
+    check(r.returncode == 0 and re.search(r"12 triangles, 1 mesh, 1 material, texture none; made up: .*camera", r.stdout),
+          "import prints one summary line: " + r.stdout.strip())
+    xml = open(s("box.xml")).read()
+    check("<imageresolution>320 200</imageresolution>" in xml, "--resolution sets the image size")
+    body = xml.split("-->", 1)[1]  # after the "written by rayview X.Y.Z" comment
+    numbers = re.findall(r">([^<]*\d[^<]*)<", body)
+    numbers = [n for text in numbers for n in text.split()]
+    vertices = xml.split("<vertexdata>")[1].split("</vertexdata>")[0].split()
+    check(len(vertices) == 24 and all(len(re.sub(r"e.*|[-.]", "", n).lstrip("0")) <= 9 for n in numbers),
+          f"every number ({len(numbers)}) is written with at most 9 significant digits")
+    faces = [int(i) for i in re.findall(r"\d+", "".join(xml.split("<faces>")[1:]).split("</faces>")[0])]
+    check(min(faces) == 1 and max(faces) == 8, "faces are 1-based")
+    r = run(["render", s("box.xml"), "-o", s("from_xml.png")], a.rayview)
+    check(r.returncode == 0 and png_size(s("from_xml.png")) == (320, 200), "the imported scene renders")
+    r = run(["render", s("box.ply"), "-o", s("direct.png"), "--up", "z"], a.rayview)
+    check(r.returncode == 0 and png_size(s("direct.png")) == (1280, 720), "render MODEL renders it directly, 1280x720")
+
+    with open(s("broken.ply"), "wb") as f:
+        f.write(open(s("box.ply"), "rb").read()[:-20])
+    r = run(["import", s("broken.ply"), "-o", s("broken.xml")], a.rayview)
+    check(r.returncode == 2 and "broken.ply" in r.stderr and not os.path.exists(s("broken.xml")),
+          "a truncated model: exit 2, the file named, nothing written: " + r.stderr.strip())
+    r = run(["render", s("broken.ply"), "-o", s("broken.png")], a.rayview)
+    check(r.returncode == 2 and r.stderr.count("\n") == 1 and not os.path.exists(s("broken.png")),
+          "render of a broken model: one line, exit 2, nothing written")
+
+    for ext in ["obj", "ply", "stl", "gltf", "glb"]:
+        r = run(["export", s("box.xml"), "-o", s("out." + ext)], a.rayview)
+        check(r.returncode == 0 and os.path.getsize(s("out." + ext)) > 0, f"export writes .{ext}")
+        r = run(["render", s("out." + ext), "-o", s(f"back_{ext}.png")], a.rayview)
+        check(r.returncode == 0, f"the exported .{ext} opens again")
+    check(os.path.exists(s("out.mtl")) and os.path.exists(s("out.bin")), "export writes the .mtl and the .bin beside")
+    check(not [n for n in os.listdir(a.scratch) if n.startswith(".rayview-export")], "no staging directory is left")
+    r = run(["export", s("box.xml"), "-o", s("out.fbx")], a.rayview)
+    check(r.returncode == 2 and not os.path.exists(s("out.fbx")), "export to an unknown format exits 2")
+    r = run(["import", "--help"], a.rayview)
+    check(r.returncode == 0 and "--up" in r.stdout, "import --help")
+
+
+if __name__ == "__main__":
+    main()
