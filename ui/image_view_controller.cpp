@@ -123,7 +123,7 @@ void ImageViewController::drawImage(const ImageTexture& shown, const ViewerLayou
   draw->PopClipRect();
 }
 
-void ImageViewController::drawReadout(const ViewerLayout& l, const ReadoutSource& src) {
+std::string ImageViewController::readout(const ViewerLayout& l, const ReadoutSource& src) {
   const ImGuiIO& io = ImGui::GetIO();
   const ProgressiveFrame& frame = src.frame;
   std::optional<ImagePixel> pixel;
@@ -133,7 +133,7 @@ void ImageViewController::drawReadout(const ViewerLayout& l, const ReadoutSource
                                     screenPixelCentre(io.MousePos.y, l.framebufferScale));
   if (!pixel) {
     readoutPixel_.reset();
-    return;
+    return {};
   }
   const int stride = std::max(frame.stride, 1);
   std::string text = "pixel " + std::to_string(pixel->i) + ", " + std::to_string(pixel->j) +
@@ -143,14 +143,13 @@ void ImageViewController::drawReadout(const ViewerLayout& l, const ReadoutSource
   // In the window view, where the cursor is in the file's image (the pixel a reference or `pick I J` names).
   if (!src.imageView && src.file && src.rendered) text += filePixelText(pixel->i, pixel->j, *src.file, *src.rendered);
   if (!frame.final) text += " (preview pass)";
-  drawReadoutOverlay(text, l.viewX + ImGui::GetStyle().WindowPadding.x,
-                     l.viewY + l.viewHeight - ImGui::GetStyle().WindowPadding.y);
   if (printReadout_ && (readoutPixel_ != pixel || readoutText_ != text)) {
     std::printf("readout %s\n", text.c_str());
     std::fflush(stdout);
   }
   readoutPixel_ = pixel;
   readoutText_ = text;
+  return text;
 }
 
 }  // namespace rayview

@@ -48,7 +48,9 @@ class ImageViewController {
   bool applyShortcuts(const Shortcuts& shortcuts, const ViewerLayout& layout, int width, int height);
   // `samplesOf`: the pass when `shown` is the render's texture (one texel per block of a coarse pass).
   void drawImage(const ImageTexture& shown, const ViewerLayout& layout, const ProgressiveFrame* samplesOf) const;
-  void drawReadout(const ViewerLayout& layout, const ReadoutSource& source);
+  // The readout of the pixel under the cursor ("" when it is not over the image); printed on stdout when it
+  // changes, with RAYVIEW_PRINT_READOUT set.
+  std::string readout(const ViewerLayout& layout, const ReadoutSource& source);
 
  private:
   ImagePlacement placement_;

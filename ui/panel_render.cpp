@@ -16,11 +16,6 @@ namespace {
 // Above this, a directional triangular light saturates a white diffuse surface facing it.
 constexpr float kDirectionalIntensityLimit = 255.0f;
 
-struct StatLine {
-  const char* name;
-  std::string value;
-};
-
 std::string formatted(const char* format, double value) {
   char text[64];
   std::snprintf(text, sizeof text, format, value);
@@ -121,7 +116,7 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   editRadiance("Background", session.edits().background);
 }
 
-void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneLine) {
+StatsText statsText(const ViewerStats& s) {
   char level[64];
   if (s.stride <= 0) std::snprintf(level, sizeof level, "-");
   else if (s.stride == 1 && s.samples.total > 1)
@@ -129,7 +124,8 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneL
                   s.final ? " (final)" : "");
   else if (s.stride == 1) std::snprintf(level, sizeof level, "full resolution%s", s.final ? " (final)" : "");
   else std::snprintf(level, sizeof level, "1/%d (blocks of %dx%d)", s.stride, s.stride, s.stride);
-  const StatLine lines[] = {
+  StatsText text;
+  text.lines = {
       {"Preview level", level},
       {"Pass time", formatted("%.1f ms", s.passMs)},
       {"Speed", formatted("%.2f Mrays/s", s.megaRaysPerSecond)},
@@ -142,44 +138,48 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneL
       {"Triangles", std::to_string(s.triangles)},
       {"Read", formatted("%.1f ms", s.readMs)},
       {"BVH build", formatted("%.1f ms", s.bvhBuildMs)},
-      {"Traversal", std::string(toString(s.accel))},
+      {"Traversal", s.traversal.empty() ? std::string(toString(s.accel)) : s.traversal},
       {"Threads", std::to_string(s.threads)},
       {"Memory", memoryText(s.residentBytes, s.peakResidentBytes)},
       {"Generation", std::to_string(s.generation)},
   };
+  // Single spaces about the bars: at 1000x640 the line then fits the image area without wrapping.
+  text.oneLine = std::string(level) + " | " + text.lines[1].second + " | " + text.lines[2].second +
+                 " | edit to final " + text.lines[4].second;
+  return text;
+}
+
+OverlaySize statsBoxSize(const StatsText& text) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  float nameWidth = 0.0f, valueWidth = 0.0f;
+  for (const auto& [name, value] : text.lines) {
+    nameWidth = std::max(nameWidth, ImGui::CalcTextSize(name.c_str()).x);
+    valueWidth = std::max(valueWidth, ImGui::CalcTextSize(value.c_str()).x);
+  }
+  const float gap = 2.0f * style.ItemSpacing.x;
+  return {nameWidth + gap + valueWidth + 2.0f * style.WindowPadding.x,
+          text.lines.size() * ImGui::GetTextLineHeightWithSpacing() - style.ItemSpacing.y + 2.0f * style.WindowPadding.y,
+          ImGui::GetTextLineHeightWithSpacing()};
+}
+
+void drawStatsOverlay(const StatsText& text, const OverlayRect& at, bool oneLine) {
+  if (oneLine) return drawTextOverlay("##stats", text.oneLine, at, 0.65f);
   const ImGuiStyle& style = ImGui::GetStyle();
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
                                  ImGuiWindowFlags_NoInputs;
-  if (oneLine) {
-    const std::string text = std::string(level) + "  |  " + lines[1].value + "  |  " + lines[2].value +
-                             "  |  edit to final " + lines[4].value;
-    const ImVec2 textSize = ImGui::CalcTextSize(text.c_str());
-    ImGui::SetNextWindowPos(ImVec2(right, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
-    ImGui::SetNextWindowSize(ImVec2(textSize.x + 2.0f * style.WindowPadding.x, textSize.y + 2.0f * style.WindowPadding.y));
-    ImGui::SetNextWindowBgAlpha(0.65f);
-    if (ImGui::Begin("##stats", nullptr, flags)) ImGui::TextUnformatted(text.c_str());
-    ImGui::End();
-    return;
-  }
   // Sized from this frame's text: auto-resizing would lag a frame, and an idle viewer draws few frames.
-  float nameWidth = 0.0f, valueWidth = 0.0f;
-  for (const StatLine& line : lines) {
-    nameWidth = std::max(nameWidth, ImGui::CalcTextSize(line.name).x);
-    valueWidth = std::max(valueWidth, ImGui::CalcTextSize(line.value.c_str()).x);
-  }
+  float nameWidth = 0.0f;
+  for (const auto& line : text.lines) nameWidth = std::max(nameWidth, ImGui::CalcTextSize(line.first.c_str()).x);
   const float gap = 2.0f * style.ItemSpacing.x;
-  const ImVec2 size(nameWidth + gap + valueWidth + 2.0f * style.WindowPadding.x,
-                    std::size(lines) * ImGui::GetTextLineHeightWithSpacing() - style.ItemSpacing.y +
-                        2.0f * style.WindowPadding.y);
-  ImGui::SetNextWindowPos(ImVec2(right, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
-  ImGui::SetNextWindowSize(size);
+  ImGui::SetNextWindowPos(ImVec2(at.x, at.y));
+  ImGui::SetNextWindowSize(ImVec2(at.width, at.height));
   ImGui::SetNextWindowBgAlpha(0.65f);
   if (ImGui::Begin("##stats", nullptr, flags)) {
-    for (const StatLine& line : lines) {
-      ImGui::TextUnformatted(line.name);
+    for (const auto& [name, value] : text.lines) {
+      ImGui::TextUnformatted(name.c_str());
       ImGui::SameLine(style.WindowPadding.x + nameWidth + gap);
-      ImGui::TextUnformatted(line.value.c_str());
+      ImGui::TextUnformatted(value.c_str());
     }
   }
   ImGui::End();

@@ -2,13 +2,16 @@
 // The viewer's ImGui panels. Each draws one concern and edits only what it is given; requests that
 // need the application (open, save, reload) come back as PanelActions.
 
+#include <array>
 #include <cstdint>
+#include <utility>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "display_mapping.h"
 #include "image_texture.h"
+#include "overlay_layout.h"
 #include "rayview/diagnostics.h"
 #include "rayview/progressive_renderer.h"
 #include "rayview/tradeoff.h"
@@ -120,6 +123,7 @@ struct ViewerStats {
   double readMs = 0.0;
   double bvhBuildMs = 0.0;
   AccelKind accel = AccelKind::Embree;  // the back-end built for the scene (the packet BVH for a small one)
+  std::string traversal;                // how the stats name it ("" = toString(accel))
   int threads = 0;
   // The process's resident memory and its peak, in bytes, read at each pass shown (0: not known).
   std::uint64_t residentBytes = 0, peakResidentBytes = 0;
@@ -149,18 +153,27 @@ void drawTradeoffPanel(TradeoffPanelState& state, const SceneParameters& edits, 
 
 void drawComparePanel(ComparePanelState& state, const CompareInfo& info, PanelActions& actions);
 
-// Over the image's bottom-right corner (`right`, `bottom`): preview level, pass time, Mrays/s, latencies, sizes.
-// `oneLine`: level, pass time, speed and the edit's latency on one line.
-void drawStatsOverlay(const ViewerStats& stats, float right, float bottom, bool oneLine);
+// The stats over the image: preview level, pass time, Mrays/s, latencies, sizes; as a box of named lines, or the
+// level, pass time, speed and the edit's latency on one line.
+struct StatsText {
+  std::vector<std::pair<std::string, std::string>> lines;  // name, value
+  std::string oneLine;
+};
+StatsText statsText(const ViewerStats& stats);
+OverlaySize statsBoxSize(const StatsText& text);
+// At `at` (placed by placeOverlays): the box, or the line wrapped to the rectangle's width.
+void drawStatsOverlay(const StatsText& text, const OverlayRect& at, bool oneLine);
+
+// A text over the image: its size on one line (plus what each wrapped line adds), and drawn at `at`, wrapped to
+// its width. `background`: the window's colour (alpha 1), else the style's at `alpha`.
+OverlaySize textOverlaySize(const std::string& text);
+void drawTextOverlay(const char* id, const std::string& text, const OverlayRect& at, float alpha,
+                     std::optional<std::array<float, 3>> background = std::nullopt);
 
 // Floating over the top of the image, one under the other: the located load error (with a dismiss button)
 // and the load progress. Each returns the y below itself (`y` when it is not shown).
 float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
 float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
-// At the image area's bottom left (`left`, `bottom`): the pixel under the cursor and its values.
-void drawReadoutOverlay(const std::string& text, float left, float bottom);
-// At the image area's top right (`right`, `top`), when it shows something else than the render: what it shows.
-void drawViewLabel(const std::string& text, float right, float top);
 // The plot of the last measurement (the texture), at its size or smaller to fit, closable (state.showPlot).
 void drawTradeoffPlot(TradeoffPanelState& state, const ImageTexture& plot, float x, float y, float maxWidth,
                       float maxHeight);

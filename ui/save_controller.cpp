@@ -61,18 +61,24 @@ std::filesystem::path SaveController::saveFrame(const FrameSaveContext& c, const
   // Callers wait for it: the final pass (image view) or the file's image rendered after it (window view); never a
   // coarse pass, which holds one sample per block, nor the window's other resolution.
   if (!fileImageReady(c)) throw ImageIoError("the file's image is not rendered yet");
+  return writeFrame(fileImage(c), c.scenePath, c.mapping, path, what);
+}
+
+std::filesystem::path SaveController::writeFrame(const Image& raw, const std::string& scenePath,
+                                                 const DisplayMapping& mapping, const std::string& path, FrameSave what) {
   // Raw: as `rayview render` writes it. Displayed: with the exposure and gamma on screen, which at their defaults
   // is the same image.
   Image mapped;
-  if (what == FrameSave::Displayed) mapped = mapForDisplay(fileImage(c), c.mapping);
-  const Image& image = what == FrameSave::Displayed ? mapped : fileImage(c);
+  if (what == FrameSave::Displayed) mapped = mapForDisplay(raw, mapping);
+  const Image& image = what == FrameSave::Displayed ? mapped : raw;
   std::filesystem::path saved = path;
-  if (path.empty()) saved = saveFrameNumbered(image, c.scenePath, what);
+  if (path.empty()) saved = saveFrameNumbered(image, scenePath, what);
   else writeImageFile(path, image);
+  pending_.reset();
   panel_.frameSavePending = false;
   panel_.lastSaveFailed = false;
   panel_.lastSaved = "saved " + saved.string();
-  if (what == FrameSave::Displayed) panel_.lastSaved += " (as displayed: " + describe(c.mapping) + ")";
+  if (what == FrameSave::Displayed) panel_.lastSaved += " (as displayed: " + describe(mapping) + ")";
   std::printf("saved %s\n", saved.string().c_str());
   std::fflush(stdout);
   return saved;
@@ -95,31 +101,52 @@ std::filesystem::path SaveController::saveScene(SceneSession* session, const std
 }
 
 void SaveController::reportFailure(const std::exception& error) {
+  pending_.reset();
   panel_.frameSavePending = false;
   panel_.lastSaveFailed = true;
   panel_.lastSaved = std::string("not saved: ") + error.what();
   std::fprintf(stderr, "rayview: %s\n", panel_.lastSaved.c_str());
 }
 
+void SaveController::toastPanelLine() {
+  const double seconds = panel_.lastSaveFailed ? kFailedToastSeconds : kToastSeconds;
+  toast_ = SaveToast{panel_.lastSaved, panel_.lastSaveFailed,
+                     std::chrono::steady_clock::now() +
+                         std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(seconds))};
+}
+
+const SaveToast* SaveController::toast(std::chrono::steady_clock::time_point now) const {
+  return toast_ && now < toast_->until ? &*toast_ : nullptr;
+}
+
+std::optional<double> SaveController::secondsUntilToastEnds(std::chrono::steady_clock::time_point now) const {
+  if (!toast(now)) return std::nullopt;
+  return std::chrono::duration<double>(toast_->until - now).count();
+}
+
 void SaveController::saveFrameReporting(const FrameSaveContext& c) {
-  // Ctrl+S saves the file's image, identical to `rayview render`, never a coarse pass. While refining, the render
-  // goes on and the save happens when the final pass is on screen (pollPending); in the window view the file's
-  // image is then rendered in the background, its progress in the Save panel.
+  // Ctrl+S saves the file's image, identical to `rayview render`, never a coarse pass, and of the state it was
+  // pressed in. While refining, the render goes on and the save happens when that state's image is ready
+  // (pollPending); in the window view the file's image is rendered in the background, its progress in the Save panel.
+  const FrameSave what = panel_.saveFrameDisplayed ? FrameSave::Displayed : FrameSave::Raw;
   if (!fileImageReady(c)) {
-    if (!panel_.frameSavePending) {
+    if (!pending_ && c.session) {
+      pending_ = PendingFrameSave{keyOf(c), c.session->fileSource(), what, c.mapping};
       panel_.frameSavePending = true;
       panel_.lastSaveFailed = false;
       panel_.lastSaved = "saving when the final pass is ready...";
       std::printf("saving when the final pass is ready\n");
       std::fflush(stdout);
+      toastPanelLine();
     }
     return;
   }
   try {
-    saveFrame(c, {}, panel_.saveFrameDisplayed ? FrameSave::Displayed : FrameSave::Raw);
+    saveFrame(c, {}, what);
   } catch (const std::exception& error) {
     reportFailure(error);
   }
+  toastPanelLine();
 }
 
 void SaveController::saveSceneReporting(SceneSession* session, const std::string& scenePath, const std::string& path) {
@@ -128,10 +155,39 @@ void SaveController::saveSceneReporting(SceneSession* session, const std::string
   } catch (const std::exception& error) {
     reportFailure(error);
   }
+  toastPanelLine();
 }
 
 void SaveController::pollPending(const FrameSaveContext& c) {
-  if (panel_.frameSavePending && fileImageReady(c)) saveFrameReporting(c);
+  if (!pending_) return;
+  if (keyOf(c) != pending_->key) {
+    savePressedState(c);
+    return;
+  }
+  if (!fileImageReady(c)) return;
+  try {
+    saveFrame(c, {}, pending_->what);
+  } catch (const std::exception& error) {
+    reportFailure(error);
+  }
+  toastPanelLine();
+}
+
+bool SaveController::savePressedState(const FrameSaveContext& c) {
+  if (!fileImage_ || fileImageOf_ != pending_->key) {
+    if (awaitedFileImage_ == 0 || awaitedFileImageKey_ != pending_->key) {
+      awaitedFileImage_ = fileImageTask_.start(pending_->source);
+      awaitedFileImageKey_ = pending_->key;
+    }
+    return false;
+  }
+  try {
+    writeFrame(*fileImage_, c.scenePath, pending_->mapping, {}, pending_->what);
+  } catch (const std::exception& error) {
+    reportFailure(error);
+  }
+  toastPanelLine();
+  return true;
 }
 
 void SaveController::showProgress(const SceneSession* session) {
@@ -149,6 +205,7 @@ void SaveController::sceneReplaced(bool anotherScene) {
   // The save messages were about the previous scene, and a frame save still waiting for its final pass would save
   // this scene's image under the old name.
   if (panel_.frameSavePending) std::fprintf(stderr, "rayview: frame not saved: another scene was opened\n");
+  pending_.reset();
   panel_.frameSavePending = false;
   panel_.lastSaved.clear();
   panel_.lastSaveFailed = false;
@@ -156,7 +213,10 @@ void SaveController::sceneReplaced(bool anotherScene) {
 
 void SaveController::writeCaptures(int framebufferWidth, int framebufferHeight, const ViewerLayout& l, bool haveFrame,
                                    const std::string& scenePath) {
-  if (pendingViewSave_) writeViewSave(framebufferWidth, framebufferHeight, l, haveFrame, scenePath);
+  if (pendingViewSave_) {
+    writeViewSave(framebufferWidth, framebufferHeight, l, haveFrame, scenePath);
+    if (std::exchange(viewSaveFromUser_, false)) toastPanelLine();
+  }
   if (!pendingScreenshot_.empty()) writeScreenshot(framebufferWidth, framebufferHeight);
 }
 

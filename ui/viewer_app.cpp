@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <utility>
 
 namespace rayview {
@@ -16,7 +17,8 @@ ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
       render_(options.threads),
       compare_(options.comparePath),
       tradeoff_(options.threads),
-      saves_(options.threads, filePanel_) {
+      saves_(options.threads, filePanel_),
+      printOverlays_(std::getenv("RAYVIEW_PRINT_OVERLAYS") != nullptr) {
   if (script) script_.emplace(std::move(*script));
 }
 
@@ -210,6 +212,7 @@ double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) cons
   if (loading()) wait = std::min(wait, kLoadingPollSeconds);
   if (tradeoff_.measuring()) wait = std::min(wait, kMeasuringPollSeconds);
   if (saves_.renderingFileImage()) wait = std::min(wait, kLoadingPollSeconds);  // its progress in the Save panel
+  if (const std::optional<double> toast = saves_.secondsUntilToastEnds(now)) wait = std::min(wait, *toast + 0.001);
   // A script condition to check: look again soon. A pass in flight wakes us when it is published.
   if (script_ && script_->running()) wait = std::min(wait, kRenderingPollSeconds);
   if (!rendererIdle) wait = std::min(wait, kRenderingFallbackSeconds);

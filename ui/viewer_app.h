@@ -105,7 +105,9 @@ class ViewerApp final : public ScriptHost {
   // The panels and what they ask for (viewer_app_panels.cpp).
   void drawPanels(const ViewerLayout& layout, PanelActions& actions);
   void drawPanelColumn(const ViewerLayout& layout, PanelActions& actions);
-  void drawOverlays(const ViewerLayout& layout);
+  // The overlays over the image area (viewer_app_overlays.cpp), placed by placeOverlays so that none covers another.
+  void drawOverlays(const ViewerLayout& layout, const std::string& readout);
+  std::vector<OverlayRect> keepClear(const ViewerLayout& layout) const;
   void apply(const PanelActions& actions, const Shortcuts& shortcuts);
   // A click on the image: pick what it shows; a double-click also puts the orbit pivot there.
   void pickAt(double x, double y, bool doubleClick, const ViewerLayout& layout);
@@ -134,6 +136,8 @@ class ViewerApp final : public ScriptHost {
   UnsavedPrompt unsaved_;
 
   std::string editProblem_;  // why the current edits are not rendered
+  bool printOverlays_ = false;  // RAYVIEW_PRINT_OVERLAYS: tools driving the window (tests) read the placement
+  std::string printedOverlays_;
   std::string shownTitle_;
   int framesToDraw_ = kSettleFrames;
   bool quit_ = false;

@@ -88,9 +88,7 @@ void ViewerApp::drawImageArea(const ViewerLayout& l) {
   const ReadoutSource readout{render_.frame(), compare_.comparison(), s ? &s->committedEdits().camera : nullptr,
                               s ? &rendered : nullptr, display_.imageView,
                               s && render_.frameIsOfSize(rendered.width, rendered.height)};
-  imageView_.drawReadout(l, readout);
-  drawViewLabel(compare_.viewLabel(), l.viewX + l.viewWidth - ImGui::GetStyle().WindowPadding.x,
-                l.viewY + ImGui::GetStyle().WindowPadding.y);
+  drawOverlays(l, imageView_.readout(l, readout));
 }
 
 void ViewerApp::finishFrame(const ViewerLayout& l) {

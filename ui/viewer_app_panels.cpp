@@ -23,8 +23,6 @@ void ViewerApp::drawPanels(const ViewerLayout& l, PanelActions& actions) {
     if (ImGui::Begin("rayview", nullptr, flags)) drawPanelColumn(l, actions);
     ImGui::End();
   }
-  // Saving the view as seen: the image area alone, no overlay over it.
-  if (!saves_.viewSaveRequested()) drawOverlays(l);
 }
 
 void ViewerApp::drawPanelColumn(const ViewerLayout&, PanelActions& actions) {
@@ -53,30 +51,12 @@ void ViewerApp::drawPanelColumn(const ViewerLayout&, PanelActions& actions) {
   ImGui::PopItemWidth();
 }
 
-void ViewerApp::drawOverlays(const ViewerLayout& l) {
-  const float margin = ImGui::GetStyle().WindowPadding.x;
-  // In a small window the stats take one line, so they do not cover the image.
-  const ImGuiIO& io = ImGui::GetIO();
-  const float scale = imgui_.layoutScale();
-  const bool smallWindow = io.DisplaySize.x < kCompactStatsWidth * scale || io.DisplaySize.y < kCompactStatsHeight * scale;
-  if (display_.showStats && render_.haveFrame())
-    drawStatsOverlay(render_.stats(), l.viewX + l.viewWidth - margin, l.viewY + l.viewHeight - margin,
-                     display_.oneLineStats || smallWindow);
-  const std::string stillShowing = session() ? describeScene(scenePath()) : std::string();
-  const float belowError =
-      drawErrorOverlay(load_.loadError(), stillShowing, l.viewX + margin, l.viewY + margin, l.viewWidth - 2.0f * margin);
-  const float belowLoading = drawLoadingOverlay(load_.progress(), l.viewX + margin, belowError,
-                                                std::min(l.viewWidth - 2.0f * margin, 480.0f * imgui_.layoutScale()));
-  drawTradeoffPlot(tradeoff_.panel(), tradeoff_.plot(), l.viewX + margin, belowLoading, l.viewWidth - 2.0f * margin,
-                   l.viewY + l.viewHeight - margin - belowLoading);
-}
-
 void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   SceneSession* s = session();
   if (actions.open) openFromUser(*actions.open);
   if (actions.reload || shortcuts.reload) reload();
   if (actions.saveFrame || shortcuts.saveFrame) saves_.saveFrameReporting(frameSaveContext());
-  if (actions.saveView) saves_.requestViewSave({});  // drawn and read back next frame
+  if (actions.saveView) saves_.requestViewSave({}, true);  // drawn and read back next frame
   if (actions.saveSceneNumbered || shortcuts.saveScene) saves_.saveSceneReporting(s, scenePath(), {});
   if (actions.saveSceneAs) saves_.saveSceneReporting(s, scenePath(), *actions.saveSceneAs);
   if (actions.cancelTradeoff) cancelTradeoff();

@@ -31,6 +31,10 @@ Cases:
   display      exposure +1 by script: the image area is brighter as the mapping says, the render does not restart,
                raw saves (save-frame, Ctrl+S) equal `rayview render`, save-frame-displayed is mapped; the reference
                (Space) is mapped too, the difference (D) stays raw (viewer_display_case.py)
+  saves        Ctrl+S saves the image of the moment it was pressed, not the orbit after it; with the panels
+               hidden a toast shows each save's success and failure (viewer_saves_case.py)
+  overlays     at 800x600, 1000x640 and 1280x800 the readout, a toast and the stats are apart and inside the image
+               area (viewer_saves_case.py)
 
 Each case runs itself under `xvfb-run` (skipped, exit 77, only when xvfb-run is not installed) and writes its
 files under DIR/CASE. Standard library only: PNGs are decoded here with zlib.
@@ -48,6 +52,7 @@ from viewer_compare_case import case_compare  # noqa: E402
 from viewer_image_view_case import case_image_view  # noqa: E402
 from viewer_display_case import case_display  # noqa: E402
 from viewer_window_view_case import case_window_view  # noqa: E402
+from viewer_saves_case import case_saves, case_overlays  # noqa: E402
 from viewer_harness import (  # noqa: E402
     run_script,
     last_generation,
@@ -426,7 +431,9 @@ def case_small_window(args, work):
     # Rows above the bottom 40 pixels at the right edge must be the image's (same as a few pixels further left).
     text_rows = set()
     for y in range(height - 260, height):
-        row = {pixels[(y * width + x) * 3:(y * width + x) * 3 + 3] for x in range(width - 200, width - 10)}
+        # The right edge only: the pointer (Xvfb puts it at the screen's centre) may raise a readout at the left,
+        # placed above the stats line.
+        row = {pixels[(y * width + x) * 3:(y * width + x) * 3 + 3] for x in range(width - 120, width - 10)}
         if b"\xff\xff\xff" in row:
             text_rows.add(y)
     if not text_rows:
@@ -571,7 +578,8 @@ CASES = {"interaction": case_interaction, "script": case_script, "reload": case_
          "screenshot": case_screenshot, "tradeoff": case_tradeoff, "hidpi": case_hidpi, "idle-cpu": case_idle_cpu,
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
          "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
-         "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view}
+         "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view,
+         "saves": case_saves, "overlays": case_overlays}
 
 
 def main():
