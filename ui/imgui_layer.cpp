@@ -47,7 +47,16 @@ void ImGuiLayer::applyScale() {
   style.ScaleAllSizes(layoutScale());
 }
 
-void ImGuiLayer::beginFrame() {
+void ImGuiLayer::beginFrame(const std::vector<int>& quickPresses) {
+  ImGuiIO& io = ImGui::GetIO();
+  constexpr int keys = static_cast<int>(sizeof io.KeysDown / sizeof io.KeysDown[0]);
+  for (const int key : held_) io.KeysDown[key] = false;
+  held_.clear();
+  for (const int key : quickPresses)
+    if (key >= 0 && key < keys && !io.KeysDown[key]) {
+      io.KeysDown[key] = true;
+      held_.push_back(key);
+    }
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();

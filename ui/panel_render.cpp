@@ -68,24 +68,33 @@ void editDisplayMapping(DisplayMapping& mapping) {
   ImGui::SliderFloat("Exposure", &mapping.exposureStops, kMinExposureStops, kMaxExposureStops, "%+.1f stops",
                      ImGuiSliderFlags_AlwaysClamp);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Display only, the render does not restart. Each value of the image times 2^stops: +1 doubles, "
+    tooltip("Display only, the render does not restart. Each value of the image times 2^stops: +1 doubles, "
                       "-1 halves; 0 shows the image as computed. The image holds 8-bit values, clamped to 255 by the "
                       "render: what it clipped to white stays one flat value. Ctrl+click to type a value.");
   ImGui::SliderFloat("Gamma", &mapping.gamma, kMinGamma, kMaxGamma, "%.2f",
                      ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Display only, the render does not restart. After the exposure, each value v (0 to 1) is shown "
+    tooltip("Display only, the render does not restart. After the exposure, each value v (0 to 1) is shown "
                       "as v^(1/gamma): above 1 brightens the dark and middle tones, below 1 darkens them; black and "
                       "white stay. 1 shows the image as computed (the course applies no gamma).");
   ImGui::BeginDisabled(mapping.identity());
   if (ImGui::Button("Reset exposure and gamma")) mapping = DisplayMapping{};
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("Exposure 0 and gamma 1: the image exactly as rayview render writes it.");
+    tooltip("Exposure 0 and gamma 1: the image exactly as rayview render writes it.");
   hintText("The reference (Space) is shown with the same exposure and gamma; the difference view (D) is not.");
 }
 
 }  // namespace
+
+std::string traversalBuilt(AccelKind chosen, AccelKind built, std::size_t triangles) {
+  if (chosen == built) return {};
+  const std::string name = chosen == AccelKind::Embree ? "Embree" : std::string(toString(chosen));
+  if (chosen == AccelKind::Embree && built == AccelKind::Packet)
+    return name + (triangles <= kSmallSceneTriangles ? " (packet BVH for small scenes)"
+                                                     : " (packet BVH: Embree could not be loaded)");
+  return name + " (" + std::string(toString(built)) + " built)";
+}
 
 void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   if (!ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) return;
@@ -93,24 +102,28 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   ImGui::SameLine();
   ImGui::Checkbox("On one line", &display.oneLineStats);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("The stats on one line. In a window smaller than 1280x800 they always are.");
+    tooltip("The stats on one line. In a window smaller than 1280x800 they always are.");
   // The view (V): which pixels are rendered. Not a render setting of the scene: it is not in the knob table.
   const Camera& file = session.committedEdits().camera;
   if (ImGui::RadioButton("Window view", !display.imageView)) display.imageView = false;
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Renders the image area's own pixels: the file's view, with the near plane extended to the "
+    tooltip("Renders the image area's own pixels: the file's view, with the near plane extended to the "
                       "area's shape (never cropped). Ctrl+S still saves the file's image. V switches.");
   ImGui::SameLine();
   const std::string imageLabel = "Image view (" + std::to_string(file.width) + "x" + std::to_string(file.height) + ")";
   if (ImGui::RadioButton(imageLabel.c_str(), display.imageView)) display.imageView = true;
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Renders the file's image, its resolution exactly: fit (0), 1:1 (1), zoom (+, -, Ctrl+wheel), "
+    tooltip("Renders the file's image, its resolution exactly: fit (0), 1:1 (1), zoom (+, -, Ctrl+wheel), "
                       "pan (Ctrl+drag). V switches.");
   editDisplayMapping(display.mapping);
   ImGui::Separator();
   // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.
   for (const Knob& knob : knobTable()) {
-    editKnob(knob, session.edits(), session.settings());
+    // The traversal as built for the scene on screen, while the choice is the one it was built for.
+    std::string built;
+    if (knob.name == "accel" && !session.needsRebuild())
+      built = traversalBuilt(session.settings().accel, session.geometry().accel->kind(), session.loaded().triangles.size());
+    editKnob(knob, session.edits(), session.settings(), built.empty() ? nullptr : built.c_str());
     if (knob.name == "tri-light") triangularLightHint(session.edits(), session.settings());
   }
   editRadiance("Background", session.edits().background);

@@ -55,6 +55,7 @@ struct FilePanelState {
   bool focusOpenPath = false;   // requested, the field is not active yet
   int focusFrames = 0;          // frames since the request (the focus is requested again after a few)
   std::vector<unsigned int> typeAhead;
+  bool enterAhead = false;  // Enter was pressed meanwhile: open once the held characters are in the field
 };
 
 // Display only: none of these restarts the render.
@@ -160,6 +161,11 @@ struct StatsText {
   std::string oneLine;
 };
 StatsText statsText(const ViewerStats& stats);
+// The traversal a scene is rendered with, as the Render panel's dropdown and the stats both name it: the chosen
+// one, or what was built for it when that differs ("Embree (packet BVH for small scenes)"); "" when they agree.
+std::string traversalBuilt(AccelKind chosen, AccelKind built, std::size_t triangles);
+// Up to this many triangles a scene asked for Embree gets rayview's packet BVH (the accel knob's help says so).
+inline constexpr std::size_t kSmallSceneTriangles = 5000;
 OverlaySize statsBoxSize(const StatsText& text);
 // At `at` (placed by placeOverlays): the box, or the line wrapped to the rectangle's width.
 void drawStatsOverlay(const StatsText& text, const OverlayRect& at, bool oneLine);

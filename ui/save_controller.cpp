@@ -93,6 +93,9 @@ std::filesystem::path SaveController::saveScene(SceneSession* session, const std
   if (path.empty()) saved = saveSceneNumbered(parameters, session->loaded(), scenePath);
   else writeSceneFile(path, parameters, session->loaded());
   session->markSaved(parameters);
+  // Written over the open file itself: the title loses its `*`; saved elsewhere, the open file still differs.
+  std::error_code error;
+  if (!scenePath.empty() && std::filesystem::equivalent(saved, scenePath, error)) session->markWrittenToFile(parameters);
   panel_.lastSaveFailed = false;
   panel_.lastSaved = "saved scene " + saved.string();
   std::printf("saved scene %s\n", saved.string().c_str());

@@ -14,6 +14,7 @@ SceneSession::SceneSession(LoadedSceneParts parts, RenderSettings settings, std:
   settings_.accel = parts_.accel;  // what this build could actually build
   history_ = EditHistory(EditState{edits_, settings_});
   savedEdits_ = edits_;
+  fileEdits_ = edits_;
   orbit_.setHome(parts_.scene->camera, parts_.bounds);
   committedEdits_ = edits_;
   committedSettings_ = settings_;

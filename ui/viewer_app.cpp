@@ -42,7 +42,7 @@ int ViewerApp::run() {
     changed |= takeNewFrame();
 
     const bool scriptActive = script_ && script_->running();
-    if (changed || framesToDraw_ > 0 || scriptActive || loading() || tradeoff_.measuring() ||
+    if (changed || framesToDraw_ > 0 || scriptActive || typingAhead() || loading() || tradeoff_.measuring() ||
         saves_.renderingFileImage() || saves_.captureRequested()) {
       drawFrame();
       framesToDraw_ = changed ? kSettleFrames : std::max(0, framesToDraw_ - 1);
@@ -94,6 +94,7 @@ void ViewerApp::onLoad(const LoadEvent& event) {
   ViewerStats& stats = render_.stats();
   stats.bvhBuildMs = event.buildMs;
   stats.accel = s.geometry().accel->kind();
+  stats.traversal = traversalBuilt(s.settings().accel, stats.accel, s.loaded().triangles.size());
   if (event.kind == LoadEvent::Kind::Rebuilt) return render_.restart(s.currentSource());
   navigation_.cancel();
   saves_.sceneReplaced(event.anotherScene);
@@ -205,7 +206,7 @@ std::string ViewerApp::comparisonProblem() const {
 }
 
 double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) const {
-  if (framesToDraw_ > 0 || saves_.captureRequested()) return 0.0;
+  if (framesToDraw_ > 0 || saves_.captureRequested() || typingAhead()) return 0.0;
   double wait = kIdleWaitSeconds;
   if (const std::optional<double> look = load_.secondsUntilNextLook(now); look && filePanel_.reloadOnChange)
     wait = std::min(wait, *look + 0.001);

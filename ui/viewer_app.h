@@ -95,12 +95,17 @@ class ViewerApp final : public ScriptHost {
   // One UI frame (viewer_app_frame.cpp): input, the script, the panels, edits into restarts, the image.
   void drawFrame();
   ViewerLayout layout() const;
-  Shortcuts handleInput(ViewerLayout& layout, std::optional<UnsavedPrompt::Answer>& keyAnswer);
+  Shortcuts handleInput(ViewerLayout& layout, std::vector<InputEvent> input,
+                        std::optional<UnsavedPrompt::Answer>& keyAnswer);
   void applyImageView(const Shortcuts& shortcuts, const ViewerLayout& layout);
   void commitFrame(const ViewerLayout& layout);
   void drawImageArea(const ViewerLayout& layout);
   void finishFrame(const ViewerLayout& layout);
   double nextWaitSeconds(Clock::time_point now, bool rendererIdle) const;
+  // Ctrl+O's field is taking the focus, or has keys typed before it to take: frames go on until it has them.
+  bool typingAhead() const {
+    return filePanel_.focusOpenPath || !filePanel_.typeAhead.empty() || filePanel_.enterAhead;
+  }
 
   // The panels and what they ask for (viewer_app_panels.cpp).
   void drawPanels(const ViewerLayout& layout, PanelActions& actions);

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include <GL/gl.h>
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include "viewer_app.h"
@@ -22,10 +23,29 @@ ViewerLayout ViewerApp::layout() const {
   return l;
 }
 
-Shortcuts ViewerApp::handleInput(ViewerLayout& l, std::optional<UnsavedPrompt::Answer>& keyAnswer) {
+namespace {
+
+// Keys pressed and released again within `input` (since the last frame), each once.
+std::vector<int> quickPresses(const std::vector<InputEvent>& input) {
+  std::vector<int> quick;
+  for (std::size_t i = 0; i < input.size(); ++i) {
+    const InputEvent& e = input[i];
+    if (e.kind != InputEvent::Kind::Key || !e.pressed || std::find(quick.begin(), quick.end(), e.key) != quick.end())
+      continue;
+    bool releasedAfter = false;
+    for (std::size_t j = i + 1; j < input.size(); ++j)
+      if (input[j].kind == InputEvent::Kind::Key && input[j].key == e.key) releasedAfter = !input[j].pressed;
+    if (releasedAfter) quick.push_back(e.key);
+  }
+  return quick;
+}
+
+}  // namespace
+
+Shortcuts ViewerApp::handleInput(ViewerLayout& l, std::vector<InputEvent> input,
+                                 std::optional<UnsavedPrompt::Answer>& keyAnswer) {
   const ImGuiIO& io = ImGui::GetIO();
   Shortcuts shortcuts;
-  std::vector<InputEvent> input = window_.takeInput();
   // While the unsaved-edits question is up, keys answer it and nothing reaches the view.
   if (unsaved_.active()) {
     keyAnswer = unsaved_.keyAnswer(input);
@@ -44,7 +64,13 @@ Shortcuts ViewerApp::handleInput(ViewerLayout& l, std::optional<UnsavedPrompt::A
     filePanel_.focusOpenPath = true;
     filePanel_.focusFrames = 0;
     filePanel_.typeAhead.clear();
+    filePanel_.enterAhead = false;
   }
+  // An Enter typed before the field has the focus is held until the field has the characters (drawScenePanel).
+  if (filePanel_.focusOpenPath)
+    for (const InputEvent& e : input)
+      if (e.kind == InputEvent::Kind::Key && e.pressed && (e.key == GLFW_KEY_ENTER || e.key == GLFW_KEY_KP_ENTER))
+        filePanel_.enterAhead = true;
   return shortcuts;
 }
 
@@ -110,10 +136,11 @@ void ViewerApp::finishFrame(const ViewerLayout& l) {
 
 void ViewerApp::drawFrame() {
   render_.texture(display_.mapping);  // before the layout, which fits the texture's size
-  imgui_.beginFrame();
+  std::vector<InputEvent> input = window_.takeInput();
+  imgui_.beginFrame(quickPresses(input));
   ViewerLayout l = layout();
   std::optional<UnsavedPrompt::Answer> keyAnswer;
-  const Shortcuts shortcuts = handleInput(l, keyAnswer);
+  const Shortcuts shortcuts = handleInput(l, std::move(input), keyAnswer);
   if (script_ && script_->running()) script_->step(*this);
 
   PanelActions actions;

@@ -94,7 +94,7 @@ void ViewerApp::pickAt(double x, double y, bool doubleClick, const ViewerLayout&
 
 void ViewerApp::updateTitle() {
   std::string title = "rayview - " + (scenePath().empty() ? std::string("default scene") : scenePath());
-  if (session() && session()->unsaved()) title += " *";
+  if (session() && session()->differsFromFile()) title += " *";
   if (title != shownTitle_) window_.setTitle(shownTitle_ = title);
 }
 
