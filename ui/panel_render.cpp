@@ -116,6 +116,10 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
     tooltip("Renders the file's image, its resolution exactly: fit (0), 1:1 (1), zoom (+, -, Ctrl+wheel), "
                       "pan (Ctrl+drag). V switches.");
   editDisplayMapping(display.mapping);
+  ImGui::Checkbox("Lights and pivot always", &display.alwaysShowMarks);
+  if (ImGui::IsItemHovered())
+    tooltip("Draw the lights (yellow) and the orbit pivot (white cross) over the image all the time. Off: only while "
+            "you orbit, pan or dolly.");
   ImGui::Separator();
   // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.
   for (const Knob& knob : knobTable()) {

@@ -67,6 +67,7 @@ struct DisplayOptions {
   // pixels, the file's view extended to its aspect; rayview/view_camera.h).
   bool imageView = false;
   DisplayMapping mapping;     // exposure and gamma of the render and the reference (the difference stays raw)
+  bool alwaysShowMarks = false;  // the lights and the orbit pivot drawn in the view always, not only while navigating
 };
 
 // Below this window size (at content scale 1) the stats take one line, so they do not cover the image.
@@ -92,6 +93,7 @@ struct TradeoffPanelState {
 // The "Compare" panel: the reference's path field and the difference view (its checkbox and D).
 struct ComparePanelState {
   std::string path;
+  bool filledBeside = false;  // `path` is SCENE.png found beside the scene, filled in for the user
   bool showDifference = false;
   bool reveal = false;  // open the header and scroll to it once (a reference was given or loaded)
 };

@@ -127,6 +127,10 @@ std::optional<PickResult> SceneSession::pickRendered(int i, int j) {
   return select(pickPixel(renderedCamera(), *parts_.geometry, i, j));
 }
 
+std::optional<PickResult> SceneSession::hitRendered(int i, int j) const {
+  return pickPixel(renderedCamera(), *parts_.geometry, i, j);
+}
+
 std::optional<PickResult> SceneSession::select(std::optional<PickResult> pick) {
   selection_ = std::move(pick);
   revealMaterial_ = selection_.has_value();

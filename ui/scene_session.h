@@ -99,6 +99,8 @@ class SceneSession {
   std::optional<PickResult> pick(int i, int j);
   // The same by a pixel of the rendered image (renderedCamera(): the window view's, when it is on).
   std::optional<PickResult> pickRendered(int i, int j);
+  // What that pixel shows, without selecting it (the wheel dollies toward it).
+  std::optional<PickResult> hitRendered(int i, int j) const;
   const std::optional<PickResult>& selection() const { return selection_; }
   // True once after a pick selected something: the Materials panel opens the picked material and scrolls to it.
   bool takeMaterialReveal() { return std::exchange(revealMaterial_, false); }

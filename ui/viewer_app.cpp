@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <utility>
 
+#include "view_habits.h"
+
 namespace rayview {
 
 ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
@@ -103,9 +105,24 @@ void ViewerApp::onLoad(const LoadEvent& event) {
   stats.readMs = event.readMs;
   filePanel_.openPath = scenePath();
   if (filePanel_.saveScenePath.empty() || event.anotherScene) filePanel_.saveScenePath = suggestedSaveAsPath(scenePath());
+  if (event.anotherScene) fillReferenceBeside();
   // A kept camera is committed before the first restart, so the file's view never flashes up.
   std::shared_ptr<const PixelSource> source = s.commit(editProblem_);
   render_.restart(source ? std::move(source) : s.currentSource());
+}
+
+void ViewerApp::fillReferenceBeside() {
+  ComparePanelState& panel = compare_.panel();
+  // Never over a reference the user gave (--compare, or one typed or loaded).
+  if (compare_.comparison().loaded() || (!panel.path.empty() && !panel.filledBeside) || !options_.comparePath.empty())
+    return;
+  const std::optional<std::string> beside = referenceBeside(scenePath());
+  panel.path = beside.value_or(std::string());
+  panel.filledBeside = beside.has_value();
+  if (!beside) return;
+  panel.reveal = true;
+  std::printf("reference beside the scene %s\n", beside->c_str());
+  std::fflush(stdout);
 }
 
 void ViewerApp::commitEdits() {
@@ -214,6 +231,7 @@ double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) cons
   if (tradeoff_.measuring()) wait = std::min(wait, kMeasuringPollSeconds);
   if (saves_.renderingFileImage()) wait = std::min(wait, kLoadingPollSeconds);  // its progress in the Save panel
   if (const std::optional<double> toast = saves_.secondsUntilToastEnds(now)) wait = std::min(wait, *toast + 0.001);
+  if (now < marksUntil_) wait = std::min(wait, std::chrono::duration<double>(marksUntil_ - now).count() + 0.001);
   // A script condition to check: look again soon. A pass in flight wakes us when it is published.
   if (script_ && script_->running()) wait = std::min(wait, kRenderingPollSeconds);
   if (!rendererIdle) wait = std::min(wait, kRenderingFallbackSeconds);

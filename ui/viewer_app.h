@@ -42,6 +42,8 @@ inline constexpr float kPanelWidth = 400.0f;
 inline constexpr float kMaxPanelShare = 0.45f;
 inline constexpr int kInitialWindowWidth = 1280;
 inline constexpr int kInitialWindowHeight = 800;
+// The lights and the pivot stay in the view this long after a drag or a wheel notch.
+inline constexpr std::chrono::milliseconds kMarksAfterNavigation{1500};
 
 class ViewerApp final : public ScriptHost {
  public:
@@ -88,6 +90,8 @@ class ViewerApp final : public ScriptHost {
   bool takeNewFrame();
   void onLoad(const LoadEvent& event);
   void commitEdits();
+  // SCENE.png beside SCENE.xml fills the Compare panel's field (and the panel says why).
+  void fillReferenceBeside();
   void stopTradeoff(const std::string& why, bool restartRender);
   std::string whyNoTradeoff() const;
   FrameSaveContext frameSaveContext() const;
@@ -114,6 +118,11 @@ class ViewerApp final : public ScriptHost {
   void drawOverlays(const ViewerLayout& layout, const std::string& readout);
   std::vector<OverlayRect> keepClear(const ViewerLayout& layout) const;
   void apply(const PanelActions& actions, const Shortcuts& shortcuts);
+  // Home, F11, E and Shift+E; the wheel's dolly toward the point under the cursor.
+  void applyHabits(const Shortcuts& shortcuts);
+  void dollyAtCursor(const Shortcuts& shortcuts, const ViewerLayout& layout);
+  // Over the image: the picked mesh's outline; the lights and the orbit pivot while navigating (or always).
+  void drawSceneMarks(const ViewerLayout& layout);
   // A click on the image: pick what it shows; a double-click also puts the orbit pivot there.
   void pickAt(double x, double y, bool doubleClick, const ViewerLayout& layout);
   void updateTitle();
@@ -141,6 +150,7 @@ class ViewerApp final : public ScriptHost {
   UnsavedPrompt unsaved_;
 
   std::string editProblem_;  // why the current edits are not rendered
+  Clock::time_point marksUntil_{};  // the lights and pivot stay drawn until then after a navigation
   bool printOverlays_ = false;  // RAYVIEW_PRINT_OVERLAYS: tools driving the window (tests) read the placement
   std::string printedOverlays_;
   std::string shownTitle_;

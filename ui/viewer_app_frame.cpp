@@ -87,6 +87,7 @@ void ViewerApp::applyImageView(const Shortcuts& shortcuts, const ViewerLayout& l
 // Edits into restarts: the drag state, the window view's size, this frame's edits, then a measurement asked for.
 void ViewerApp::commitFrame(const ViewerLayout& l) {
   const ImGuiIO& io = ImGui::GetIO();
+  if (navigation_.dragging()) marksUntil_ = Clock::now() + kMarksAfterNavigation;
   // Hold the coarse level while the user drags the view or a value.
   render_.setInteractive(navigation_.dragging() || (ImGui::IsAnyItemActive() && io.MouseDown[0]));
   if (SceneSession* s = session()) {
@@ -107,6 +108,7 @@ void ViewerApp::drawImageArea(const ViewerLayout& l) {
   // Again after the panels and the script: an exposure or gamma changed this frame shows this frame.
   const ImageTexture& shown = instead ? *instead : render_.texture(display_.mapping);
   if (!shown.empty()) imageView_.drawImage(shown, l, instead ? nullptr : frame);
+  if (!saves_.viewSaveRequested()) drawSceneMarks(l);
   // Saving the view as seen: the image area alone, no overlay over it.
   if (saves_.viewSaveRequested()) return;
   const SceneSession* s = load_.session();
@@ -148,6 +150,7 @@ void ViewerApp::drawFrame() {
   if (const std::optional<UnsavedPrompt::Answer> answer = unsaved_.draw(keyAnswer)) answerUnsaved(*answer);
   apply(actions, shortcuts);
   if (shortcuts.click) pickAt(shortcuts.click->first, shortcuts.click->second, shortcuts.doubleClick, l);
+  dollyAtCursor(shortcuts, l);
   commitFrame(l);
   drawImageArea(l);
   finishFrame(l);

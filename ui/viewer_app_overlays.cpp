@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 #include <imgui.h>
 
+#include "view_habits.h"
 #include "viewer_app.h"
 
 namespace rayview {
@@ -47,6 +48,45 @@ std::string describe(const char* name, const std::optional<OverlayRect>& r) {
 }
 
 }  // namespace
+
+void ViewerApp::drawSceneMarks(const ViewerLayout& l) {
+  const SceneSession* s = load_.session();
+  if (!s || !compare_.viewLabel().empty()) return;  // over the reference or the difference they would mislead
+  const Camera camera = s->renderedCamera();
+  const auto project = [&](const glm::dvec3& p) -> std::optional<ImVec2> {
+    const std::optional<ScreenPoint> q = projectToScreen(p, camera, l.imageX, l.imageY, l.imageWidth, l.imageHeight);
+    return q ? std::optional<ImVec2>(ImVec2(q->x, q->y)) : std::nullopt;
+  };
+  ImDrawList* draw = ImGui::GetBackgroundDrawList();
+  draw->PushClipRect(ImVec2(l.viewX, l.viewY), ImVec2(l.viewX + l.viewWidth, l.viewY + l.viewHeight), true);
+  const float unit = ImGui::GetFontSize() * 0.5f;
+  // The picked mesh: the outline of its bounding box.
+  if (s->selection()) {
+    const Bounds b = s->framingBounds();
+    const auto corner = [&](int c) {
+      return project({c & 1 ? b.max.x : b.min.x, c & 2 ? b.max.y : b.min.y, c & 4 ? b.max.z : b.min.z});
+    };
+    for (int c = 0; c < 8; ++c)
+      for (const int bit : {1, 2, 4})
+        if (!(c & bit))
+          if (const auto a = corner(c), e = corner(c | bit); a && e) draw->AddLine(*a, *e, IM_COL32(255, 150, 30, 230), 2.0f);
+  }
+  const bool navigating = navigation_.dragging() || Clock::now() < marksUntil_;
+  if (display_.alwaysShowMarks || navigating) {
+    const ImU32 light = IM_COL32(255, 220, 60, 240);
+    for (const PointLight& p : s->edits().lights.of<PointLight>())
+      if (const auto q = project(p.position)) draw->AddCircle(*q, unit, light, 12, 2.0f);
+    for (const TriangularLight& t : s->edits().lights.of<TriangularLight>())
+      if (const auto a = project(t.vertex1), b = project(t.vertex2), c = project(t.vertex3); a && b && c)
+        draw->AddTriangle(*a, *b, *c, light, 2.0f);
+    if (const auto pivot = project(s->orbit().pivot())) {
+      const ImU32 white = IM_COL32(255, 255, 255, 230);
+      draw->AddLine(ImVec2(pivot->x - unit, pivot->y), ImVec2(pivot->x + unit, pivot->y), white, 2.0f);
+      draw->AddLine(ImVec2(pivot->x, pivot->y - unit), ImVec2(pivot->x, pivot->y + unit), white, 2.0f);
+    }
+  }
+  draw->PopClipRect();
+}
 
 std::vector<OverlayRect> ViewerApp::keepClear(const ViewerLayout& l) const {
   std::vector<OverlayRect> clear;

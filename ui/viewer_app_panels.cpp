@@ -4,7 +4,9 @@
 
 #include <imgui.h>
 
+#include "rayview/scene_writer.h"
 #include "scene_pick.h"
+#include "view_habits.h"
 #include "viewer_app.h"
 
 namespace rayview {
@@ -74,6 +76,39 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   }
   if (s && (actions.frameScene || shortcuts.frameScene)) s->navigate([&](OrbitCamera& o) { o.frame(s->framingBounds()); });
   if (s && (actions.resetCamera || shortcuts.resetCamera)) s->navigate([](OrbitCamera& o) { o.reset(); });
+  applyHabits(shortcuts);
+}
+
+void ViewerApp::applyHabits(const Shortcuts& shortcuts) {
+  SceneSession* s = session();
+  // Home: everything, ground planes too (F leaves them out).
+  if (s && shortcuts.frameAll) s->navigate([&](OrbitCamera& o) { o.frame(s->bounds()); });
+  if (shortcuts.toggleFullscreen) {
+    window_.toggleFullscreen();
+    std::printf("fullscreen %s\n", window_.fullscreen() ? "on" : "off");
+    std::fflush(stdout);
+  }
+  if (shortcuts.exposureSteps != 0) {
+    display_.mapping.exposureStops = stepExposure(display_.mapping.exposureStops, shortcuts.exposureSteps);
+    std::printf("exposure %s\n", formatNumber(display_.mapping.exposureStops).c_str());
+    std::fflush(stdout);
+  }
+}
+
+void ViewerApp::dollyAtCursor(const Shortcuts& shortcuts, const ViewerLayout& l) {
+  SceneSession* s = session();
+  if (!s || shortcuts.dollySteps == 0.0) return;
+  const auto [x, y] = shortcuts.dollyAt;
+  const Camera camera = s->renderedCamera();
+  std::optional<ImagePixel> pixel;
+  if (l.inView(x, y))
+    pixel = ImagePlacement::pixelAt({l.imageX, l.imageY, l.imageWidth, l.imageHeight}, camera.width, camera.height,
+                                    screenPixelCentre(x, l.framebufferScale), screenPixelCentre(y, l.framebufferScale));
+  const std::optional<PickResult> hit = pixel ? s->hitRendered(pixel->i, pixel->j) : std::nullopt;
+  // Toward what is under the cursor; over the background, toward the pivot as before.
+  if (hit) s->navigate([&](OrbitCamera& o) { o.dollyToward(hit->point, shortcuts.dollySteps); });
+  else s->navigate([&](OrbitCamera& o) { o.dolly(shortcuts.dollySteps); });
+  marksUntil_ = Clock::now() + kMarksAfterNavigation;
 }
 
 void ViewerApp::pickAt(double x, double y, bool doubleClick, const ViewerLayout& l) {

@@ -33,6 +33,8 @@ Cases:
                (Space) is mapped too, the difference (D) stays raw (viewer_display_case.py)
   saves        Ctrl+S saves the image of the moment it was pressed, not the orbit after it; with the panels
                hidden a toast shows each save's success and failure (viewer_saves_case.py)
+  habits       E and Shift+E, Home, the wheel, F11, SCENE.png beside the scene, smoothing below 1:1
+               (viewer_habits_case.py)
   overlays     at 800x600, 1000x640 and 1280x800 the readout, a toast and the stats are apart and inside the image
                area (viewer_saves_case.py)
 
@@ -53,6 +55,7 @@ from viewer_image_view_case import case_image_view  # noqa: E402
 from viewer_display_case import case_display  # noqa: E402
 from viewer_window_view_case import case_window_view  # noqa: E402
 from viewer_saves_case import case_saves, case_overlays  # noqa: E402
+from viewer_habits_case import case_habits  # noqa: E402
 from viewer_harness import (  # noqa: E402
     run_script,
     last_generation,
@@ -587,7 +590,7 @@ CASES = {"interaction": case_interaction, "script": case_script, "reload": case_
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
          "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
          "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view,
-         "saves": case_saves, "overlays": case_overlays}
+         "saves": case_saves, "overlays": case_overlays, "habits": case_habits}
 
 
 def main():
