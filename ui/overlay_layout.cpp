@@ -104,6 +104,8 @@ OverlayPlacement placeOverlays(const OverlayRequest& q) {
     if (!out.toast) out.toast = p.at(q.toast, Placer::Corner::BottomLeft, p.taken);
     if (out.toast) p.taken.push_back(*out.toast);
   }
+  if (q.progress.shown())
+    if ((out.progress = p.at(q.progress, Placer::Corner::TopCentre, p.taken))) p.taken.push_back(*out.progress);
   if (q.statsLine.shown()) placeStats(q, p, out);
   if (q.readout.shown())
     if ((out.readout = p.at(q.readout, Placer::Corner::BottomLeft, p.taken))) p.taken.push_back(*out.readout);

@@ -32,6 +32,7 @@ struct OverlayRequest {
   float topLeftHeight = 0.0f;       // the load error and progress, stacked at the top left (drawn by themselves)
   OverlaySize label;                // top right: what the image area shows (reference, difference)
   OverlaySize toast;                // top centre: the outcome of the last save
+  OverlaySize progress;             // top centre, under the toast: a long full-resolution pass's progress
   OverlaySize statsBox, statsLine;  // bottom right: the stats as a box, and on one line
   bool oneLine = false;             // the stats on one line whatever the room (a small window, the user's choice)
   OverlaySize readout;              // bottom left: the pixel under the cursor
@@ -40,7 +41,7 @@ struct OverlayRequest {
 };
 
 struct OverlayPlacement {
-  std::optional<OverlayRect> label, toast, stats, readout;
+  std::optional<OverlayRect> label, toast, progress, stats, readout;
   bool statsOneLine = false;  // the stats are drawn on one line (wrapped to stats->width when narrower)
 };
 

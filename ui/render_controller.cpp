@@ -62,6 +62,21 @@ void RenderController::announceFinal() {
   std::fflush(stdout);
 }
 
+std::optional<double> RenderController::fullPassProgress(std::chrono::steady_clock::time_point now) {
+  const PassProgress pass = renderer_.passProgress();
+  const bool onScreen = haveFrame_ && frame_.generation == generation_ && frame_.final;
+  if (pass.stride != 1 || pass.generation != generation_ || onScreen || renderer_.idle()) return std::nullopt;
+  // Each anti-aliasing sample is a full pass of its own: the bar starts again with each, after the same delay.
+  const int samplesDone = haveFrame_ && frame_.generation == generation_ ? frame_.samples.done : 0;
+  if (pass.generation != fullPassGeneration_ || samplesDone != fullPassSamples_) {
+    fullPassGeneration_ = pass.generation;
+    fullPassSamples_ = samplesDone;
+    fullPassSeen_ = now;
+  }
+  if (now - fullPassSeen_ < kProgressAfter) return std::nullopt;
+  return pass.fraction;
+}
+
 const ImageTexture& RenderController::texture(const DisplayMapping& mapping) {
   if (haveFrame_) texture_.update(shownRender_.of(frame_.image, frame_.version, mapping), shownRender_.serial());
   return texture_;

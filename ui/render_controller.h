@@ -3,8 +3,10 @@
 // the pass on screen and its texture as displayed. The ProgressiveRenderer renders on its own threads; this
 // only hands it sources and takes its passes on the UI thread.
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "display_mapping.h"
 #include "image_texture.h"
@@ -12,6 +14,9 @@
 #include "rayview/progressive_renderer.h"
 
 namespace rayview {
+
+// A full-resolution pass gets a progress bar once it has run this long.
+inline constexpr std::chrono::milliseconds kProgressAfter{500};
 
 class RenderController {
  public:
@@ -48,6 +53,10 @@ class RenderController {
   const ImageTexture& texture(const DisplayMapping& mapping);
   bool isRenderTexture(const ImageTexture& texture) const { return &texture == &texture_; }
 
+  // The share done of a full-resolution pass of the latest restart that has run for kProgressAfter and is not
+  // on screen yet; nullopt otherwise (short passes show no bar).
+  std::optional<double> fullPassProgress(std::chrono::steady_clock::time_point now);
+
   ViewerStats& stats() { return stats_; }
   const ViewerStats& stats() const { return stats_; }
 
@@ -62,6 +71,9 @@ class RenderController {
   std::uint64_t announcedFinal_ = 0;
   bool interactive_ = false;
   ViewerStats stats_;
+  std::uint64_t fullPassGeneration_ = 0;  // the generation whose full pass was first seen running at fullPassSeen_
+  int fullPassSamples_ = 0;
+  std::chrono::steady_clock::time_point fullPassSeen_{};
   ImageTexture texture_;  // the render as displayed
   MappedImage shownRender_;
 };

@@ -44,7 +44,9 @@ int ViewerApp::run() {
     changed |= takeNewFrame();
 
     const bool scriptActive = script_ && script_->running();
-    if (changed || framesToDraw_ > 0 || scriptActive || typingAhead() || loading() || tradeoff_.measuring() ||
+    // A long full-resolution pass: its bar is redrawn at the fallback wake-up's pace (4 per second).
+    const bool progressShown = render_.fullPassProgress(Clock::now()).has_value();
+    if (changed || framesToDraw_ > 0 || scriptActive || typingAhead() || progressShown || loading() || tradeoff_.measuring() ||
         saves_.renderingFileImage() || saves_.captureRequested()) {
       drawFrame();
       framesToDraw_ = changed ? kSettleFrames : std::max(0, framesToDraw_ - 1);

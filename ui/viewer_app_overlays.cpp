@@ -40,6 +40,22 @@ std::optional<OverlayRect> onScreen(const Bounds& bounds, const Camera& camera, 
   return OverlayRect{x0, y0, x1 - x0, y1 - y0};
 }
 
+// The full-resolution pass's bar, for a pass long enough to wait for.
+constexpr float kProgressWidth = 300.0f;
+void drawPassProgress(double fraction, const OverlayRect& at) {
+  ImGui::SetNextWindowPos(ImVec2(at.x, at.y));
+  ImGui::SetNextWindowSize(ImVec2(at.width, at.height));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+  if (ImGui::Begin("##pass_progress", nullptr, flags)) {
+    char text[64];
+    std::snprintf(text, sizeof text, "full resolution: %.0f%%", 100.0 * fraction);
+    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), text);
+  }
+  ImGui::End();
+}
+
 std::string describe(const char* name, const std::optional<OverlayRect>& r) {
   if (!r) return std::string(" ") + name + "=none";
   char text[96];
@@ -130,17 +146,21 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
   q.oneLine = display_.oneLineStats || io.DisplaySize.x < kCompactStatsWidth * scale ||
               io.DisplaySize.y < kCompactStatsHeight * scale;
   q.readout = textOverlaySize(readout);
+  const std::optional<double> progress = render_.fullPassProgress(Clock::now());
+  if (progress) q.progress = {kProgressWidth * imgui_.layoutScale(), ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y, 0.0f};
   q.keepClear = keepClear(l);
   const OverlayPlacement placed = placeOverlays(q);
 
   if (placed.label) drawTextOverlay("##view_label", label, *placed.label, 0.75f);
   if (placed.toast) drawTextOverlay("##toast", toast->text, *placed.toast, 1.0f, toast->failed ? kToastFailed : kToastSaved);
+  if (placed.progress) drawPassProgress(*progress, *placed.progress);
   if (placed.stats) drawStatsOverlay(stats, *placed.stats, placed.statsOneLine);
   if (placed.readout) drawTextOverlay("##readout", readout, *placed.readout, 0.75f);
   if (!printOverlays_) return;
   const std::string line = "overlays view=" + std::to_string(static_cast<int>(l.viewWidth)) + "x" +
                            std::to_string(static_cast<int>(l.viewHeight)) + describe("label", placed.label) +
-                           describe("toast", placed.toast) + describe("stats", placed.stats) +
+                           describe("toast", placed.toast) + describe("progress", placed.progress) +
+                           describe("stats", placed.stats) +
                            describe("readout", placed.readout) + (placed.statsOneLine ? " one_line=1" : " one_line=0");
   if (line == printedOverlays_) return;
   printedOverlays_ = line;

@@ -4,7 +4,8 @@ saves: Ctrl+S pressed during a drag saves the image of that moment, never the or
 `rayview render` of the scene Ctrl+Shift+S saved at the same moment); with the panels hidden, a save that worked
 and one that failed each show a toast over the image (its colour found in screenshots).
 overlays: at 800x600, 1000x640 and 1280x800, with the cursor over the image (the readout) and a toast, the overlays
-the viewer places (RAYVIEW_PRINT_OVERLAYS) are inside the image area and apart.
+the viewer places (RAYVIEW_PRINT_OVERLAYS) are inside the image area and apart; a long full-resolution pass shows its
+progress bar, apart from the rest too.
 """
 import os
 import time
@@ -128,11 +129,11 @@ def rects(line):
     return found
 
 
-def expect_apart(line, window_width, window_height):
+def expect_apart(line, window_width, window_height, need=("readout", "toast", "stats")):
     panel = min(400, window_width * 0.45)
     placed = rects(line)
-    if "readout" not in placed or "toast" not in placed or "stats" not in placed:
-        raise Failure("expected the readout, a toast and the stats: " + line)
+    if any(name not in placed for name in need):
+        raise Failure(f"expected {', '.join(need)}: " + line)
     for name, (x, y, w, h) in placed.items():
         if x < panel or x + w > window_width or y < 0 or y + h > window_height:
             raise Failure(f"{name} leaves the image area ({panel:.0f}..{window_width} x 0..{window_height}): {line}")
@@ -151,7 +152,8 @@ def case_overlays(args, work):
     with open(script, "w") as f:
         for w, h in sizes:
             f.write(f"resize {w} {h}\nwait-frames 3\nwait-final\nprint-state\nsleep {STEP_SECONDS}\n")
-        f.write("quit\n")
+        # A full-resolution pass long enough for its progress bar (shown after half a second).
+        f.write("view image\ncamera resolution 2400 1500\nwait-final 120\nquit\n")
     os.environ["RAYVIEW_PRINT_OVERLAYS"] = "1"
     os.environ["RAYVIEW_PRINT_READOUT"] = "1"
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
@@ -170,7 +172,9 @@ def case_overlays(args, work):
             if not lines:
                 raise Failure(f"no overlays line at {w}x{h}\n" + viewer.output())
             expect_apart(lines[-1], w, h)
-        if viewer.finish() != 0:
+        line = viewer.wait_for("overlays ", timeout=120, accept=lambda l: "progress=none" not in l)
+        expect_apart(line, 1280, 800, need=("progress", "stats"))
+        if viewer.finish(timeout=120) != 0:
             raise Failure("the overlays script failed\n" + viewer.output())
     finally:
         viewer.kill()
