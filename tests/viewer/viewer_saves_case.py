@@ -17,7 +17,7 @@ from viewer_harness import (Failure, Viewer, copy_scene, expect_different, expec
 SAVED_COLOUR = (28, 97, 51)
 FAILED_COLOUR = (153, 28, 28)
 # How long the script sleeps between screenshots while the test types.
-STEP_SECONDS = 2.0
+STEP_SECONDS = 1.5
 
 
 def is_frame_save(line):
@@ -153,7 +153,7 @@ def case_overlays(args, work):
         for w, h in sizes:
             f.write(f"resize {w} {h}\nwait-frames 3\nwait-final\nprint-state\nsleep {STEP_SECONDS}\n")
         # A full-resolution pass long enough for its progress bar (shown after half a second).
-        f.write("view image\ncamera resolution 2400 1500\nwait-final 120\nquit\n")
+        f.write("view image\ncamera resolution 3200 2000\nwait-final 120\nquit\n")
     os.environ["RAYVIEW_PRINT_OVERLAYS"] = "1"
     os.environ["RAYVIEW_PRINT_READOUT"] = "1"
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
