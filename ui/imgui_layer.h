@@ -28,7 +28,9 @@ class ImGuiLayer {
 
   // `quickPresses`: keys (GLFW_KEY_*) pressed and released again since the last frame. ImGui reads a key's state
   // once a frame, so such a press would be lost (a fast Enter in a text field): each is held down for this frame.
-  void beginFrame(const std::vector<int>& quickPresses = {});
+  // `touched`: every key with an event since the last frame, whose state the window's callback set and a key held
+  // by the previous frame must not undo.
+  void beginFrame(const std::vector<int>& quickPresses = {}, const std::vector<int>& touched = {});
   // Renders ImGui's draw lists into the bound default framebuffer.
   void render();
 

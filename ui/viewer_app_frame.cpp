@@ -139,7 +139,10 @@ void ViewerApp::finishFrame(const ViewerLayout& l) {
 void ViewerApp::drawFrame() {
   render_.texture(display_.mapping);  // before the layout, which fits the texture's size
   std::vector<InputEvent> input = window_.takeInput();
-  imgui_.beginFrame(quickPresses(input));
+  std::vector<int> touched;
+  for (const InputEvent& e : input)
+    if (e.kind == InputEvent::Kind::Key) touched.push_back(e.key);
+  imgui_.beginFrame(quickPresses(input), touched);
   ViewerLayout l = layout();
   std::optional<UnsavedPrompt::Answer> keyAnswer;
   const Shortcuts shortcuts = handleInput(l, std::move(input), keyAnswer);
