@@ -359,11 +359,23 @@ def case_undo(args, work):
         viewer.kill()
 
 
+def orange_pixels(path):
+    """Pixels of the image area (right of the 400-pixel panels) in the picked mesh's outline colour (255, 150, 30)."""
+    width, height, pixels = read_png(path)
+    found = 0
+    for y in range(height):
+        for x in range(400, width):
+            r, g, b = pixels[(y * width + x) * 3:(y * width + x) * 3 + 3]
+            found += r > 200 and 110 < g < 190 and b < 90
+    return found
+
+
 def case_pick(args, work):
     scene = copy_scene(work)
     script = os.path.join(work, "pick.rvs")
     with open(script, "w") as f:
-        f.write("wait-final\npick 160 130\npick 5 5\npick 160 130\nprint-state\n")
+        f.write(f"wait-final\nscreenshot {work}/plain.png\npick 160 130\nwait-frames 2\nscreenshot {work}/picked.png\n"
+                "pick 5 5\npick 160 130\nprint-state\n")
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
     try:
         line = viewer.wait_for("picked ")
@@ -372,6 +384,11 @@ def case_pick(args, work):
         viewer.wait_for("picked nothing")
         if " picked=box " not in viewer.wait_for("state "):
             raise Failure("print-state should name the picked mesh\n" + viewer.output())
+        # The picked box is outlined in orange over the image.
+        outline = {name: orange_pixels(os.path.join(work, f"{name}.png")) for name in ("plain", "picked")}
+        print(f"  orange outline pixels: {outline}")
+        if outline["picked"] - outline["plain"] < 100:
+            raise Failure(f"no outline around the picked box: {outline}")
         generation = last_generation(viewer)
         window = viewer_window(viewer)
         # A real click on the green wedge.
