@@ -153,7 +153,7 @@ def case_overlays(args, work):
         for w, h in sizes:
             f.write(f"resize {w} {h}\nwait-frames 3\nwait-final\nprint-state\nsleep {STEP_SECONDS}\n")
         # A full-resolution pass long enough for its progress bar (shown after half a second).
-        f.write("view image\ncamera resolution 3200 2000\nwait-final 120\nquit\n")
+        f.write("view image\nset light-samples 16\ncamera resolution 1600 1000\nwait-final 120\nprint-state\nquit\n")
     os.environ["RAYVIEW_PRINT_OVERLAYS"] = "1"
     os.environ["RAYVIEW_PRINT_READOUT"] = "1"
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
