@@ -206,8 +206,8 @@ void drawFrameAndTitles(PlotCanvas& canvas, const Axes& axes, const TradeoffRepo
   canvas.line(axes.left, axes.top, axes.right, axes.top, 1.0, kGrey);
   canvas.text(axes.left, 10, report.sceneName + ": error against render time", kTitleScale, kBlack);
   char subtitle[160];
-  std::snprintf(subtitle, sizeof subtitle, "%dx%d pixels, %d threads; each knob varied alone; median time of repeated runs",
-                report.width, report.height, report.threads);
+  std::snprintf(subtitle, sizeof subtitle, "%dx%d pixels, %d thread%s; each knob varied alone; median time of repeated runs",
+                report.width, report.height, report.threads, report.threads == 1 ? "" : "s");
   canvas.text(axes.left, 10 + kFontCapHeight * kTitleScale + 8, subtitle, kTickScale, kGrey);
   canvas.text((axes.left + axes.right) / 2, height - 22, "render time (log scale; BVH build not included)",
               kAxisLabelScale, kInk, TextAlign::Centre);

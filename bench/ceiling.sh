@@ -8,12 +8,6 @@ build=${1:-build/release}
 shared=${2:-../shared}
 bench="$build/bench/ceiling_bench"
 [ -x "$bench" ] || { echo "build $bench first: cmake --build --preset release --target ceiling_bench" >&2; exit 1; }
-# The malloc settings `rayview` runs with (app/launcher.cpp), read from the launcher itself: the bench's render
-# is then the product's. (Both sides of the comparison run in this one process, under the same allocator.)
-if [ -x "$build/app/rayview" ]; then
-  GLIBC_TUNABLES=$("$build/app/rayview" --version | sed -n 's/^allocator: GLIBC_TUNABLES=//p')
-  export GLIBC_TUNABLES
-fi
 
 c="$shared/conformance/ceng477"
 p="$shared/peer-scenes/mertugr__mesh-trace/scenes"
@@ -24,9 +18,9 @@ for f in "$c"/*.xml; do
   case "$f" in *.ceng477.xml) ;; *) conformance+=("$f") ;; esac
 done
 
-echo "machine: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) CPUs; $(date -u +%Y-%m-%d); commit $(git rev-parse --short HEAD); GLIBC_TUNABLES=${GLIBC_TUNABLES:-}"
+echo "machine: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) CPUs; $(date -u +%Y-%m-%d); commit $(git rev-parse --short HEAD)"
 for threads in 1 2; do
-  echo; echo "### The seven scenes of issue 8, $threads thread(s)"; echo
+  echo; echo "### The seven bench scenes, $threads thread(s)"; echo
   "$bench" --threads "$threads" --repeat 3 "${seven[@]}"
 done
 for threads in 1 2; do

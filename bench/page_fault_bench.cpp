@@ -1,5 +1,5 @@
 // What a first touch of fresh memory costs on this machine (docs/PERFORMANCE.md, "Current figures"):
-// the reason the `rayview` launcher sets glibc's malloc tunables (app/launcher.cpp).
+// a figure to judge a huge-page choice by: what a render pays per page it touches.
 //
 // For each way of getting memory, maps a fresh anonymous region of --megabytes (2 MiB-aligned), touches one
 // byte per 4 KiB page and reports the time per 4 KiB page (median of --repeat):

@@ -1,15 +1,15 @@
 #!/usr/bin/env python3
-"""Stage times of whole `rayview render` processes, with glibc's defaults and with the launcher's malloc
-settings, alternating (docs/PERFORMANCE.md, "How to measure").
+"""Stage times of whole `rayview render` processes, alternating between settings rows (docs/PERFORMANCE.md,
+"How to measure").
 
-    bench/stage_times.py [--build build/release] [--runs 9] [--threads 2] [--variant NAME=TUNABLES]... [--spread]
+    bench/stage_times.py [--build build/release] [--runs 9] [--threads 2] [--variant NAME=ENV]... [--spread]
                          [SCENE...]
                                                        (default: the seven of bench_scenes.py)
 
-Runs rayview-cli itself with GLIBC_TUNABLES set for each settings row (--variant adds a row, e.g. the
-launcher's without top_pad) and with this script's CLOCK_MONOTONIC start in RAYVIEW_LAUNCH_NS, as the launcher
-stamps it (app/process_start.h), so that the summary's start-up counts from the fork. The stages are what the
-summary prints: start-up (fork to the first ray, less load and build: exec, dynamic loading, the thread pool),
+Runs `rayview render` once per settings row: the first with the environment as it is, each --variant with one
+more environment variable (e.g. --variant "mimalloc=LD_PRELOAD=libmimalloc.so.2" to try an allocator without
+building one in). The stages are what the summary prints: start-up (main() to the first ray, less load and build:
+the thread pool, the tracer's set-up),
 load, build, render, write (encoding and writing the PNG); "rest" is the whole process less those (its exit
 and the summary's printing); "faults" counts the process's page faults (minor and major; ~13 us each on
 this project's machines, bench/page_fault_bench). Medians of --runs per stage; --spread adds the quartiles.
@@ -27,18 +27,17 @@ import time
 from bench_scenes import ROOT, SEVEN, name
 
 SUMMARY = re.compile(r"time\s+load ([\d.]+) ms, BVH build ([\d.]+) ms, render ([\d.]+) ms, write ([\d.]+) ms\n"
-                     r"start-up\s+([\d.]+) ms: process start")
+                     r"start-up\s+([\d.]+) ms: main\(\)")
 COLUMNS = ["start-up", "load", "build", "render", "write", "rest", "whole", "faults"]
 
 
-def run(cli, scene, threads, out, tunables):
+def run(cli, scene, threads, out, variable):
     env = dict(os.environ)
-    env.pop("GLIBC_TUNABLES", None)
-    if tunables:
-        env["GLIBC_TUNABLES"] = tunables
+    if variable:
+        key, value = variable.split("=", 1)
+        env[key] = value
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
     t0 = time.monotonic_ns()
-    env["RAYVIEW_LAUNCH_NS"] = str(t0)
     p = subprocess.run([cli, "render", scene, "-o", out, "--threads", str(threads)], env=env, capture_output=True,
                        text=True, check=True)
     whole = (time.monotonic_ns() - t0) / 1e6
@@ -61,15 +60,13 @@ def main():
     p.add_argument("--build", default=os.path.join(ROOT, "build", "release"))
     p.add_argument("--runs", type=int, default=9)
     p.add_argument("--threads", type=int, default=2)
-    p.add_argument("--variant", action="append", default=[], metavar="NAME=TUNABLES")
+    p.add_argument("--variant", action="append", default=[], metavar="NAME=VARIABLE=VALUE")
     p.add_argument("--spread", action="store_true", help="each cell also gives the quartiles: median (q1-q3)")
     p.add_argument("scenes", nargs="*")
     a = p.parse_args()
     app = os.path.join(a.build, "app")
-    version = subprocess.run([os.path.join(app, "rayview"), "--version"], capture_output=True, text=True).stdout
-    tunables = version.split("GLIBC_TUNABLES=")[-1].strip() if "GLIBC_TUNABLES=" in version else ""
-    cli = os.path.join(app, "rayview-cli")
-    variants = [("glibc defaults", ""), ("launcher's", tunables)] + [tuple(v.split("=", 1)) for v in a.variant]
+    cli = os.path.join(app, "rayview")
+    variants = [("as built", "")] + [tuple(v.split("=", 1)) for v in a.variant]
     print("| scene | settings | " + " | ".join(COLUMNS) + " |\n|---|---|" + "---:|" * len(COLUMNS))
     with tempfile.TemporaryDirectory() as d:
         out = os.path.join(d, "image.png")

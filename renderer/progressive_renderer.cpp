@@ -151,32 +151,60 @@ void ProgressiveRenderer::controllerLoop() {
   }
 }
 
+PassProgress ProgressiveRenderer::passProgress() const {
+  PassProgress p;
+  p.generation = passGeneration_.load(std::memory_order_relaxed);
+  p.stride = passStride_.load(std::memory_order_relaxed);
+  const std::int64_t planned = passPixelsPlanned_.load(std::memory_order_relaxed);
+  if (planned > 0)
+    p.fraction = std::min(1.0, static_cast<double>(passPixelsDone_.load(std::memory_order_relaxed)) / planned);
+  return p;
+}
+
+void ProgressiveRenderer::startCounting(std::uint64_t generation, int stride, std::int64_t pixels) {
+  passPixelsDone_.store(0, std::memory_order_relaxed);
+  passPixelsPlanned_.store(pixels, std::memory_order_relaxed);
+  passStride_.store(stride, std::memory_order_relaxed);
+  passGeneration_.store(generation, std::memory_order_relaxed);
+}
+
 bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t generation, int stride,
                                      int previousStride, bool firstSamples, RayCounts& rays) {
   const auto stopped = [&] { return generation_.load(std::memory_order_relaxed) != generation; };
+  const auto gridPixels = [&](int s) {
+    return s <= 0 ? std::int64_t{0}
+                  : static_cast<std::int64_t>((samples_.width + s - 1) / s) * ((samples_.height + s - 1) / s);
+  };
+  startCounting(generation, stride, gridPixels(stride) - gridPixels(previousStride));
   // Pixels on the previous (coarser) pass's grid were computed by it: never twice.
   if (firstSamples) {
     // Each pixel is traced by one worker: its running sum is its own.
     renderGrid(
         [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
           source.samples(pixels, count, 0, out, counts);
+          passPixelsDone_.fetch_add(count, std::memory_order_relaxed);
           for (int n = 0; n < count; ++n)
             sums_[static_cast<std::size_t>(pixels[n].y) * samples_.width + pixels[n].x] = out[n];
         },
         stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
   } else {
-    renderGrid([&](const PixelXY* pixels, int count, Color* out,
-                   RayCounts& counts) { source.pixels(pixels, count, out, counts); },
-               stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
+    renderGrid(
+        [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
+          source.pixels(pixels, count, out, counts);
+          passPixelsDone_.fetch_add(count, std::memory_order_relaxed);
+        },
+        stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
   }
   return generation_.load() == generation;
 }
 
 bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_t generation, int k, RayCounts& rays) {
   const float count = static_cast<float>(k + 1);
+  startCounting(generation, 1, static_cast<std::int64_t>(samples_.width) * samples_.height);
   renderGrid(
       [&](const PixelXY* pixels, int n, Color* out, RayCounts& counts) {
         source.samples(pixels, n, k, out, counts);
+        passPixelsDone_.fetch_add(n, std::memory_order_relaxed);
         for (int m = 0; m < n; ++m) {
           Color& sum = sums_[static_cast<std::size_t>(pixels[m].y) * samples_.width + pixels[m].x];
           sum += out[m];

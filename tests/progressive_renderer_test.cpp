@@ -98,6 +98,18 @@ TEST(ProgressiveRenderer, EveryPixelIsComputedExactlyOnceAndTheFinalFrameIsExact
     for (int x = 0; x < 37; ++x) ASSERT_EQ(frame.image.pixel(x, y)[0], 10 + (x * 7 + y * 13) % 50);
 }
 
+// The viewer's bar for a long full-resolution pass: the pass counts every pixel it traces, up to all of them.
+TEST(ProgressiveRenderer, TheFullPassCountsItsPixelsToTheEnd) {
+  ProgressiveRenderer renderer(2);
+  auto source = std::make_shared<CountingSource>(37, 23, 10.0f);
+  const auto generation = renderer.restart(source);
+  ASSERT_TRUE(renderer.waitForFinal(generation, 10s));
+  const PassProgress pass = renderer.passProgress();
+  EXPECT_EQ(pass.generation, generation);
+  EXPECT_EQ(pass.stride, 1);
+  EXPECT_DOUBLE_EQ(pass.fraction, 1.0);
+}
+
 TEST(ProgressiveRenderer, CoarsePassesPublishOneSamplePerBlockAndUpscaleToBlocks) {
   ProgressiveRenderer renderer(1);
   auto source = std::make_shared<CountingSource>(37, 23, 0.0f);  // partial blocks at the right and bottom

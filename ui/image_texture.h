@@ -1,6 +1,7 @@
 #pragma once
-// The displayed frame as an OpenGL texture: uploaded only when a newer frame version arrives, sampled
-// with nearest filtering so coarse preview passes stay crisp blocks (never blurred).
+// The displayed frame as an OpenGL texture: uploaded only when a newer frame version arrives, magnified with
+// nearest filtering so coarse preview passes stay crisp blocks (never blurred), minified linearly (smooth when
+// the image is shown smaller than 1:1).
 
 #include <cstdint>
 

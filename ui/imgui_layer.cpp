@@ -1,5 +1,7 @@
 #include "imgui_layer.h"
 
+#include <algorithm>
+
 #include <imgui.h>
 #include <imgui_impl_glfw.h>
 #include <imgui_impl_opengl3.h>
@@ -47,7 +49,17 @@ void ImGuiLayer::applyScale() {
   style.ScaleAllSizes(layoutScale());
 }
 
-void ImGuiLayer::beginFrame() {
+void ImGuiLayer::beginFrame(const std::vector<int>& quickPresses, const std::vector<int>& touched) {
+  ImGuiIO& io = ImGui::GetIO();
+  constexpr int keys = static_cast<int>(sizeof io.KeysDown / sizeof io.KeysDown[0]);
+  for (const int key : held_)
+    if (std::find(touched.begin(), touched.end(), key) == touched.end()) io.KeysDown[key] = false;
+  held_.clear();
+  for (const int key : quickPresses)
+    if (key >= 0 && key < keys) {
+      io.KeysDown[key] = true;
+      held_.push_back(key);
+    }
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();

@@ -1,6 +1,8 @@
 #pragma once
 // Dear ImGui on the GLFW window: context, backends, and a font sized for the monitor's content scale.
 
+#include <vector>
+
 struct GLFWwindow;
 
 namespace rayview {
@@ -24,7 +26,11 @@ class ImGuiLayer {
   // How much bigger than at scale 1 things are in window coordinates (for layout).
   float layoutScale() const { return contentScale_ / framebufferScale_; }
 
-  void beginFrame();
+  // `quickPresses`: keys (GLFW_KEY_*) pressed and released again since the last frame. ImGui reads a key's state
+  // once a frame, so such a press would be lost (a fast Enter in a text field): each is held down for this frame.
+  // `touched`: every key with an event since the last frame, whose state the window's callback set and a key held
+  // by the previous frame must not undo.
+  void beginFrame(const std::vector<int>& quickPresses = {}, const std::vector<int>& touched = {});
   // Renders ImGui's draw lists into the bound default framebuffer.
   void render();
 
@@ -32,6 +38,7 @@ class ImGuiLayer {
   void applyScale();
   float contentScale_ = 1.0f;
   float framebufferScale_ = 1.0f;
+  std::vector<int> held_;  // keys held down for one frame by beginFrame, released at the next
 };
 
 }  // namespace rayview

@@ -68,7 +68,9 @@ void NavigationInput::handle(const std::vector<InputEvent>& events, bool imguiWa
           shortcuts.imageWheelZoomBy *= std::pow(kWheelZoomStep, e.y);
           shortcuts.imageWheelAt = {cursorX_, cursorY_};
         } else {
-          session->navigate([&](OrbitCamera& o) { o.dolly(e.y); });
+          // Toward the point under the cursor: the viewer casts the ray there (it knows the image's placement).
+          shortcuts.dollySteps += e.y;
+          shortcuts.dollyAt = {cursorX_, cursorY_};
         }
         break;
       case InputEvent::Kind::Key:
@@ -98,6 +100,9 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
   else if (control && !imguiWantsKeyboard && e.key == GLFW_KEY_Y) shortcuts.redo = true;
   else if (e.key == GLFW_KEY_F5) shortcuts.reload = true;
   else if (e.key == GLFW_KEY_F9) shortcuts.togglePanels = true;
+  else if (e.key == GLFW_KEY_F11) shortcuts.toggleFullscreen = true;
+  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_HOME) shortcuts.frameAll = true;
+  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_E) shortcuts.exposureSteps += shift ? -1 : 1;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
   else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_D) shortcuts.toggleDifference = true;

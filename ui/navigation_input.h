@@ -24,6 +24,12 @@ struct Shortcuts {
   bool redo = false;         // Ctrl+Shift+Z, Ctrl+Y
   bool toggleDifference = false;  // D: the difference from the reference image
   bool toggleImageView = false;   // V: the image view (the file's image) or the window view (the area's pixels)
+  bool frameAll = false;          // Home: frame every mesh, ground planes too
+  bool toggleFullscreen = false;  // F11
+  int exposureSteps = 0;          // E: +1, Shift+E: -1 (kExposureKeyStops each)
+  // The wheel without Ctrl: dolly by these notches toward the scene point under the cursor (at dollyAt).
+  double dollySteps = 0.0;
+  std::pair<double, double> dollyAt{0.0, 0.0};
   // The image view (image_placement.h): 0 fits, 1 shows 1:1, + and - zoom by 2 at the view's centre,
   // Ctrl+wheel zooms at the cursor, Ctrl+drag moves the image.
   bool imageFit = false;

@@ -114,6 +114,16 @@ void OrbitCamera::dolly(double wheelSteps) {
   camera_.position = pivot_ - forward * wanted;
 }
 
+void OrbitCamera::dollyToward(const glm::dvec3& target, double wheelSteps) {
+  const double d = glm::length(target - camera_.position);
+  if (!(d > 0.0) || !isUsable(target - camera_.position)) return dolly(wheelSteps);
+  const double wanted = std::max(d * std::pow(kDollyFactorPerWheelStep, wheelSteps), std::min(d, minimumDistance()));
+  const double scale = wanted / d;
+  // Scaling the eye and the pivot about the target keeps the gaze and the target's place in the image.
+  camera_.position = target + (camera_.position - target) * scale;
+  pivot_ = target + (pivot_ - target) * scale;
+}
+
 void OrbitCamera::setPivot(const glm::dvec3& point) {
   const glm::dvec3 offset = point - camera_.position;
   if (!isUsable(offset) || glm::length(offset) < minimumDistance()) return;

@@ -43,6 +43,9 @@ class OrbitCamera {
   void pan(double rightFraction, double upFraction);
   // Moves the eye toward the pivot (positive steps) or away from it; never reaches or crosses the pivot.
   void dolly(double wheelSteps);
+  // The same toward `target` (the scene point under the cursor): eye and pivot move toward it together, so the
+  // view direction stays and the target stays under the cursor; never reaches it.
+  void dollyToward(const glm::dvec3& target, double wheelSteps);
   // Keeps the view direction, centres the pivot on `bounds` and backs off until its sphere fits the view.
   void frame(const Bounds& bounds);
   // Puts the pivot on `point` and turns the camera, from where it is, to look at it.

@@ -31,7 +31,7 @@ void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::
     c.bottom = nearPlane[2];
     c.top = nearPlane[3];
   }
-  if (ImGui::IsItemHovered()) ImGui::SetTooltip("left, right, bottom, top (<nearplane> l r b t)");
+  if (ImGui::IsItemHovered()) tooltip("left, right, bottom, top (<nearplane> l r b t)");
   editDoubles("Near distance", &c.nearDistance, 1, 0.002 * std::max(c.nearDistance, 1e-9), DBL_MIN, DBL_MAX);
 
   int resolution[2] = {c.width, c.height};
@@ -53,7 +53,7 @@ void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::
   }
   ImGui::Checkbox("Keep field of view", &state.keepFieldOfView);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("On: a new width changes the height (and the other way round) to keep the near plane's aspect.\n"
+    tooltip("On: a new width changes the height (and the other way round) to keep the near plane's aspect.\n"
                       "Off: the near plane widens or narrows to the new aspect.");
   problemText(problem);
 }

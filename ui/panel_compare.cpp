@@ -54,6 +54,9 @@ void drawComparePanel(ComparePanelState& state, const CompareInfo& info, PanelAc
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Load") || entered) && !state.path.empty()) actions.loadReference = state.path;
+  if (state.filledBeside && !info.comparison.loaded())
+    hintText("Filled in: this image sits beside the scene, with its name (the course's reference, kept next to its "
+             "scene). Load (or Enter) compares.");
 
   const ReferenceComparison& comparison = info.comparison;
   problemText(comparison.loadError());

@@ -1,5 +1,6 @@
 // Windows that float over the image: the load error, the load progress, what the image area shows.
 #include <cfloat>
+#include <optional>
 
 #include <imgui.h>
 
@@ -51,21 +52,28 @@ float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float w
   return below;
 }
 
-void drawViewLabel(const std::string& text, float right, float top) {
-  if (text.empty()) return;
-  ImGui::SetNextWindowPos(ImVec2(right, top), ImGuiCond_Always, ImVec2(1.0f, 0.0f));
-  ImGui::SetNextWindowBgAlpha(0.75f);
-  if (ImGui::Begin("##view_label", nullptr, kOverlayFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoInputs))
-    ImGui::TextUnformatted(text.c_str());
-  ImGui::End();
+OverlaySize textOverlaySize(const std::string& text) {
+  if (text.empty()) return {};
+  const ImGuiStyle& style = ImGui::GetStyle();
+  const ImVec2 size = ImGui::CalcTextSize(text.c_str());
+  return {size.x + 2.0f * style.WindowPadding.x + 1.0f, size.y + 2.0f * style.WindowPadding.y, ImGui::GetTextLineHeight()};
 }
 
-void drawReadoutOverlay(const std::string& text, float left, float bottom) {
-  ImGui::SetNextWindowPos(ImVec2(left, bottom), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
-  ImGui::SetNextWindowBgAlpha(0.75f);
-  if (ImGui::Begin("##readout", nullptr, kOverlayFlags | ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoInputs))
+void drawTextOverlay(const char* id, const std::string& text, const OverlayRect& at, float alpha,
+                     std::optional<std::array<float, 3>> background) {
+  ImGui::SetNextWindowPos(ImVec2(at.x, at.y));
+  ImGui::SetNextWindowSize(ImVec2(at.width, at.height));
+  if (background) ImGui::PushStyleColor(ImGuiCol_WindowBg, ImVec4((*background)[0], (*background)[1], (*background)[2], 1.0f));
+  else ImGui::SetNextWindowBgAlpha(alpha);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
+  if (ImGui::Begin(id, nullptr, flags)) {
+    ImGui::PushTextWrapPos(0.0f);
     ImGui::TextUnformatted(text.c_str());
+    ImGui::PopTextWrapPos();
+  }
   ImGui::End();
+  if (background) ImGui::PopStyleColor();
 }
 
 }  // namespace rayview

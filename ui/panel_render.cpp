@@ -16,11 +16,6 @@ namespace {
 // Above this, a directional triangular light saturates a white diffuse surface facing it.
 constexpr float kDirectionalIntensityLimit = 255.0f;
 
-struct StatLine {
-  const char* name;
-  std::string value;
-};
-
 std::string formatted(const char* format, double value) {
   char text[64];
   std::snprintf(text, sizeof text, format, value);
@@ -73,24 +68,33 @@ void editDisplayMapping(DisplayMapping& mapping) {
   ImGui::SliderFloat("Exposure", &mapping.exposureStops, kMinExposureStops, kMaxExposureStops, "%+.1f stops",
                      ImGuiSliderFlags_AlwaysClamp);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Display only, the render does not restart. Each value of the image times 2^stops: +1 doubles, "
+    tooltip("Display only, the render does not restart. Each value of the image times 2^stops: +1 doubles, "
                       "-1 halves; 0 shows the image as computed. The image holds 8-bit values, clamped to 255 by the "
                       "render: what it clipped to white stays one flat value. Ctrl+click to type a value.");
   ImGui::SliderFloat("Gamma", &mapping.gamma, kMinGamma, kMaxGamma, "%.2f",
                      ImGuiSliderFlags_AlwaysClamp | ImGuiSliderFlags_Logarithmic);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Display only, the render does not restart. After the exposure, each value v (0 to 1) is shown "
+    tooltip("Display only, the render does not restart. After the exposure, each value v (0 to 1) is shown "
                       "as v^(1/gamma): above 1 brightens the dark and middle tones, below 1 darkens them; black and "
                       "white stay. 1 shows the image as computed (the course applies no gamma).");
   ImGui::BeginDisabled(mapping.identity());
   if (ImGui::Button("Reset exposure and gamma")) mapping = DisplayMapping{};
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("Exposure 0 and gamma 1: the image exactly as rayview render writes it.");
+    tooltip("Exposure 0 and gamma 1: the image exactly as rayview render writes it.");
   hintText("The reference (Space) is shown with the same exposure and gamma; the difference view (D) is not.");
 }
 
 }  // namespace
+
+std::string traversalBuilt(AccelKind chosen, AccelKind built, std::size_t triangles) {
+  if (chosen == built) return {};
+  const std::string name = chosen == AccelKind::Embree ? "Embree" : std::string(toString(chosen));
+  if (chosen == AccelKind::Embree && built == AccelKind::Packet)
+    return name + (triangles <= kSmallSceneTriangles ? " (packet BVH for small scenes)"
+                                                     : " (packet BVH: Embree could not be loaded)");
+  return name + " (" + std::string(toString(built)) + " built)";
+}
 
 void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   if (!ImGui::CollapsingHeader("Render", ImGuiTreeNodeFlags_DefaultOpen)) return;
@@ -98,30 +102,38 @@ void drawRenderSettingsPanel(SceneSession& session, DisplayOptions& display) {
   ImGui::SameLine();
   ImGui::Checkbox("On one line", &display.oneLineStats);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("The stats on one line. In a window smaller than 1280x800 they always are.");
+    tooltip("The stats on one line. In a window smaller than 1280x800 they always are.");
   // The view (V): which pixels are rendered. Not a render setting of the scene: it is not in the knob table.
   const Camera& file = session.committedEdits().camera;
   if (ImGui::RadioButton("Window view", !display.imageView)) display.imageView = false;
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Renders the image area's own pixels: the file's view, with the near plane extended to the "
+    tooltip("Renders the image area's own pixels: the file's view, with the near plane extended to the "
                       "area's shape (never cropped). Ctrl+S still saves the file's image. V switches.");
   ImGui::SameLine();
   const std::string imageLabel = "Image view (" + std::to_string(file.width) + "x" + std::to_string(file.height) + ")";
   if (ImGui::RadioButton(imageLabel.c_str(), display.imageView)) display.imageView = true;
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Renders the file's image, its resolution exactly: fit (0), 1:1 (1), zoom (+, -, Ctrl+wheel), "
+    tooltip("Renders the file's image, its resolution exactly: fit (0), 1:1 (1), zoom (+, -, Ctrl+wheel), "
                       "pan (Ctrl+drag). V switches.");
   editDisplayMapping(display.mapping);
+  ImGui::Checkbox("Lights and pivot always", &display.alwaysShowMarks);
+  if (ImGui::IsItemHovered())
+    tooltip("Draw the lights (yellow) and the orbit pivot (white cross) over the image all the time. Off: only while "
+            "you orbit, pan or dolly.");
   ImGui::Separator();
   // Every render knob, as the knob table describes it; then what the scene file says that is not a knob.
   for (const Knob& knob : knobTable()) {
-    editKnob(knob, session.edits(), session.settings());
+    // The traversal as built for the scene on screen, while the choice is the one it was built for.
+    std::string built;
+    if (knob.name == "accel" && !session.needsRebuild())
+      built = traversalBuilt(session.settings().accel, session.geometry().accel->kind(), session.loaded().triangles.size());
+    editKnob(knob, session.edits(), session.settings(), built.empty() ? nullptr : built.c_str());
     if (knob.name == "tri-light") triangularLightHint(session.edits(), session.settings());
   }
   editRadiance("Background", session.edits().background);
 }
 
-void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneLine) {
+StatsText statsText(const ViewerStats& s) {
   char level[64];
   if (s.stride <= 0) std::snprintf(level, sizeof level, "-");
   else if (s.stride == 1 && s.samples.total > 1)
@@ -129,7 +141,8 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneL
                   s.final ? " (final)" : "");
   else if (s.stride == 1) std::snprintf(level, sizeof level, "full resolution%s", s.final ? " (final)" : "");
   else std::snprintf(level, sizeof level, "1/%d (blocks of %dx%d)", s.stride, s.stride, s.stride);
-  const StatLine lines[] = {
+  StatsText text;
+  text.lines = {
       {"Preview level", level},
       {"Pass time", formatted("%.1f ms", s.passMs)},
       {"Speed", formatted("%.2f Mrays/s", s.megaRaysPerSecond)},
@@ -142,44 +155,48 @@ void drawStatsOverlay(const ViewerStats& s, float right, float bottom, bool oneL
       {"Triangles", std::to_string(s.triangles)},
       {"Read", formatted("%.1f ms", s.readMs)},
       {"BVH build", formatted("%.1f ms", s.bvhBuildMs)},
-      {"Traversal", std::string(toString(s.accel))},
+      {"Traversal", s.traversal.empty() ? std::string(toString(s.accel)) : s.traversal},
       {"Threads", std::to_string(s.threads)},
       {"Memory", memoryText(s.residentBytes, s.peakResidentBytes)},
       {"Generation", std::to_string(s.generation)},
   };
+  // Single spaces about the bars: at 1000x640 the line then fits the image area without wrapping.
+  text.oneLine = std::string(level) + " | " + text.lines[1].second + " | " + text.lines[2].second +
+                 " | edit to final " + text.lines[4].second;
+  return text;
+}
+
+OverlaySize statsBoxSize(const StatsText& text) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  float nameWidth = 0.0f, valueWidth = 0.0f;
+  for (const auto& [name, value] : text.lines) {
+    nameWidth = std::max(nameWidth, ImGui::CalcTextSize(name.c_str()).x);
+    valueWidth = std::max(valueWidth, ImGui::CalcTextSize(value.c_str()).x);
+  }
+  const float gap = 2.0f * style.ItemSpacing.x;
+  return {nameWidth + gap + valueWidth + 2.0f * style.WindowPadding.x,
+          text.lines.size() * ImGui::GetTextLineHeightWithSpacing() - style.ItemSpacing.y + 2.0f * style.WindowPadding.y,
+          ImGui::GetTextLineHeightWithSpacing()};
+}
+
+void drawStatsOverlay(const StatsText& text, const OverlayRect& at, bool oneLine) {
+  if (oneLine) return drawTextOverlay("##stats", text.oneLine, at, 0.65f);
   const ImGuiStyle& style = ImGui::GetStyle();
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |
                                  ImGuiWindowFlags_NoInputs;
-  if (oneLine) {
-    const std::string text = std::string(level) + "  |  " + lines[1].value + "  |  " + lines[2].value +
-                             "  |  edit to final " + lines[4].value;
-    const ImVec2 textSize = ImGui::CalcTextSize(text.c_str());
-    ImGui::SetNextWindowPos(ImVec2(right, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
-    ImGui::SetNextWindowSize(ImVec2(textSize.x + 2.0f * style.WindowPadding.x, textSize.y + 2.0f * style.WindowPadding.y));
-    ImGui::SetNextWindowBgAlpha(0.65f);
-    if (ImGui::Begin("##stats", nullptr, flags)) ImGui::TextUnformatted(text.c_str());
-    ImGui::End();
-    return;
-  }
   // Sized from this frame's text: auto-resizing would lag a frame, and an idle viewer draws few frames.
-  float nameWidth = 0.0f, valueWidth = 0.0f;
-  for (const StatLine& line : lines) {
-    nameWidth = std::max(nameWidth, ImGui::CalcTextSize(line.name).x);
-    valueWidth = std::max(valueWidth, ImGui::CalcTextSize(line.value.c_str()).x);
-  }
+  float nameWidth = 0.0f;
+  for (const auto& line : text.lines) nameWidth = std::max(nameWidth, ImGui::CalcTextSize(line.first.c_str()).x);
   const float gap = 2.0f * style.ItemSpacing.x;
-  const ImVec2 size(nameWidth + gap + valueWidth + 2.0f * style.WindowPadding.x,
-                    std::size(lines) * ImGui::GetTextLineHeightWithSpacing() - style.ItemSpacing.y +
-                        2.0f * style.WindowPadding.y);
-  ImGui::SetNextWindowPos(ImVec2(right, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
-  ImGui::SetNextWindowSize(size);
+  ImGui::SetNextWindowPos(ImVec2(at.x, at.y));
+  ImGui::SetNextWindowSize(ImVec2(at.width, at.height));
   ImGui::SetNextWindowBgAlpha(0.65f);
   if (ImGui::Begin("##stats", nullptr, flags)) {
-    for (const StatLine& line : lines) {
-      ImGui::TextUnformatted(line.name);
+    for (const auto& [name, value] : text.lines) {
+      ImGui::TextUnformatted(name.c_str());
       ImGui::SameLine(style.WindowPadding.x + nameWidth + gap);
-      ImGui::TextUnformatted(line.value.c_str());
+      ImGui::TextUnformatted(value.c_str());
     }
   }
   ImGui::End();

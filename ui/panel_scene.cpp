@@ -34,6 +34,8 @@ void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const Scen
     for (const ImWchar c : arrived) io.InputQueueCharacters.push_back(c);
     state.typeAhead.clear();
   }
+  // An Enter typed before the field took the focus opens what was typed, once the field holds it (below).
+  const bool enterAhead = !state.focusOpenPath && std::exchange(state.enterAhead, false);
   if (!ImGui::CollapsingHeader("Scene", ImGuiTreeNodeFlags_DefaultOpen)) return;
   ImGui::TextWrapped("%s", info.displayName.c_str());
   if (!info.warnings.empty()) {
@@ -51,12 +53,14 @@ void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const Scen
   if (state.focusOpenPath && state.focusFrames++ % kFocusRetryFrames == 0) ImGui::SetKeyboardFocusHere();
   ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Open").x - ImGui::GetStyle().ItemSpacing.x -
                           ImGui::GetStyle().FramePadding.x * 2.0f);
-  const bool entered = ImGui::InputTextWithHint("##open", "scene.xml path (Ctrl+O)", &state.openPath,
-                                                ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  bool entered = ImGui::InputTextWithHint("##open", "scene.xml path (Ctrl+O)", &state.openPath,
+                                          ImGuiInputTextFlags_EnterReturnsTrue | ImGuiInputTextFlags_AutoSelectAll);
+  // An Enter that reaches the field before the held characters do waits for them.
+  if (entered && state.focusOpenPath) entered = false, state.enterAhead = true;
   if (state.focusOpenPath && (ImGui::IsItemActive() || state.focusFrames > kFocusGiveUpFrames))
     state.focusOpenPath = false;  // the held characters are replayed next frame
   ImGui::SameLine();
-  if ((ImGui::Button("Open") || entered) && !state.openPath.empty()) actions.open = state.openPath;
+  if ((ImGui::Button("Open") || entered || enterAhead) && !state.openPath.empty()) actions.open = state.openPath;
 
   if (ImGui::BeginCombo("Recent", recent.paths().empty() ? "(none yet)" : "choose a scene...")) {
     for (const std::string& path : recent.paths()) {
@@ -93,12 +97,12 @@ void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions)
   if (ImGui::Button("Save view as seen")) actions.saveView = true;
   ImGui::EndDisabled();
   if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-    ImGui::SetTooltip("The image area exactly as it looks now (zoom, exposure and gamma, the reference or the "
+    tooltip("The image area exactly as it looks now (zoom, exposure and gamma, the reference or the "
                       "difference), without the panels and overlays: SCENE_view_001.png. Save frame is the render "
                       "itself.");
   ImGui::Checkbox("Frame as displayed", &state.saveFrameDisplayed);
   if (ImGui::IsItemHovered())
-    ImGui::SetTooltip("Off (the default): Save frame and Ctrl+S write the final pass raw, exactly as rayview render "
+    tooltip("Off (the default): Save frame and Ctrl+S write the final pass raw, exactly as rayview render "
                       "writes it (SCENE_001.png). On: with the exposure and gamma of the Render panel applied, as the "
                       "image area shows it (SCENE_displayed_001.png).");
   ImGui::SetNextItemWidth(-ImGui::CalcTextSize("Save scene as").x - ImGui::GetStyle().ItemSpacing.x -
@@ -107,6 +111,8 @@ void drawSavePanel(FilePanelState& state, bool haveFrame, PanelActions& actions)
                                                 ImGuiInputTextFlags_EnterReturnsTrue);
   ImGui::SameLine();
   if ((ImGui::Button("Save scene as") || entered) && !state.saveScenePath.empty()) actions.saveSceneAs = state.saveScenePath;
+  // The writer writes the scene from its values: say so before the user loses the comments of a file they wrote.
+  hintText("Written anew from the scene's values: the file's comments and layout are not kept.");
   if (state.lastSaveFailed) {
     problemText(state.lastSaved);  // red, whole, wrapped
   } else if (state.frameSavePending) {

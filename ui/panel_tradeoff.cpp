@@ -62,7 +62,7 @@ void resultTable(const TradeoffReport& report, const SceneParameters& edits, con
     ImGui::TableNextColumn();
     if (best) {
       ImGui::TextColored(knobColour, "%s", std::string(kBestImageLabel).c_str());
-      if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", report.bestText.c_str());
+      if (ImGui::IsItemHovered()) tooltip(report.bestText.c_str());
     } else {
       ImGui::Indent();
       ImGui::TextUnformatted(settingLabel(p.setting).c_str());

@@ -2,13 +2,16 @@
 // The viewer's ImGui panels. Each draws one concern and edits only what it is given; requests that
 // need the application (open, save, reload) come back as PanelActions.
 
+#include <array>
 #include <cstdint>
+#include <utility>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "display_mapping.h"
 #include "image_texture.h"
+#include "overlay_layout.h"
 #include "rayview/diagnostics.h"
 #include "rayview/progressive_renderer.h"
 #include "rayview/tradeoff.h"
@@ -52,6 +55,7 @@ struct FilePanelState {
   bool focusOpenPath = false;   // requested, the field is not active yet
   int focusFrames = 0;          // frames since the request (the focus is requested again after a few)
   std::vector<unsigned int> typeAhead;
+  bool enterAhead = false;  // Enter was pressed meanwhile: open once the held characters are in the field
 };
 
 // Display only: none of these restarts the render.
@@ -63,6 +67,7 @@ struct DisplayOptions {
   // pixels, the file's view extended to its aspect; rayview/view_camera.h).
   bool imageView = false;
   DisplayMapping mapping;     // exposure and gamma of the render and the reference (the difference stays raw)
+  bool alwaysShowMarks = false;  // the lights and the orbit pivot drawn in the view always, not only while navigating
 };
 
 // Below this window size (at content scale 1) the stats take one line, so they do not cover the image.
@@ -88,6 +93,7 @@ struct TradeoffPanelState {
 // The "Compare" panel: the reference's path field and the difference view (its checkbox and D).
 struct ComparePanelState {
   std::string path;
+  bool filledBeside = false;  // `path` is SCENE.png found beside the scene, filled in for the user
   bool showDifference = false;
   bool reveal = false;  // open the header and scroll to it once (a reference was given or loaded)
 };
@@ -120,6 +126,7 @@ struct ViewerStats {
   double readMs = 0.0;
   double bvhBuildMs = 0.0;
   AccelKind accel = AccelKind::Embree;  // the back-end built for the scene (the packet BVH for a small one)
+  std::string traversal;                // how the stats name it ("" = toString(accel))
   int threads = 0;
   // The process's resident memory and its peak, in bytes, read at each pass shown (0: not known).
   std::uint64_t residentBytes = 0, peakResidentBytes = 0;
@@ -149,18 +156,32 @@ void drawTradeoffPanel(TradeoffPanelState& state, const SceneParameters& edits, 
 
 void drawComparePanel(ComparePanelState& state, const CompareInfo& info, PanelActions& actions);
 
-// Over the image's bottom-right corner (`right`, `bottom`): preview level, pass time, Mrays/s, latencies, sizes.
-// `oneLine`: level, pass time, speed and the edit's latency on one line.
-void drawStatsOverlay(const ViewerStats& stats, float right, float bottom, bool oneLine);
+// The stats over the image: preview level, pass time, Mrays/s, latencies, sizes; as a box of named lines, or the
+// level, pass time, speed and the edit's latency on one line.
+struct StatsText {
+  std::vector<std::pair<std::string, std::string>> lines;  // name, value
+  std::string oneLine;
+};
+StatsText statsText(const ViewerStats& stats);
+// The traversal a scene is rendered with, as the Render panel's dropdown and the stats both name it: the chosen
+// one, or what was built for it when that differs ("Embree (packet BVH for small scenes)"); "" when they agree.
+std::string traversalBuilt(AccelKind chosen, AccelKind built, std::size_t triangles);
+// Up to this many triangles a scene asked for Embree gets rayview's packet BVH (the accel knob's help says so).
+inline constexpr std::size_t kSmallSceneTriangles = 5000;
+OverlaySize statsBoxSize(const StatsText& text);
+// At `at` (placed by placeOverlays): the box, or the line wrapped to the rectangle's width.
+void drawStatsOverlay(const StatsText& text, const OverlayRect& at, bool oneLine);
+
+// A text over the image: its size on one line (plus what each wrapped line adds), and drawn at `at`, wrapped to
+// its width. `background`: the window's colour (alpha 1), else the style's at `alpha`.
+OverlaySize textOverlaySize(const std::string& text);
+void drawTextOverlay(const char* id, const std::string& text, const OverlayRect& at, float alpha,
+                     std::optional<std::array<float, 3>> background = std::nullopt);
 
 // Floating over the top of the image, one under the other: the located load error (with a dismiss button)
 // and the load progress. Each returns the y below itself (`y` when it is not shown).
 float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
 float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
-// At the image area's bottom left (`left`, `bottom`): the pixel under the cursor and its values.
-void drawReadoutOverlay(const std::string& text, float left, float bottom);
-// At the image area's top right (`right`, `top`), when it shows something else than the render: what it shows.
-void drawViewLabel(const std::string& text, float right, float top);
 // The plot of the last measurement (the texture), at its size or smaller to fit, closable (state.showPlot).
 void drawTradeoffPlot(TradeoffPanelState& state, const ImageTexture& plot, float x, float y, float maxWidth,
                       float maxHeight);

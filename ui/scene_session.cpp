@@ -14,6 +14,7 @@ SceneSession::SceneSession(LoadedSceneParts parts, RenderSettings settings, std:
   settings_.accel = parts_.accel;  // what this build could actually build
   history_ = EditHistory(EditState{edits_, settings_});
   savedEdits_ = edits_;
+  fileEdits_ = edits_;
   orbit_.setHome(parts_.scene->camera, parts_.bounds);
   committedEdits_ = edits_;
   committedSettings_ = settings_;
@@ -124,6 +125,10 @@ std::optional<PickResult> SceneSession::pick(int i, int j) {
 
 std::optional<PickResult> SceneSession::pickRendered(int i, int j) {
   return select(pickPixel(renderedCamera(), *parts_.geometry, i, j));
+}
+
+std::optional<PickResult> SceneSession::hitRendered(int i, int j) const {
+  return pickPixel(renderedCamera(), *parts_.geometry, i, j);
 }
 
 std::optional<PickResult> SceneSession::select(std::optional<PickResult> pick) {

@@ -99,6 +99,8 @@ class SceneSession {
   std::optional<PickResult> pick(int i, int j);
   // The same by a pixel of the rendered image (renderedCamera(): the window view's, when it is on).
   std::optional<PickResult> pickRendered(int i, int j);
+  // What that pixel shows, without selecting it (the wheel dollies toward it).
+  std::optional<PickResult> hitRendered(int i, int j) const;
   const std::optional<PickResult>& selection() const { return selection_; }
   // True once after a pick selected something: the Materials panel opens the picked material and scrolls to it.
   bool takeMaterialReveal() { return std::exchange(revealMaterial_, false); }
@@ -108,6 +110,10 @@ class SceneSession {
   // The edits differ from the file as loaded (with the command line's options) or as last saved.
   bool unsaved() const { return edits_ != savedEdits_; }
   void markSaved(const SceneParameters& saved) { savedEdits_ = saved; }
+  // The edits differ from what the open file holds (as loaded, or as last written to that file): the title's `*`.
+  // A save to another file (Save scene as, numbered) keeps it, since the open file did not change.
+  bool differsFromFile() const { return edits_ != fileEdits_; }
+  void markWrittenToFile(const SceneParameters& written) { fileEdits_ = written; }
 
  private:
   LoadedSceneParts parts_;
@@ -124,6 +130,7 @@ class SceneSession {
   EditHistory history_;
   bool gesture_ = false;
   SceneParameters savedEdits_;
+  SceneParameters fileEdits_;
   std::optional<PickResult> selection_;
   bool revealMaterial_ = false;
 };

@@ -60,7 +60,23 @@ void hintText(const char* text) {
   ImGui::PopStyleColor();
 }
 
-bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& settings) {
+void tooltip(const std::string& text, float* shown) {
+  const ImGuiIO& io = ImGui::GetIO();
+  const ImGuiStyle& style = ImGui::GetStyle();
+  // ImGui keeps a tooltip inside the window only when it fits: wrap it narrower than the window.
+  const float width = std::min(35.0f * ImGui::GetFontSize(), io.DisplaySize.x - 4.0f * style.WindowPadding.x);
+  ImGui::BeginTooltip();
+  ImGui::PushTextWrapPos(ImGui::GetCursorPosX() + std::max(width, ImGui::GetFontSize()));
+  ImGui::TextUnformatted(text.c_str());
+  ImGui::PopTextWrapPos();
+  if (shown) {
+    const ImVec2 position = ImGui::GetWindowPos(), size = ImGui::GetWindowSize();
+    shown[0] = position.x, shown[1] = position.y, shown[2] = position.x + size.x, shown[3] = position.y + size.y;
+  }
+  ImGui::EndTooltip();
+}
+
+bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& settings, const char* shownChoice) {
   const std::string label(knob.label);
   const int value = knob.get(parameters, settings);
   ImGui::BeginDisabled(!knob.matters(parameters, settings));
@@ -68,7 +84,8 @@ bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& set
   bool changed = false;
   bool hovered = false;
   if (knob.isChoice()) {
-    const bool open = ImGui::BeginCombo(label.c_str(), std::string(knob.choices[value].label).c_str());
+    const bool open =
+        ImGui::BeginCombo(label.c_str(), shownChoice ? shownChoice : std::string(knob.choices[value].label).c_str());
     hovered = itemRectHovered();
     if (open) {
       for (int i = 0; i < static_cast<int>(knob.choices.size()); ++i) {
@@ -89,8 +106,8 @@ bool editKnob(const Knob& knob, SceneParameters& parameters, RenderSettings& set
     hovered = itemRectHovered();
   }
   if (hovered)
-    ImGui::SetTooltip("%s (--%s, or `set %s` in scripts)", std::string(knob.help).c_str(), std::string(knob.name).c_str(),
-                      std::string(knob.name).c_str());
+    tooltip(std::string(knob.help) + " (--" + std::string(knob.name) + ", or `set " + std::string(knob.name) +
+            "` in scripts)");
   ImGui::EndDisabled();
   if (changed) knob.set(parameters, settings, edited);
   return changed;

@@ -137,6 +137,21 @@ void Window::cancelClose() { glfwSetWindowShouldClose(window_, GLFW_FALSE); }
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(window_, title.c_str()); }
 void Window::setSize(int width, int height) { glfwSetWindowSize(window_, width, height); }
 
+bool Window::fullscreen() const { return glfwGetWindowMonitor(window_) != nullptr; }
+
+void Window::toggleFullscreen() {
+  if (fullscreen()) {
+    glfwSetWindowMonitor(window_, nullptr, windowedX_, windowedY_, windowedWidth_, windowedHeight_, GLFW_DONT_CARE);
+    return;
+  }
+  GLFWmonitor* monitor = glfwGetPrimaryMonitor();
+  const GLFWvidmode* mode = monitor ? glfwGetVideoMode(monitor) : nullptr;
+  if (!mode) return;
+  glfwGetWindowPos(window_, &windowedX_, &windowedY_);
+  glfwGetWindowSize(window_, &windowedWidth_, &windowedHeight_);
+  glfwSetWindowMonitor(window_, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+}
+
 void Window::framebufferSize(int& width, int& height) const { glfwGetFramebufferSize(window_, &width, &height); }
 
 float Window::contentScale() const {

@@ -47,6 +47,9 @@ class Window {
   void cancelClose();  // the close button was pressed, but the application asks first
   void setTitle(const std::string& title);
   void setSize(int width, int height);
+  // F11: the primary monitor's whole screen, or back to the window it was.
+  void toggleFullscreen();
+  bool fullscreen() const;
 
   // Framebuffer pixels (the GL viewport) and the monitor's content scale (fonts, widget sizes).
   void framebufferSize(int& width, int& height) const;
@@ -75,6 +78,7 @@ class Window {
   static void onContentScale(GLFWwindow* window, float, float);
 
   GLFWwindow* window_ = nullptr;
+  int windowedX_ = 0, windowedY_ = 0, windowedWidth_ = 0, windowedHeight_ = 0;  // before F11
   std::vector<InputEvent> input_;
   std::vector<std::string> dropped_;
   bool activity_ = true;

@@ -15,6 +15,8 @@
 #include "automation_script.h"
 #include "file_watch.h"
 #include "numbered_file.h"
+#include "panels.h"
+#include "save_controller.h"
 #include "recent_files.h"
 #include "rayview/scene_loader.h"
 #include "scene_edits.h"
@@ -480,6 +482,52 @@ TEST(RenderPanel, KnobTooltipsShowOverTheirFields) {
     for (int i = 0; i < 3; ++i) imgui.frame(ImVec2(fieldMin.x + 8, fieldMin.y + 6), draw);
     EXPECT_TRUE(HeadlessImGui::tooltipShown()) << name << ": no tooltip over the field";
   }
+}
+
+// The traversal tooltip (the longest help) stays inside a narrow window even when the field is at its right edge.
+TEST(RenderPanel, TheTraversalTooltipStaysInTheWindow) {
+  HeadlessImGui imgui;
+  SceneSession session(loadParts(), RenderSettings{});
+  const Knob& knob = *findKnob("accel");
+  float shown[4] = {0, 0, 0, 0};
+  const auto draw = [&] { tooltip(std::string(knob.help) + " (--accel, or `set accel` in scripts)", shown); };
+  for (int i = 0; i < 3; ++i) imgui.frame(ImVec2(780, 300), draw);
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  EXPECT_GE(shown[0], 0.0f);
+  EXPECT_LE(shown[2], display.x) << "the tooltip runs off the window's right edge";
+  EXPECT_LE(shown[3], display.y);
+  EXPECT_GT(shown[3] - shown[1], 2.0f * ImGui::GetFontSize()) << "the help is wrapped onto several lines";
+}
+
+// The dropdown and the stats name the traversal actually built.
+TEST(RenderPanel, TheTraversalNamedIsTheOneBuilt) {
+  EXPECT_EQ(traversalBuilt(AccelKind::Embree, AccelKind::Embree, 10), "");
+  EXPECT_EQ(traversalBuilt(AccelKind::Embree, AccelKind::Packet, 12), "Embree (packet BVH for small scenes)");
+  EXPECT_EQ(traversalBuilt(AccelKind::Embree, AccelKind::Packet, 2'000'000), "Embree (packet BVH: Embree could not be loaded)");
+  ViewerStats stats;
+  stats.accel = AccelKind::Packet;
+  stats.traversal = traversalBuilt(AccelKind::Embree, AccelKind::Packet, 12);
+  bool named = false;
+  for (const auto& [name, value] : statsText(stats).lines) named |= name == "Traversal" && value == stats.traversal;
+  EXPECT_TRUE(named);
+}
+
+// Save scene as to another file keeps the title's `*`: the open file did not change. Over the open file it goes.
+TEST(SaveController, SaveSceneAsElsewhereKeepsTheOpenFileUnsaved) {
+  const fs::path directory = freshDirectory("save_as");
+  const fs::path open = directory / "open.xml";
+  fs::copy_file(kViewerScene, open);
+  SceneSession session(loadParts(), RenderSettings{});
+  FilePanelState panel;
+  SaveController saves(1, panel);
+  session.edits().maxRayDepth += 1;
+  std::string problem;
+  ASSERT_TRUE(session.commit(problem));
+  saves.saveScene(&session, open.string(), (directory / "copy.xml").string());
+  EXPECT_FALSE(session.unsaved()) << "the edits are saved somewhere: quitting need not ask";
+  EXPECT_TRUE(session.differsFromFile()) << "but the open file still lacks them: the * stays";
+  saves.saveScene(&session, open.string(), open.string());
+  EXPECT_FALSE(session.differsFromFile());
 }
 
 }  // namespace

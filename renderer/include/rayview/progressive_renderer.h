@@ -41,6 +41,13 @@ struct SampleCount {
   int total = 1;
 };
 
+// The pass being rendered: its generation and stride, and the share of its pixels done (0 to 1).
+struct PassProgress {
+  std::uint64_t generation = 0;
+  int stride = 0;  // 0: none running
+  double fraction = 0.0;
+};
+
 struct ProgressiveFrame {
   std::uint64_t version = 0;     // increases with every published frame
   std::uint64_t generation = 0;  // the restart this frame belongs to
@@ -89,6 +96,8 @@ class ProgressiveRenderer {
 
   // The stride the newest restart started with (chosen from measured pass times).
   int firstStride() const { return firstStride_.load(); }
+  // How far the pass in flight is (the viewer's progress bar for a long final pass). Relaxed reads: a hint.
+  PassProgress passProgress() const;
 
  private:
   void controllerLoop();
@@ -103,6 +112,11 @@ class ProgressiveRenderer {
   std::atomic<std::uint64_t> generation_{0};
   std::atomic<bool> interactive_{false};
   std::atomic<int> firstStride_{kUnmeasuredStride};
+  // The pass in flight: written by the controller when it starts one, counted by the workers per block.
+  std::atomic<std::uint64_t> passGeneration_{0};
+  std::atomic<int> passStride_{0};
+  std::atomic<std::int64_t> passPixelsPlanned_{0}, passPixelsDone_{0};
+  void startCounting(std::uint64_t generation, int stride, std::int64_t pixels);
 
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
