@@ -10,6 +10,12 @@
 
 namespace rayview {
 
+std::string resolutionRefusal(int width, int height) {
+  if (width >= 1 && height >= 1) return {};
+  return "resolution " + std::to_string(width) + " x " + std::to_string(height) +
+         " not applied: each side must be at least 1 pixel";
+}
+
 void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::string& problem, PanelActions& actions) {
   if (!ImGui::CollapsingHeader("Camera", ImGuiTreeNodeFlags_DefaultOpen)) return;
   hintText("Left drag: orbit. Middle or Shift+left drag: pan. Wheel: dolly.");
@@ -35,9 +41,12 @@ void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::
   editDoubles("Near distance", &c.nearDistance, 1, 0.002 * std::max(c.nearDistance, 1e-9), DBL_MIN, DBL_MAX);
 
   int resolution[2] = {c.width, c.height};
-  if (ImGui::InputInt2("Resolution", resolution, ImGuiInputTextFlags_EnterReturnsTrue)) {
-    resolution[0] = std::clamp(resolution[0], 1, kMaxViewerImageSide);
-    resolution[1] = std::clamp(resolution[1], 1, kMaxViewerImageSide);
+  const bool entered = ImGui::InputInt2("Resolution", resolution, ImGuiInputTextFlags_EnterReturnsTrue);
+  // A side of 0 or less is refused and said, never made 1 (the image would silently become a pixel wide).
+  if (entered) state.resolutionProblem = resolutionRefusal(resolution[0], resolution[1]);
+  if (entered && state.resolutionProblem.empty()) {
+    resolution[0] = std::min(resolution[0], kMaxViewerImageSide);
+    resolution[1] = std::min(resolution[1], kMaxViewerImageSide);
     const bool widthChanged = resolution[0] != c.width;
     if (state.keepFieldOfView) {
       session.setResolutionKeepingAspect(resolution[0], resolution[1], widthChanged);
@@ -51,6 +60,7 @@ void drawCameraPanel(SceneSession& session, CameraPanelState& state, const std::
       c.right = centre + halfWidth;
     }
   }
+  if (!state.resolutionProblem.empty()) problemText(state.resolutionProblem);
   ImGui::Checkbox("Keep field of view", &state.keepFieldOfView);
   if (ImGui::IsItemHovered())
     tooltip("On: a new width changes the height (and the other way round) to keep the near plane's aspect.\n"

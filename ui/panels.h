@@ -107,7 +107,11 @@ struct CompareInfo {
 
 struct CameraPanelState {
   bool keepFieldOfView = true;  // a resolution edit changes the other side, not the near plane
+  std::string resolutionProblem;  // why the last resolution entered was not applied ("" when it was)
 };
+
+// Why a resolution typed into the Camera panel is refused ("" when it is taken): a side below 1.
+std::string resolutionRefusal(int width, int height);
 
 // What the stats panel shows, gathered by the application from the renderer and the loader.
 struct ViewerStats {

@@ -531,4 +531,13 @@ TEST(SaveController, SaveSceneAsElsewhereKeepsTheOpenFileUnsaved) {
 }
 
 }  // namespace
+// A resolution of 0 typed into the Camera panel is refused with a reason, never turned into 1 x 1.
+TEST(CameraPanel, ARezeroedResolutionIsRefusedAndSaysWhy) {
+  EXPECT_EQ(resolutionRefusal(640, 480), "");
+  EXPECT_EQ(resolutionRefusal(1, 1), "");
+  EXPECT_NE(resolutionRefusal(0, 480).find("not applied"), std::string::npos);
+  EXPECT_NE(resolutionRefusal(640, 0).find("at least 1 pixel"), std::string::npos);
+  EXPECT_NE(resolutionRefusal(-3, 480), "");
+}
+
 }  // namespace rayview
