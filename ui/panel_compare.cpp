@@ -78,6 +78,8 @@ void drawComparePanel(ComparePanelState& state, const CompareInfo& info, PanelAc
   }
   figuresTable(*comparison.figures());
   if (!info.figuresCurrent) hintText("Of the last final pass; refining...");
+  // The reference is of the file's camera: figures of another view compare different pictures.
+  if (!info.cameraMismatch.empty()) problemText("Camera differs: " + info.cameraMismatch + " (Camera > Reset to file, or R, to match)");
 }
 
 }  // namespace rayview

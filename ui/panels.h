@@ -103,6 +103,7 @@ struct CompareInfo {
   const ReferenceComparison& comparison;
   int imageWidth = 0, imageHeight = 0;  // of the image on screen; 0 before the first pass
   bool figuresCurrent = false;          // the figures are of the final pass on screen (not refining)
+  std::string cameraMismatch;           // why the camera on screen is not the reference's ("" when it is)
 };
 
 struct CameraPanelState {

@@ -47,8 +47,10 @@ void ViewerApp::drawPanelColumn(const ViewerLayout&, PanelActions& actions) {
     drawTradeoffPanel(tradeoff_.panel(), s->edits(), s->settings(), why.empty(), why, actions);
   }
   const bool haveFrame = render_.haveFrame();
+  const std::optional<ImageError> figures = finalComparison();
   const CompareInfo compare{compare_.comparison(), haveFrame ? render_.frame().width : 0,
-                            haveFrame ? render_.frame().height : 0, finalComparison().has_value()};
+                            haveFrame ? render_.frame().height : 0, figures.has_value(),
+                            figures ? figures->cameraMismatch : std::string()};
   drawComparePanel(compare_.panel(), compare, actions);
   ImGui::PopItemWidth();
 }
