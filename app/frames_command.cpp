@@ -30,11 +30,7 @@ int pendingFrames(const CommandLine& command, std::vector<FrameJob>& pending, st
   }
   asked = jobs.size();
   for (FrameJob& job : jobs) {
-    if (!isSupportedImageExtension(job.output)) {
-      std::fprintf(stderr, "rayview: error: the output must end in .png or .ppm: %s\n", job.output.c_str());
-      return kExitBadInput;
-    }
-    if (const std::string problem = outputOverwritesInput(job.output, job.scenePath, nullptr); !problem.empty()) {
+    if (const std::string problem = renderOutputProblem(job.output, job.scenePath); !problem.empty()) {
       std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
       return kExitBadInput;
     }

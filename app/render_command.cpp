@@ -62,9 +62,7 @@ class RenderRun {
 };
 
 std::optional<int> RenderRun::checkOutput() {
-  if (!isSupportedImageExtension(output_))
-    return fail(kExitBadInput, "rayview: error: the output must end in .png or .ppm: " + command_.outputPath);
-  if (const std::string problem = outputOverwritesInput(output_, command_.scenePath, nullptr); !problem.empty())
+  if (const std::string problem = renderOutputProblem(output_, command_.scenePath); !problem.empty())
     return fail(kExitBadInput, "rayview: error: " + problem);
   return std::nullopt;
 }

@@ -30,11 +30,7 @@ void broadcastBytes(void* data, std::size_t bytes) {
 
 // Rank 0: the output checks and the scene's bytes. Returns the exit code (printed) when the job cannot start.
 int readOnRankZero(const ClusterJob& job, std::string& bytes) {
-  if (!isSupportedImageExtension(job.output)) {
-    std::fprintf(stderr, "rayview: error: the output must end in .png or .ppm: %s\n", job.output.c_str());
-    return kExitBadInput;
-  }
-  if (const std::string problem = outputOverwritesInput(job.output, job.scenePath, nullptr); !problem.empty()) {
+  if (const std::string problem = renderOutputProblem(job.output, job.scenePath); !problem.empty()) {
     std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
   }

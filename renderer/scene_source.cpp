@@ -1,6 +1,7 @@
 #include "rayview/scene_source.h"
 
 #include "rayview/file_read.h"
+#include "rayview/image.h"
 #include "rayview/input_files.h"
 #include "texture_image.h"
 
@@ -29,6 +30,11 @@ std::string outputOverwritesInput(const std::filesystem::path& output, const std
                "; choose another name";
   }
   return {};
+}
+
+std::string renderOutputProblem(const std::filesystem::path& output, const std::string& scenePath) {
+  if (!isSupportedImageExtension(output)) return "the output must end in .png or .ppm: " + output.string();
+  return outputOverwritesInput(output, scenePath, nullptr);
 }
 
 }  // namespace rayview

@@ -12,12 +12,11 @@ int tileSizeFor(int width, int height, int threads) {
   return std::clamp(size, 1, kMaxTileSize);
 }
 
-std::vector<Tile> makeTiles(int width, int height, int threads) {
+std::vector<Tile> tilesOfEdge(int width, int height, int edge) {
   std::vector<Tile> tiles;
-  if (width <= 0 || height <= 0) return tiles;
-  const int size = tileSizeFor(width, height, threads);
-  for (int y = 0; y < height; y += size)
-    for (int x = 0; x < width; x += size) tiles.push_back({x, y, std::min(x + size, width), std::min(y + size, height)});
+  if (width <= 0 || height <= 0 || edge <= 0) return tiles;
+  for (int y = 0; y < height; y += edge)
+    for (int x = 0; x < width; x += edge) tiles.push_back({x, y, std::min(x + edge, width), std::min(y + edge, height)});
   const double cx = width * 0.5, cy = height * 0.5;
   auto distance = [&](const Tile& t) {
     const double dx = (t.x0 + t.x1) * 0.5 - cx, dy = (t.y0 + t.y1) * 0.5 - cy;
@@ -25,6 +24,11 @@ std::vector<Tile> makeTiles(int width, int height, int threads) {
   };
   std::stable_sort(tiles.begin(), tiles.end(), [&](const Tile& a, const Tile& b) { return distance(a) < distance(b); });
   return tiles;
+}
+
+std::vector<Tile> makeTiles(int width, int height, int threads) {
+  if (width <= 0 || height <= 0) return {};
+  return tilesOfEdge(width, height, tileSizeFor(width, height, threads));
 }
 
 }  // namespace rayview

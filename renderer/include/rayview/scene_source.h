@@ -23,4 +23,8 @@ LoadedScene loadSceneOrDefault(const std::string& path, const LoadOptions& optio
 std::string outputOverwritesInput(const std::filesystem::path& output, const std::string& scenePath,
                                   const Scene* loaded);
 
+// Why `output` cannot take a rendered image of `scenePath` ("" when it can): not .png or .ppm, or an input by any
+// path (outputOverwritesInput). Checked by every command that renders before it starts work.
+std::string renderOutputProblem(const std::filesystem::path& output, const std::string& scenePath);
+
 }  // namespace rayview

@@ -14,7 +14,11 @@ struct Tile {
 
 int tileSizeFor(int width, int height, int threads);
 
-// Tiles covering the image exactly once, ordered by distance of their centre from the image centre.
+// Tiles of `edge` pixels (the last row and column shorter) covering the image exactly once, ordered by distance of
+// their centre from the image centre.
+std::vector<Tile> tilesOfEdge(int width, int height, int edge);
+
+// The same with tileSizeFor's edge: what a render on `threads` threads deals out.
 std::vector<Tile> makeTiles(int width, int height, int threads);
 
 }  // namespace rayview
