@@ -95,13 +95,13 @@ std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, co
 }
 
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
-                                         BuildProgress progress, void* progressUser) {
+                                         BuildProgress progress, void* progressUser, std::size_t pixels) {
   if (kind == AccelKind::Packet) return makePacketBvhAccel(scene, origin);
 #ifdef RAYVIEW_HAVE_EMBREE
   if (kind == AccelKind::Embree) {
     std::string why;
     if (embreeLibrary(&why))
-      return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size()), progress, progressUser);
+      return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size(), pixels), progress, progressUser);
     // Built with Embree, run where it cannot be loaded: the packet BVH gives the same answers, more slowly on
     // big scenes. Said once a process.
     static std::once_flag once;
@@ -111,6 +111,7 @@ std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind k
     return makePacketBvhAccel(scene, origin);
   }
 #else
+  static_cast<void>(pixels);
   // Built without Embree: the packet BVH in its place (availableAccel).
   if (kind == AccelKind::Embree) return makePacketBvhAccel(scene, origin);
 #endif

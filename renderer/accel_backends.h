@@ -14,11 +14,16 @@ namespace rayview {
 // much; rays through a random soup of triangles are 9-28 % slower, through a sphere or height field no slower
 // (docs/PERFORMANCE.md, "Memory per triangle"). The answers are the same either way: every hit is the closest by
 // the watertight test and the tie rule, whatever order the BVH visits the triangles in.
-enum class EmbreeLayout { Fast, Compact };
+// Quick: the fast layout built at Embree's LOW quality, for a single render whose build outweighs it (fewer than
+// kQuickBuildRaysPerTriangle camera rays a triangle): killeroo_2020's whole process 1.06x faster, car's (120 rays a
+// triangle, kept Fast) 0.96x had it been Quick (docs/PERFORMANCE.md, "End to end and ceiling share").
+enum class EmbreeLayout { Fast, Compact, Quick };
 
 // Scenes from this many triangles get the compact layout: there memory is what limits.
 inline constexpr std::size_t kCompactBvhTriangles = 500'000;
-EmbreeLayout embreeLayoutFor(std::size_t triangles);
+inline constexpr std::size_t kQuickBuildRaysPerTriangle = 16;
+// `pixels`: the one render's camera rays the BVH is built for; 0 when unknown or for many renders (the viewer).
+EmbreeLayout embreeLayoutFor(std::size_t triangles, std::size_t pixels = 0);
 
 std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,
                                        BuildProgress progress, void* progressUser);
@@ -44,7 +49,8 @@ AccelKind accelWithinRange(const SceneGeometry& scene, AccelKind kind, const glm
 
 // buildAccel without its range check, for a caller that has made it (embreeRangeProblem covers it): the check
 // reads every corner of every face, ~1 ms at 100 000 triangles, and a render made it three times.
+// `pixels` as for embreeLayoutFor.
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
-                                         BuildProgress progress, void* progressUser);
+                                         BuildProgress progress, void* progressUser, std::size_t pixels = 0);
 
 }  // namespace rayview

@@ -250,7 +250,7 @@ class EmbreeAccel final : public Accel {
     // The compact layout (embreeLayoutFor) adds COMPACT: a smaller BVH for ~3 % slower rays.
     rtc_.SetSceneFlags(scene_, layout == EmbreeLayout::Compact ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
                                                                : RTC_SCENE_FLAG_ROBUST);
-    rtc_.SetSceneBuildQuality(scene_, RTC_BUILD_QUALITY_MEDIUM);
+    rtc_.SetSceneBuildQuality(scene_, layout == EmbreeLayout::Quick ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
     ProgressRelay relay{progress, progressUser};
     if (progress) rtc_.SetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
 
@@ -447,8 +447,10 @@ class EmbreeAccel final : public Accel {
 
 }  // namespace
 
-EmbreeLayout embreeLayoutFor(std::size_t triangles) {
-  return triangles >= kCompactBvhTriangles ? EmbreeLayout::Compact : EmbreeLayout::Fast;
+EmbreeLayout embreeLayoutFor(std::size_t triangles, std::size_t pixels) {
+  if (triangles >= kCompactBvhTriangles) return EmbreeLayout::Compact;
+  if (pixels > 0 && pixels < kQuickBuildRaysPerTriangle * triangles) return EmbreeLayout::Quick;
+  return EmbreeLayout::Fast;
 }
 
 std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,

@@ -1,5 +1,6 @@
 #include "rayview/prepared_scene.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "accel_backends.h"
@@ -17,14 +18,15 @@ using Clock = std::chrono::steady_clock;
 // includes that check.
 std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry, const glm::dvec3& origin,
                                           AccelKind kind, BuildProgress progress, void* progressUser,
-                                          Clock::time_point start, BvhLayout layout = BvhLayout::Fast) {
+                                          Clock::time_point start, BvhLayout layout = BvhLayout::Fast,
+                                          std::size_t pixels = 0) {
   auto prepared = std::make_shared<PreparedGeometry>();
   const std::size_t triangles = geometry->triangles.size();
   if (kind == AccelKind::Embree && triangles <= kPacketBvhTriangles) kind = AccelKind::Packet;
   if (kind != AccelKind::Reference && layout == BvhLayout::Lean)
     prepared->accel = makePacketBvhAccel(*geometry, origin, 0, kLeanLeafTriangles);
   else
-    prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser);
+    prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser, pixels);
   if (!prepared->accel) return nullptr;
   prepared->shading = prepareShadingGeometry(*geometry, origin);
   prepared->source = std::move(geometry);
@@ -36,13 +38,13 @@ std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> g
 // reference BVH, with the reason: one range check (it reads every corner of every face).
 std::shared_ptr<const PreparedGeometry> prepareScene(std::shared_ptr<const SceneGeometry> geometry, const Scene& scene,
                                                      AccelKind kind, BuildProgress progress, void* progressUser,
-                                                     BvhLayout layout = BvhLayout::Fast) {
+                                                     BvhLayout layout = BvhLayout::Fast, std::size_t pixels = 0) {
   const auto start = Clock::now();
   kind = availableAccel(kind);
   std::string problem;
   if (kind != AccelKind::Reference) problem = embreeRangeProblem(scene, scene, scene.camera.position);
   auto prepared = prepare(std::move(geometry), scene.camera.position, problem.empty() ? kind : AccelKind::Reference,
-                          progress, progressUser, start, layout);
+                          progress, progressUser, start, layout, pixels);
   if (prepared) prepared->accelFallback = std::move(problem);
   return prepared;
 }
@@ -66,7 +68,10 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BvhLayout layout) {
   std::shared_ptr<const SceneGeometry> geometry(scene, &scene->geometry());
-  return prepareScene(std::move(geometry), *scene, kind, nullptr, nullptr, layout);
+  // One render of the scene's own camera (`rayview render`, a frame): its camera rays say whether the build outweighs it.
+  const std::size_t pixels =
+      static_cast<std::size_t>(std::max(scene->camera.width, 0)) * static_cast<std::size_t>(std::max(scene->camera.height, 0));
+  return prepareScene(std::move(geometry), *scene, kind, nullptr, nullptr, layout, pixels);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind, BuildProgress progress,

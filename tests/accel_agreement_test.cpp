@@ -304,7 +304,8 @@ int expectSameAnswers(const Accel& base, const Accel& other, const std::vector<R
   return hits;
 }
 
-// Embree's two BVH layouts (the compact one is what scenes from kCompactBvhTriangles get) give the same answers,
+// Embree's BVH layouts (the compact one is what scenes from kCompactBvhTriangles get, the quick build what a render
+// with few rays a triangle gets) give the same answers,
 // bit for bit: every hit is the closest by the watertight test and the tie rule, whatever order the BVH visits the
 // triangles in. Single rays and packets, closest hits and occlusion.
 TEST(EmbreeLayouts, TheCompactLayoutGivesTheSameAnswersBitForBit) {
@@ -321,12 +322,25 @@ TEST(EmbreeLayouts, TheCompactLayoutGivesTheSameAnswersBitForBit) {
     const glm::dvec3 origin = scene.camera.position;
     const std::unique_ptr<Accel> fast = makeEmbreeAccel(scene, origin, EmbreeLayout::Fast, nullptr, nullptr);
     const std::unique_ptr<Accel> compact = makeEmbreeAccel(scene, origin, EmbreeLayout::Compact, nullptr, nullptr);
-    ASSERT_TRUE(fast && compact);
+    const std::unique_ptr<Accel> quick = makeEmbreeAccel(scene, origin, EmbreeLayout::Quick, nullptr, nullptr);
+    ASSERT_TRUE(fast && compact && quick);
     const std::vector<Ray> rays = raysAtTriangles(scene, origin, name, 20000);
     EXPECT_GT(expectSameAnswers(*fast, *compact, rays, name), static_cast<int>(rays.size()) / 2)
         << name << ": the rays must mostly hit";
+    EXPECT_GT(expectSameAnswers(*fast, *quick, rays, name + " (quick)"), static_cast<int>(rays.size()) / 2);
   }
   EXPECT_EQ(scenes, 3);
+}
+
+// The quick build is for one render that casts few camera rays a triangle, never for the viewer (no pixels given),
+// and never past the compact layout's size.
+TEST(EmbreeLayouts, TheQuickBuildIsForRendersWithFewRaysATriangle) {
+  EXPECT_EQ(embreeLayoutFor(92092), EmbreeLayout::Fast) << "no render given: the viewer's build";
+  EXPECT_EQ(embreeLayoutFor(92092, 800 * 600), EmbreeLayout::Quick) << "killeroo_2020: ~5 rays a triangle";
+  EXPECT_EQ(embreeLayoutFor(6619, 1024 * 768), EmbreeLayout::Fast) << "car: ~120 rays a triangle";
+  EXPECT_EQ(embreeLayoutFor(kCompactBvhTriangles, 64), EmbreeLayout::Compact);
+  EXPECT_EQ(embreeLayoutFor(1000, kQuickBuildRaysPerTriangle * 1000 - 1), EmbreeLayout::Quick);
+  EXPECT_EQ(embreeLayoutFor(1000, kQuickBuildRaysPerTriangle * 1000), EmbreeLayout::Fast);
 }
 
 // Embree hands the callbacks a 16-ray packet whole on an AVX-512 machine, in halves with AVX2 and in quarters with

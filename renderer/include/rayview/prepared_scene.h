@@ -35,6 +35,8 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
 // Which BVH a fast back-end builds. Fast: Embree (the packet BVH for small scenes). Lean (rayview/lean_memory.h):
 // rayview's packet BVH with leaves of up to kLeanLeafTriangles, the same answers in less memory, slower rays.
+// This overload is for one render of the scene's camera: Embree builds at its quick quality when that render casts
+// few camera rays a triangle (embreeLayoutFor), the same answers sooner.
 enum class BvhLayout { Fast, Lean };
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
                                                         BvhLayout layout);
