@@ -12,12 +12,52 @@ namespace {
 
 int ceilDiv(int a, int b) { return (a + b - 1) / b; }
 
+constexpr int kBlock = 4;  // kBlock x kBlock = kPixelBatch
+static_assert(kBlock * kBlock == kPixelBatch);
+
+// The one order a tile's pixels are traced in. Bands of kBlock rows, column by column: a full batch is a 4x4
+// block, or, where a coarser pass's pixels are skipped (a quarter of them), the next columns' pixels fill it
+// (about 4 x 5): packets stay full. `endBand` runs after each band.
+template <class Visit, class EndBand>
+void visitTilePixels(const Tile& tile, int stride, int skipStride, Visit&& visit, EndBand&& endBand) {
+  for (int by = tile.y0; by < tile.y1; by += kBlock) {
+    for (int gx = tile.x0; gx < tile.x1; ++gx)
+      for (int gy = by; gy < std::min(by + kBlock, tile.y1); ++gy) {
+        const int x = gx * stride, y = gy * stride;
+        if (skipStride != 0 && x % skipStride == 0 && y % skipStride == 0) continue;
+        visit(x, y);
+      }
+    endBand();
+  }
+}
+
 }  // namespace
+
+void gridTilePixels(const Tile& tile, int stride, int skipStride, std::vector<PixelXY>& out) {
+  out.clear();
+  visitTilePixels(tile, stride, skipStride, [&](int x, int y) { out.push_back({x, y}); }, [] {});
+}
+
+void traceColors(const PixelBatchFunction& trace, const std::vector<PixelXY>& pixels, ThreadPool& pool,
+                 std::vector<Color>& colors, RayCounts& rays) {
+  colors.resize(pixels.size());
+  // Chunks of whole batches, a few per thread: the list is in batch order already.
+  const std::size_t chunk = static_cast<std::size_t>(kPixelBatch) * 8;
+  std::mutex raysMutex;
+  pool.parallelFor((pixels.size() + chunk - 1) / chunk, [&](std::size_t index) {
+    RayCounts counts;
+    const std::size_t end = std::min(pixels.size(), (index + 1) * chunk);
+    for (std::size_t at = index * chunk; at < end; at += kPixelBatch) {
+      const int count = static_cast<int>(std::min<std::size_t>(kPixelBatch, end - at));
+      trace(pixels.data() + at, count, colors.data() + at, counts);
+    }
+    std::lock_guard lock(raysMutex);
+    rays += counts;
+  });
+}
 
 bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, ThreadPool& pool, Image& image,
                 RayCounts& rays, const std::function<bool()>& stopped, Quantization quantization) {
-  constexpr int kBlock = 4;  // kBlock x kBlock = kPixelBatch
-  static_assert(kBlock * kBlock == kPixelBatch);
   const std::vector<Tile> tiles = makeTiles(ceilDiv(image.width, stride), ceilDiv(image.height, stride), pool.size());
   std::mutex raysMutex;
   std::atomic<bool> cancelled{false};
@@ -42,18 +82,10 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
       }
       count = 0;
     };
-    // Bands of kBlock rows, column by column: a full batch is a 4x4 block, or, where a coarser pass's pixels
-    // are skipped (a quarter of them), the next columns' pixels fill it (about 4 x 5): packets stay full.
-    for (int by = tile.y0; by < tile.y1; by += kBlock) {
-      for (int gx = tile.x0; gx < tile.x1; ++gx)
-        for (int gy = by; gy < std::min(by + kBlock, tile.y1); ++gy) {
-          const int x = gx * stride, y = gy * stride;
-          if (skipStride != 0 && x % skipStride == 0 && y % skipStride == 0) continue;
-          batch[count++] = {x, y};
-          if (count == kPixelBatch) flush();
-        }
-      flush();
-    }
+    visitTilePixels(tile, stride, skipStride, [&](int x, int y) {
+      batch[count++] = {x, y};
+      if (count == kPixelBatch) flush();
+    }, flush);
     std::lock_guard lock(raysMutex);
     rays += counts;
   });

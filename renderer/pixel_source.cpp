@@ -6,6 +6,7 @@ TracedImage::TracedImage(std::shared_ptr<const SceneParameters> parameters, std:
                          const RenderSettings& settings)
     : parameters_(std::move(parameters)),
       geometry_(std::move(geometry)),
+      settings_(settings),
       tracer_(*parameters_, *geometry_, settings) {}
 
 }  // namespace rayview

@@ -18,7 +18,8 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
 
 }  // namespace
 
-ProgressiveRenderer::ProgressiveRenderer(int threads) : pool_(threads) {
+ProgressiveRenderer::ProgressiveRenderer(int threads, std::shared_ptr<PassFarm> farm)
+    : pool_(threads), farm_(std::move(farm)) {
   controller_ = std::thread([this] { controllerLoop(); });
 }
 
@@ -89,6 +90,7 @@ void ProgressiveRenderer::controllerLoop() {
       pending_.reset();
       generation = pendingGeneration_;
       restartTime = pendingTime_;
+      restartTime_ = restartTime;
       busy_ = true;
     }
     const bool final = [&] {
@@ -176,6 +178,12 @@ bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t ge
                   : static_cast<std::int64_t>((samples_.width + s - 1) / s) * ((samples_.height + s - 1) / s);
   };
   startCounting(generation, stride, gridPixels(stride) - gridPixels(previousStride));
+  if (farm_ && farm_->accepts(source)) {
+    // A full-resolution pass is shown as its tiles arrive: until then each pixel shows its block of the pass before.
+    if (stride == 1 && previousStride > 1) fillBlocks(samples_, previousStride);
+    return farmPass(source, {generation, stride, previousStride, firstSamples ? 0 : -1}, firstSamples,
+                    {1, std::max(source.samplesPerPixel(), 1)}, rays);
+  }
   // Pixels on the previous (coarser) pass's grid were computed by it: never twice.
   if (firstSamples) {
     // Each pixel is traced by one worker: its running sum is its own.
@@ -201,6 +209,8 @@ bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t ge
 bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_t generation, int k, RayCounts& rays) {
   const float count = static_cast<float>(k + 1);
   startCounting(generation, 1, static_cast<std::int64_t>(samples_.width) * samples_.height);
+  if (farm_ && farm_->accepts(source))
+    return farmPass(source, {generation, 1, 0, k}, true, {k, std::max(source.samplesPerPixel(), 1)}, rays);
   renderGrid(
       [&](const PixelXY* pixels, int n, Color* out, RayCounts& counts) {
         source.samples(pixels, n, k, out, counts);
@@ -216,13 +226,50 @@ bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_
   return generation_.load() == generation;
 }
 
+bool ProgressiveRenderer::farmPass(const PixelSource& source, const FarmPass& pass, bool keepSums, SampleCount shown,
+                                   RayCounts& rays) {
+  // Every pixel gets exactly what the local passes give it (the lambdas of renderPass and accumulatePass).
+  const Quantization quantization = source.quantization();
+  const float count = static_cast<float>(pass.sample + 1);
+  const auto passStart = Clock::now();
+  auto lastShown = passStart;
+  constexpr auto kShowEvery = std::chrono::milliseconds(100);
+  const FarmSink store = [&](const PixelXY* pixels, const Color* colors, int n) {
+    for (int m = 0; m < n; ++m) {
+      Color c = colors[m];
+      if (keepSums) {
+        Color& sum = sums_[static_cast<std::size_t>(pixels[m].y) * samples_.width + pixels[m].x];
+        if (pass.sample > 0) {
+          sum += c;
+          c = sum / count;
+        } else {
+          sum = c;
+        }
+      }
+      std::uint8_t* out = samples_.pixel(pixels[m].x, pixels[m].y);
+      out[0] = quantizeChannel(c.x, quantization);
+      out[1] = quantizeChannel(c.y, quantization);
+      out[2] = quantizeChannel(c.z, quantization);
+    }
+    passPixelsDone_.fetch_add(n, std::memory_order_relaxed);
+    const auto now = Clock::now();
+    if (pass.stride == 1 && now - lastShown >= kShowEvery) {
+      lastShown = now;
+      publish(pass.generation, 1, shown, msBetween(passStart, now), rays, restartTime_, true);
+    }
+  };
+  const auto stopped = [&] { return generation_.load(std::memory_order_relaxed) != pass.generation; };
+  return farm_->renderPass(source, pass, store, stopped, rays) && generation_.load() == pass.generation;
+}
+
 void ProgressiveRenderer::publish(std::uint64_t generation, int stride, SampleCount samples, double passMs,
-                                  const RayCounts& rays, Clock::time_point restartTime) {
+                                  const RayCounts& rays, Clock::time_point restartTime, bool partial) {
   ProgressiveFrame frame;
   frame.generation = generation;
   frame.stride = stride;
   frame.samples = samples;
-  frame.final = stride == 1 && samples.done == samples.total;
+  frame.partial = partial;
+  frame.final = !partial && stride == 1 && samples.done == samples.total;
   frame.passMs = passMs;
   frame.passRays = rays;
   frame.megaRaysPerSecond = passMs > 0.0 ? rays.total() / (passMs * 1000.0) : 0.0;

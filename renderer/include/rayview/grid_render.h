@@ -3,9 +3,11 @@
 // pixels of a stride grid, tile by tile on the pool, centre first, and stop at the next tile when asked.
 
 #include <functional>
+#include <vector>
 
 #include "rayview/image.h"
 #include "rayview/thread_pool.h"
+#include "rayview/tiles.h"
 #include "rayview/tracer.h"
 
 namespace rayview {
@@ -22,6 +24,13 @@ inline constexpr int kPixelBatch = kRayPacket;
 // image is then partial).
 bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, ThreadPool& pool, Image& image,
                 RayCounts& rays, const std::function<bool()>& stopped, Quantization quantization);
+
+// The pixels of `tile` (in grid coordinates) of that grid, less the skip grid's, in the order renderGrid traces
+// them: what another process traces of a pass (rayview/pass_farm.h).
+void gridTilePixels(const Tile& tile, int stride, int skipStride, std::vector<PixelXY>& out);
+// Their radiance (colors[n] for pixels[n]) on the pool, kPixelBatch at a time, as renderGrid batches them.
+void traceColors(const PixelBatchFunction& trace, const std::vector<PixelXY>& pixels, ThreadPool& pool,
+                 std::vector<Color>& colors, RayCounts& rays);
 
 // Gives every pixel the colour of the sample at the top-left corner of its stride x stride block: the
 // blocky (never blurred) upscale of a coarse pass. In place.

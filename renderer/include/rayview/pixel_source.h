@@ -50,10 +50,15 @@ class TracedImage final : public PixelSource {
     tracer_.traceSamples(pixels, count, k, out, counts);
   }
   const Tracer& tracer() const { return tracer_; }
+  // What it was made of: what another process needs to make the same image (cluster/viewer_farm.cpp).
+  const std::shared_ptr<const SceneParameters>& parameters() const { return parameters_; }
+  const std::shared_ptr<const PreparedGeometry>& geometry() const { return geometry_; }
+  const RenderSettings& settings() const { return settings_; }
 
  private:
   std::shared_ptr<const SceneParameters> parameters_;
   std::shared_ptr<const PreparedGeometry> geometry_;
+  RenderSettings settings_;
   Tracer tracer_;
 };
 

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "rayview/image.h"
+#include "rayview/pass_farm.h"
 #include "rayview/pixel_source.h"
 #include "rayview/preview_level.h"
 #include "rayview/thread_pool.h"
@@ -54,6 +55,9 @@ struct ProgressiveFrame {
   int stride = 0;                // 1 = full resolution
   SampleCount samples;           // at stride 1, the passes after the first add one sample per pixel each
   bool final = false;            // all pixels computed, with all their samples
+  // A full-resolution pass still arriving from a PassFarm, published as its tiles come in: the pixels not in yet
+  // show the pass before (its blocks, or the mean of fewer samples).
+  bool partial = false;
   int width = 0, height = 0;     // the image's size
   // The pass's samples, one pixel per stride x stride block: ceil(width / stride) x ceil(height / stride); at
   // stride 1, the image. upscaleBlocks (rayview/grid_render.h) makes the full-size blocky image.
@@ -67,7 +71,8 @@ struct ProgressiveFrame {
 
 class ProgressiveRenderer {
  public:
-  explicit ProgressiveRenderer(int threads = 0);
+  // With a farm, passes of the sources it accepts are traced by it (other processes) instead of this pool.
+  explicit ProgressiveRenderer(int threads = 0, std::shared_ptr<PassFarm> farm = nullptr);
   ~ProgressiveRenderer();
   ProgressiveRenderer(const ProgressiveRenderer&) = delete;
   ProgressiveRenderer& operator=(const ProgressiveRenderer&) = delete;
@@ -104,11 +109,14 @@ class ProgressiveRenderer {
   bool renderPass(const PixelSource& source, std::uint64_t generation, int stride, int previousStride,
                   bool firstSamples, RayCounts& rays);
   bool accumulatePass(const PixelSource& source, std::uint64_t generation, int k, RayCounts& rays);
+  bool farmPass(const PixelSource& source, const FarmPass& pass, bool keepSums, SampleCount shown, RayCounts& rays);
   void publish(std::uint64_t generation, int stride, SampleCount samples, double passMs,
-               const RayCounts& rays, std::chrono::steady_clock::time_point restartTime);
+               const RayCounts& rays, std::chrono::steady_clock::time_point restartTime, bool partial = false);
   void remember(const PassTime& pass);
 
   ThreadPool pool_;
+  std::shared_ptr<PassFarm> farm_;
+  std::chrono::steady_clock::time_point restartTime_;  // of the generation being rendered; controller only
   std::atomic<std::uint64_t> generation_{0};
   std::atomic<bool> interactive_{false};
   std::atomic<int> firstStride_{kUnmeasuredStride};
