@@ -29,7 +29,7 @@ int runViewCommand(const rayview::CommandLine& command, char** argv) {
 #ifdef RAYVIEW_HAVE_VIEWER
   static_cast<void>(argv);
   switch (runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,
-                                  command.scriptPath, command.comparePath})) {
+                                  command.scriptPath, command.comparePath, nullptr})) {
     case ViewerExit::Ok: return kExitOk;
     case ViewerExit::BadInput: return kExitBadInput;
     case ViewerExit::Failed: return kExitIoFailure;
@@ -80,6 +80,7 @@ int main(int argc, char** argv) try {
     case CommandKind::Export:
       return runExportCommand(command);
     case CommandKind::View:
+      if (const int code = handOffViewerToMpi(argv); code >= 0) return code;
       return runViewCommand(command, argv);
   }
   return kExitOk;

@@ -10,7 +10,8 @@
 
 namespace rayview {
 
-RenderController::RenderController(int threads) : renderer_(threads) {
+RenderController::RenderController(int threads, std::shared_ptr<PassFarm> farm)
+    : renderer_(threads, std::move(farm)) {
   stats_.threads = renderer_.threads();
   // Wake the UI loop when a pass is published, so it can sleep while passes render.
   renderer_.setFrameListener([] { glfwPostEmptyEvent(); });

@@ -20,7 +20,8 @@ inline constexpr std::chrono::milliseconds kProgressAfter{500};
 
 class RenderController {
  public:
-  explicit RenderController(int threads);  // <= 0: one per hardware thread
+  // threads <= 0: one per hardware thread; a farm traces the passes elsewhere (rayview/pass_farm.h).
+  explicit RenderController(int threads, std::shared_ptr<PassFarm> farm = nullptr);
   ~RenderController();
   RenderController(const RenderController&) = delete;
   RenderController& operator=(const RenderController&) = delete;

@@ -16,7 +16,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
       window_("rayview", kInitialWindowWidth, kInitialWindowHeight),
       imgui_(window_.handle(), window_.contentScale(), window_.framebufferScale()),
       load_(options),
-      render_(options.threads),
+      render_(options.threads, options.farm),
       compare_(options.comparePath),
       tradeoff_(options.threads),
       saves_(options.threads, filePanel_),

@@ -1,10 +1,12 @@
 #pragma once
 // The viewer's entry point: what it needs to start, and running it.
 
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "rayview/knobs.h"
+#include "rayview/pass_farm.h"
 
 namespace rayview {
 
@@ -15,6 +17,8 @@ struct ViewerOptions {
   std::vector<KnobAssignment> knobs;   // written into the settings, and into the first scene's parameters
   std::string scriptPath;              // automation (docs/viewer.md); empty: none
   std::string comparePath;             // a reference image to compare the render with; empty: none
+  // Who traces the passes when not this process's threads (the other ranks of an MPI job); null: these threads.
+  std::shared_ptr<PassFarm> farm;
 };
 
 // How the viewer ended; the command line maps it onto its exit statuses.
