@@ -42,6 +42,12 @@ class Hasher {
 
 }  // namespace
 
+std::uint64_t parametersHash(const SceneParameters& parameters) {
+  Hasher hasher;
+  hasher.addText(sceneToXml(parameters, SceneGeometry{}, std::string()));
+  return hasher.value();
+}
+
 std::uint64_t sceneHash(const Scene& scene) {
   Hasher hasher;
   // The parameters through the writer: every field it saves, in its shortest exact text.

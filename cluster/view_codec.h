@@ -1,0 +1,44 @@
+#pragma once
+// What the viewer's workers receive, as bytes: the geometry once per scene (and traversal), then a small parameter
+// snapshot per edit. Binary and exact (every double and float as its bits), so a worker's image is rank 0's bit for
+// bit; a snapshot carries the hash of the parameters as the scene writer states them, which the worker checks, so
+// a field the codec does not carry cannot go unnoticed. No MPI.
+
+#include <cstdint>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "rayview/render_settings.h"
+#include "rayview/scene.h"
+
+namespace rayview::cluster {
+
+using Bytes = std::vector<std::uint8_t>;
+
+// Malformed bytes (a rank of another build, a truncated message).
+class CodecError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct ShippedGeometry {
+  std::shared_ptr<SceneGeometry> geometry;
+  glm::dvec3 origin{0.0};  // the traversal's origin (prepareGeometry's): rank 0's, not recomputed
+  AccelKind accel = AccelKind::Embree;
+};
+
+Bytes encodeGeometry(const SceneGeometry& geometry, const glm::dvec3& origin, AccelKind accel);
+ShippedGeometry decodeGeometry(const std::uint8_t* data, std::size_t size);
+
+struct Snapshot {
+  SceneParameters parameters;
+  RenderSettings settings;
+};
+
+Bytes encodeSnapshot(const SceneParameters& parameters, const RenderSettings& settings);
+// Throws CodecError when the bytes are malformed or the parameters' hash differs from the sender's.
+Snapshot decodeSnapshot(const std::uint8_t* data, std::size_t size);
+
+}  // namespace rayview::cluster
