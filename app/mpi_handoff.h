@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "exit_codes.h"
 #include "libexec_start.h"
@@ -16,15 +17,31 @@ inline int mpiWorldSize() {
   return std::getenv("PMIX_RANK") ? 1 : 0;
 }
 
-// Under mpirun: becomes rayview-mpi, or, built without it, returns the exit code when there are several ranks
-// (each would render and write the whole image). Returns -1 to carry on as a single process.
+// This process's rank in the job (0 outside mpirun).
+inline int mpiWorldRank() {
+  if (const char* rank = std::getenv("OMPI_COMM_WORLD_RANK")) return std::atoi(rank);
+  if (const char* rank = std::getenv("PMIX_RANK")) return std::atoi(rank);
+  return 0;
+}
+
+// Under mpirun with several ranks: becomes rayview-mpi, or, built without it, returns the exit code (each rank would
+// render and write the whole image). Returns -1 to carry on as a single process: outside mpirun, and at one rank,
+// where there is nothing to share and MPI's start would only cost time.
 inline int handOffToMpi(char** argv) {
-  const int ranks = mpiWorldSize();
-  if (ranks == 0) return -1;
+  if (mpiWorldSize() <= 1) return -1;
   execLibexecProgram("rayview-mpi", argv);
-  if (ranks == 1) return -1;
   std::fprintf(stderr, "rayview: error: this rayview was built without MPI; run `rayview render` without mpirun\n");
   return kExitBadInput;
+}
+
+// The viewer under mpirun with several ranks: rank 0 becomes the window (rayview-mpi-viewer), the others trace its
+// passes (rayview-mpi). Returns the exit code when neither can start; -1 to open the window as a single process.
+inline int handOffViewerToMpi(char** argv) {
+  if (mpiWorldSize() <= 1) return -1;
+  const std::string why = execLibexecProgram(mpiWorldRank() == 0 ? "rayview-mpi-viewer" : "rayview-mpi", argv);
+  std::fprintf(stderr, "rayview: error: the viewer cannot run on several ranks: %s; run it without mpirun\n",
+               why.c_str());
+  return kExitIoFailure;
 }
 
 }  // namespace rayview

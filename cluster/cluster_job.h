@@ -37,4 +37,8 @@ int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& fra
 // rank's exit code. Rank 0 reads the scene, deals the tiles, renders too, writes the image and the summary.
 int runClusterRender(const ClusterJob& job);
 
+// A rank other than 0 of `mpirun -n N rayview [SCENE]`: traces the passes of the viewer on rank 0
+// (cluster/viewer_farm.h) until its window closes. Returns this rank's exit code.
+int runViewWorker(int threads);
+
 }  // namespace rayview::cluster

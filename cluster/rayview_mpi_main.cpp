@@ -35,6 +35,20 @@ int runFrames(const rayview::CommandLine& command, const rayview::cluster::Clust
   return cluster::runClusterFrames(job, frames, planCode);
 }
 
+// Rank 0 of a viewer job is the window (libexec/rayview-mpi-viewer); this program is every rank of a render job.
+int runCommand(const rayview::CommandLine& command) {
+  using namespace rayview;
+  if (command.kind == CommandKind::View) return cluster::runViewWorker(command.threads);
+  if (command.kind != CommandKind::Render) {
+    std::fprintf(stderr, "rayview: error: under mpirun only `rayview render` and the viewer run on several ranks\n");
+    return kExitBadInput;
+  }
+  const cluster::ClusterJob job{command.scenePath, command.outputPath, command.strict, command.quiet, command.threads,
+                                command.knobs};
+  if (isFrameCommand(command)) return runFrames(command, job);
+  return cluster::runClusterRender(job);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -53,17 +67,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
     code = kExitBadInput;
   }
-  if (code == kExitOk && command.kind != CommandKind::Render) {
-    std::fprintf(stderr, "rayview: error: under mpirun only `rayview render` runs on several ranks\n");
-    code = kExitBadInput;
-  }
-  const cluster::ClusterJob job{command.scenePath, command.outputPath, command.strict, command.quiet, command.threads,
-                                command.knobs};
-  if (code == kExitOk && isFrameCommand(command)) {
-    code = runFrames(command, job);
-  } else if (code == kExitOk) {
-    code = cluster::runClusterRender(job);
-  }
+  if (code == kExitOk) code = runCommand(command);
   std::fflush(stdout);
   std::fflush(stderr);
   // With a rank gone, MPI_Finalize would wait for it: end here (the image, if any, is written whole already).

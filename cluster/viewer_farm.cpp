@@ -1,0 +1,313 @@
+#include "viewer_farm.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "mpi_link.h"
+#include "rayview/grid_render.h"
+#include "tile_dealer.h"
+#include "tile_exchange.h"
+#include "tile_plan.h"
+#include "view_codec.h"
+#include "view_messages.h"
+
+namespace rayview::cluster {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Tiles a worker holds at once: one to trace, one on its way.
+constexpr int kDepth = 2;
+// A worker holding tiles and silent this long is left out, its tiles dealt to the others (a viewer's tile takes
+// milliseconds; this is a rank that stopped, not a slow one).
+constexpr auto kSilentFor = std::chrono::seconds(10);
+
+template <class T>
+std::vector<std::uint8_t> bytesOf(const T& value) {
+  std::vector<std::uint8_t> bytes(sizeof value);
+  std::memcpy(bytes.data(), &value, sizeof value);
+  return bytes;
+}
+
+PixelBatchFunction traceFunction(const PixelSource& source, int sample) {
+  if (sample < 0)
+    return [&source](const PixelXY* p, int n, Color* out, RayCounts& c) { source.pixels(p, n, out, c); };
+  return [&source, sample](const PixelXY* p, int n, Color* out, RayCounts& c) { source.samples(p, n, sample, out, c); };
+}
+
+}  // namespace
+
+struct ViewerFarm::Outgoing {
+  std::vector<std::uint8_t> bytes;
+  MPI_Request request = MPI_REQUEST_NULL;
+};
+
+// One pass: its tiles dealt to the workers and to rank 0's own thread, their pixels handed to the sink as they come.
+class ViewerFarm::Pass {
+ public:
+  Pass(ViewerFarm& farm, const PixelSource& source, const FarmPass& pass, const FarmSink& sink)
+      : farm_(farm), source_(source), pass_(pass), sink_(sink),
+        tiles_(clusterTiles((source.width() + pass.stride - 1) / pass.stride,
+                            (source.height() + pass.stride - 1) / pass.stride, farm.ranks_)),
+        dealer_(tiles_.size()), held_(static_cast<std::size_t>(farm.ranks_), 0),
+        lastHeard_(static_cast<std::size_t>(farm.ranks_), Clock::now()) {}
+
+  bool run(const std::function<bool()>& stopped, RayCounts& rays) {
+    std::thread local([this] { traceOwnShare(); });
+    for (int w = 1; w < farm_.ranks_; ++w) deal(w);
+    auto pause = kProbePause;
+    bool complete = false;
+    for (;;) {
+      bool progressed = takeLocal(rays);
+      progressed = receiveOne(rays) || progressed;
+      if (dealer_.allFinished()) {
+        complete = true;
+        break;
+      }
+      if (stopped()) break;
+      if (progressed) {
+        pause = kProbePause;
+        continue;
+      }
+      watchWorkers();
+      std::this_thread::sleep_for(pause);
+      pause = std::min(pause * 2, kLongestProbePause);
+    }
+    dealer_.stop();
+    local.join();
+    takeLocal(rays);
+    return complete;
+  }
+
+ private:
+  struct LocalTile {
+    std::size_t tile;
+    std::vector<PixelXY> pixels;
+    std::vector<Color> colors;
+    RayCounts rays;
+  };
+
+  // Rank 0's own share, on a thread of its own: the calling thread stays free to deal and receive.
+  void traceOwnShare() {
+    while (const auto tile = dealer_.takeOrWait(0)) {
+      LocalTile done{*tile, {}, {}, {}};
+      gridTilePixels(tiles_[*tile], pass_.stride, pass_.skipStride, done.pixels);
+      traceColors(traceFunction(source_, pass_.sample), done.pixels, farm_.pool_, done.colors, done.rays);
+      std::lock_guard lock(localMutex_);
+      local_.push_back(std::move(done));
+    }
+  }
+
+  bool takeLocal(RayCounts& rays) {
+    std::deque<LocalTile> done;
+    {
+      std::lock_guard lock(localMutex_);
+      done.swap(local_);
+    }
+    for (LocalTile& t : done) {
+      rays += t.rays;
+      if (!dealer_.finish(t.tile, 0)) continue;
+      ++farm_.tilesTraced_[0];
+      sink_(t.pixels.data(), t.colors.data(), static_cast<int>(t.pixels.size()));
+    }
+    return !done.empty();
+  }
+
+  void deal(int worker) {
+    while (!farm_.lost_[worker] && held_[worker] < kDepth) {
+      const auto tile = dealer_.take(worker);
+      if (!tile) return;
+      if (held_[worker] == 0) lastHeard_[worker] = Clock::now();
+      ++held_[worker];
+      const Tile& t = tiles_[*tile];
+      const ViewTileRequest request{farm_.passSerial_, pass_.generation, static_cast<std::int32_t>(*tile),
+                                    pass_.stride, pass_.skipStride, pass_.sample, t.x0, t.y0, t.x1, t.y1};
+      farm_.sendTo(worker, kTagViewTile, bytesOf(request));
+    }
+  }
+
+  bool receiveOne(RayCounts& rays) {
+    MPI_Status status;
+    if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) return false;
+    const int worker = status.MPI_SOURCE;
+    int bytes = 0;
+    MPI_Get_count(&status, MPI_BYTE, &bytes);
+    inbox_.resize(static_cast<std::size_t>(bytes) + 1);
+    MPI_Recv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    lastHeard_[worker] = Clock::now();
+    if (status.MPI_TAG == kTagViewProblem) {
+      std::fprintf(stderr, "rayview: error: rank %d cannot trace: %.*s; the other ranks go on without it\n", worker,
+                   bytes, reinterpret_cast<const char*>(inbox_.data()));
+      lose(worker);
+    } else if (status.MPI_TAG == kTagViewResult && static_cast<std::size_t>(bytes) >= sizeof(ViewTileResultHeader)) {
+      takeResult(worker, static_cast<std::size_t>(bytes), rays);
+    }
+    return true;
+  }
+
+  void takeResult(int worker, std::size_t bytes, RayCounts& rays) {
+    ViewTileResultHeader header;
+    std::memcpy(&header, inbox_.data(), sizeof header);
+    if (header.pass != farm_.passSerial_) return;  // a late result of an earlier pass
+    if (held_[worker] > 0) --held_[worker];
+    const auto tile = static_cast<std::size_t>(header.tile);
+    if (tile < tiles_.size()) {
+      gridTilePixels(tiles_[tile], pass_.stride, pass_.skipStride, pixels_);
+      const std::size_t expected = sizeof header + pixels_.size() * sizeof(Color);
+      if (bytes == expected && static_cast<std::size_t>(header.pixels) == pixels_.size() && dealer_.finish(tile, worker)) {
+        colors_.resize(pixels_.size());
+        std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
+        rays += RayCounts{header.camera, header.shadow, header.reflection};
+        ++farm_.tilesTraced_[worker];
+        sink_(pixels_.data(), colors_.data(), static_cast<int>(pixels_.size()));
+      }
+    }
+    deal(worker);
+  }
+
+  void watchWorkers() {
+    const auto now = Clock::now();
+    for (int w = 1; w < farm_.ranks_; ++w) {
+      if (farm_.lost_[w]) continue;
+      if (held_[w] > 0 && now - lastHeard_[w] > kSilentFor) {
+        std::fprintf(stderr, "rayview: warning: rank %d fell silent; the other ranks go on without it\n", w);
+        lose(w);
+        continue;
+      }
+      deal(w);
+    }
+  }
+
+  void lose(int worker) {
+    farm_.lost_[worker] = true;
+    held_[worker] = 0;
+    dealer_.reclaim(worker);
+  }
+
+  ViewerFarm& farm_;
+  const PixelSource& source_;
+  FarmPass pass_;
+  const FarmSink& sink_;
+  std::vector<Tile> tiles_;
+  TileDealer dealer_;
+  std::vector<int> held_;
+  std::vector<Clock::time_point> lastHeard_;
+  std::mutex localMutex_;
+  std::deque<LocalTile> local_;
+  std::vector<std::uint8_t> inbox_;
+  std::vector<PixelXY> pixels_;
+  std::vector<Color> colors_;
+};
+
+ViewerFarm::ViewerFarm(int ranks, int threads)
+    : ranks_(std::max(ranks, 1)), pool_(threads), lost_(static_cast<std::size_t>(ranks_), false),
+      tilesTraced_(static_cast<std::size_t>(ranks_), 0) {}
+
+ViewerFarm::~ViewerFarm() = default;
+
+bool ViewerFarm::accepts(const PixelSource& source) const {
+  return !ended_ && dynamic_cast<const TracedImage*>(&source) != nullptr;
+}
+
+bool ViewerFarm::renderPass(const PixelSource& source, const FarmPass& pass, const FarmSink& sink,
+                            const std::function<bool()>& stopped, RayCounts& rays) {
+  ship(dynamic_cast<const TracedImage&>(source), pass.generation);
+  ++passSerial_;
+  Pass running(*this, source, pass, sink);
+  const bool complete = running.run(stopped, rays);
+  completeSends(false);
+  return complete;
+}
+
+// The geometry when it is new to the workers (a scene opened, another traversal), then this generation's parameters.
+void ViewerFarm::ship(const TracedImage& image, std::uint64_t generation) {
+  if (image.geometry() != shippedGeometry_) {
+    shippedGeometry_ = image.geometry();
+    ++geometrySerial_;
+    const PreparedGeometry& geometry = *shippedGeometry_;
+    Bytes bytes = bytesOf(geometrySerial_);
+    const Bytes body = encodeGeometry(*geometry.source, geometry.shading.origin, geometry.accel->kind());
+    bytes.insert(bytes.end(), body.begin(), body.end());
+    for (int w = 1; w < ranks_; ++w)
+      if (!lost_[w]) sendTo(w, kTagViewGeometry, bytes);
+  }
+  if (generation == shippedGeneration_) return;
+  shippedGeneration_ = generation;
+  Bytes bytes = bytesOf(ViewSnapshotHeader{generation, geometrySerial_});
+  const Bytes body = encodeSnapshot(*image.parameters(), image.settings());
+  bytes.insert(bytes.end(), body.begin(), body.end());
+  for (int w = 1; w < ranks_; ++w)
+    if (!lost_[w]) sendTo(w, kTagViewSnapshot, bytes);
+}
+
+void ViewerFarm::sendTo(int worker, int tag, std::vector<std::uint8_t> bytes) {
+  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
+    std::fprintf(stderr, "rayview: error: the scene is too large to send to rank %d (over 2 GB); it is left out\n",
+                 worker);
+    lost_[worker] = true;
+    return;
+  }
+  auto message = std::make_unique<Outgoing>();
+  message->bytes = std::move(bytes);
+  MPI_Isend(message->bytes.data(), static_cast<int>(message->bytes.size()), MPI_BYTE, worker, tag, MPI_COMM_WORLD,
+            &message->request);
+  outbox_.push_back(std::move(message));
+  completeSends(false);
+}
+
+void ViewerFarm::completeSends(bool all) {
+  const auto deadline = Clock::now() + std::chrono::seconds(5);
+  do {
+    std::erase_if(outbox_, [](const std::unique_ptr<Outgoing>& message) {
+      int done = 0;
+      MPI_Test(&message->request, &done, MPI_STATUS_IGNORE);
+      return done != 0;
+    });
+    if (!all || outbox_.empty()) return;
+    std::this_thread::sleep_for(kProbePause);
+  } while (Clock::now() < deadline);
+}
+
+void ViewerFarm::shutdown() {
+  if (ended_) return;
+  ended_ = true;
+  for (int w = 1; w < ranks_; ++w) sendTo(w, kTagViewQuit, {});
+  // Every worker's last message is its goodbye: what it sent before (late results) is read and dropped.
+  std::vector<bool> gone(static_cast<std::size_t>(ranks_), false);
+  int waiting = ranks_ - 1;
+  std::vector<std::uint8_t> inbox;
+  const auto deadline = Clock::now() + std::chrono::seconds(5);
+  while (waiting > 0 && Clock::now() < deadline) {
+    MPI_Status status;
+    if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) {
+      completeSends(false);
+      std::this_thread::sleep_for(kLongestProbePause);
+      continue;
+    }
+    int bytes = 0;
+    MPI_Get_count(&status, MPI_BYTE, &bytes);
+    inbox.resize(static_cast<std::size_t>(bytes) + 1);
+    MPI_Recv(inbox.data(), bytes, MPI_BYTE, status.MPI_SOURCE, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    if (status.MPI_TAG == kTagViewBye && !gone[status.MPI_SOURCE]) {
+      gone[status.MPI_SOURCE] = true;
+      --waiting;
+    }
+  }
+  completeSends(true);
+  if (waiting > 0) notePeerLost();
+  // Who traced what, for the user deciding how many ranks are worth it (and for the tests).
+  std::printf("tiles traced:");
+  for (int r = 0; r < ranks_; ++r) std::printf(" rank %d %zu%s", r, tilesTraced_[r], r + 1 < ranks_ ? "," : "\n");
+  std::fflush(stdout);
+}
+
+}  // namespace rayview::cluster

@@ -1,0 +1,52 @@
+#pragma once
+// The viewer as rank 0 of an MPI job: the other ranks trace its passes. Rank 0 ships its scene's geometry to them
+// once per scene (and traversal), a parameter snapshot per edit, and deals each pass's tiles to them and to its own
+// threads; the progressive renderer puts the pixels together exactly as it does in one process. MPI is called
+// only from the thread that calls renderPass (the renderer's controller) and, once it has ended, from the one
+// that calls shutdown(): MPI_THREAD_SERIALIZED.
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "rayview/pass_farm.h"
+#include "rayview/prepared_scene.h"
+#include "rayview/thread_pool.h"
+
+namespace rayview::cluster {
+
+class ViewerFarm final : public PassFarm {
+ public:
+  ViewerFarm(int ranks, int threads);
+  ~ViewerFarm() override;
+
+  bool accepts(const PixelSource& source) const override;
+  bool renderPass(const PixelSource& source, const FarmPass& pass, const FarmSink& sink,
+                  const std::function<bool()>& stopped, RayCounts& rays) override;
+
+  // Tells every worker to end and waits (a few seconds at most) until each has said goodbye. Call once the
+  // viewer, and with it the renderer's controller thread, is gone.
+  void shutdown();
+
+  int ranks() const { return ranks_; }
+
+ private:
+  class Pass;
+  void ship(const TracedImage& image, std::uint64_t generation);
+  void sendTo(int worker, int tag, std::vector<std::uint8_t> bytes);
+  void completeSends(bool all);
+
+  int ranks_;
+  ThreadPool pool_;  // rank 0's own share of each pass
+  std::vector<bool> lost_;  // per rank: said it cannot trace, or fell silent; dealt no more tiles
+  std::vector<std::size_t> tilesTraced_;  // per rank: tiles whose pixels were used
+  std::shared_ptr<const PreparedGeometry> shippedGeometry_;
+  std::uint64_t geometrySerial_ = 0;
+  std::uint64_t shippedGeneration_ = 0;
+  std::uint64_t passSerial_ = 0;
+  struct Outgoing;
+  std::vector<std::unique_ptr<Outgoing>> outbox_;
+  bool ended_ = false;
+};
+
+}  // namespace rayview::cluster
