@@ -117,12 +117,18 @@ int runClusterRender(const ClusterJob& job) {
   ThreadPool pool(job.threads);
   const Tracer tracer(scene.parameters(), *geometry, settings);
   const std::vector<Tile> tiles = clusterTiles(scene.camera.width, scene.camera.height, ranks);
-  if (rank != 0) return workOnTiles(tracer, tiles, rank, pool, 0);
+  const std::vector<WorkUnit> units = tileUnits(tiles);
+  const TracerFor tracerFor = [&tracer](int) -> const Tracer& { return tracer; };
+  if (rank != 0) return workOnUnits(units, tracerFor, rank, pool, 0);
 
-  Image image(scene.camera.width, scene.camera.height);
+  Image image;
+  FrameAssembly assembly(units, [&image](int, Image&& finished) {
+    image = std::move(finished);
+    return true;
+  });
   const auto renderStart = Clock::now();
   std::vector<bool> lost(static_cast<std::size_t>(ranks), false);
-  const ExchangeResult result = coordinateTiles(tracer, tiles, ranks, pool, image, 0, lost);
+  const ExchangeResult result = coordinateUnits(units, assembly, ranks, pool, tracerFor, 0, lost);
   const double renderMs = msSince(renderStart);
   const auto writeStart = Clock::now();
   try {
