@@ -23,7 +23,9 @@ std::atomic<std::size_t> gPlaced{0};
 std::atomic<std::size_t> gPlanned{0};
 std::atomic<bool> gPeerLost{false};
 
-// Tiles a worker holds at once: one to render, one on its way, so that it never waits for the next.
+// Tiles a worker holds at once: one to render, one on its way, so that it never waits for the next. A whole frame
+// fills a worker alone: a second one waiting behind it could leave the other ranks idle at the run's end, and a
+// frame's round trip is small next to its render.
 constexpr int kDepth = 2;
 // An idle worker hears from rank 0 this often, so that its own watch on rank 0 stays quiet.
 constexpr auto kNudgeEvery = std::chrono::milliseconds(1000);
@@ -73,6 +75,7 @@ class Coordinator {
 
  private:
   int ranks() const { return static_cast<int>(tally_.size()); }
+  int weight(std::size_t unit) const { return units_[unit].whole ? kDepth : 1; }
 
   // Rank 0's own share, on a thread of its own: the main thread stays free to deal.
   void renderOwnShare(const TracerFor& tracerFor, ThreadPool& pool) {
@@ -118,7 +121,7 @@ class Coordinator {
       const auto tile = dealer_.take(worker);
       if (!tile) return;
       if (held_[worker] == 0) lastHeard_[worker] = Clock::now();  // its silence counts from now
-      ++held_[worker];
+      held_[worker] += weight(*tile);
       send(worker, static_cast<std::int32_t>(*tile));
     }
   }
@@ -163,7 +166,7 @@ class Coordinator {
     count(tally_[worker], unit, header.busyMs, RayCounts{header.camera, header.shadow, header.reflection});
     // A late result from a rank declared lost still counts, if no one else finished the unit first.
     if (dealer_.finish(unit, worker)) place(unit, inbox_.data() + sizeof header);
-    if (held_[worker] > 0) --held_[worker];
+    held_[worker] = std::max(0, held_[worker] - weight(unit));
     deal(worker);
   }
 
