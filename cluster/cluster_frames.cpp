@@ -48,7 +48,9 @@ std::vector<ClusterFrame> broadcastFrames(int rank, const std::vector<ClusterFra
 }
 
 struct FrameTotals {
-  explicit FrameTotals(std::size_t frames, int ranks) : progress(frames), ranks(static_cast<std::size_t>(ranks)) {}
+  explicit FrameTotals(std::size_t frames, int ranks)
+      : total(frames), progress(frames), ranks(static_cast<std::size_t>(ranks)) {}
+  std::size_t total;
   FrameProgress progress;
   std::vector<RankTally> ranks;
 };
@@ -97,8 +99,10 @@ int renderRun(const ClusterJob& job, const std::vector<ClusterFrame>& frames, st
   FrameAssembly assembly(units, [&](int frame, Image&& image) {
     const ClusterFrame& f = frames[first + static_cast<std::size_t>(frame)];
     code = writeFrameFile(f.output, std::move(image));
-    if (code == kExitOk) totals.progress.frameWritten(f.output, job.quiet);
-    return code == kExitOk;
+    if (code != kExitOk) return false;
+    totals.progress.frameWritten(f.output, job.quiet);
+    noteFrames(totals.progress.written(), totals.total);
+    return true;
   });
   const ExchangeResult result = coordinateUnits(units, assembly, ranks, pool, tracerFor, round, lost);
   for (std::size_t r = 0; r < result.ranks.size(); ++r) {
@@ -133,6 +137,10 @@ int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& pla
   ThreadPool pool(job.threads);
   std::vector<bool> lost(static_cast<std::size_t>(ranks), false);
   FrameTotals totals(frames.size(), ranks);
+  if (rank == 0) {
+    noteFrames(0, frames.size());
+    handleSignalsOnRankZero();
+  }
   for (std::size_t first = 0; first < frames.size();) {
     std::size_t end = first;
     while (end < frames.size() && frames[end].scenePath == frames[first].scenePath) ++end;

@@ -22,6 +22,8 @@ using Clock = std::chrono::steady_clock;
 std::atomic<std::size_t> gPlaced{0};
 std::atomic<std::size_t> gPlanned{0};
 std::atomic<bool> gPeerLost{false};
+std::atomic<std::size_t> gFramesWritten{0};
+std::atomic<std::size_t> gFramesPlanned{0};
 
 // Tiles a worker holds at once: one to render, one on its way, so that it never waits for the next. A whole frame
 // fills a worker alone: a second one waiting behind it could leave the other ranks idle at the run's end, and a
@@ -241,6 +243,12 @@ ExchangeResult coordinateUnits(const std::vector<WorkUnit>& units, FrameAssembly
 
 std::size_t tilesPlaced() { return gPlaced.load(std::memory_order_relaxed); }
 std::size_t tilesPlanned() { return gPlanned.load(std::memory_order_relaxed); }
+void noteFrames(std::size_t written, std::size_t total) {
+  gFramesWritten.store(written);
+  gFramesPlanned.store(total);
+}
+std::size_t framesWritten() { return gFramesWritten.load(std::memory_order_relaxed); }
+std::size_t framesPlanned() { return gFramesPlanned.load(std::memory_order_relaxed); }
 bool peerLost() { return gPeerLost.load(); }
 void notePeerLost() { gPeerLost.store(true); }
 

@@ -42,9 +42,16 @@ ExchangeResult coordinateUnits(const std::vector<WorkUnit>& units, FrameAssembly
 // (kExitIoFailure when rank 0 fell silent).
 int workOnUnits(const std::vector<WorkUnit>& units, const TracerFor& tracerFor, int rank, ThreadPool& pool, int round);
 
-// For the signal handler: units placed so far, and in all.
+// For the signal handler: units placed so far, and in all; of a run of frames, the frames written and asked.
 std::size_t tilesPlaced();
 std::size_t tilesPlanned();
+void noteFrames(std::size_t written, std::size_t total);
+std::size_t framesWritten();
+std::size_t framesPlanned();  // 0: a single image
+
+// Rank 0 stopped by a signal (mpirun ends the job so when a rank dies): the temporary file of the image being
+// written goes, and one line says how far the job got.
+void handleSignalsOnRankZero();
 
 // Whether a rank of this job was lost (or, on a worker, rank 0 said so or fell silent): MPI_Finalize would
 // wait for it for ever, so the process ends without it.

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rayview render under mpirun: the image is the single process's byte for byte, a bad scene fails once, a killed
-rank ends the job cleanly (or, with mpirun --enable-recovery, the survivors finish the same image)."""
+rank ends the job cleanly (or, with mpirun --enable-recovery, the survivors finish the same image); turntables give
+the single process's frames, dealt whole to ranks, and a killed one is finished by a rerun."""
 import argparse
 import os
 import shutil
@@ -51,6 +52,7 @@ def main():
     slow = [os.path.join(conformance, "monkey.xml"), "--samples", "9"]
     t.killed_rank(slow, recovery=False)
     t.killed_rank(slow, recovery=True)
+    t.killed_turntable([os.path.join(conformance, "monkey.xml"), "--samples", "4"])
     print(f"{t.passed} passed, {len(t.failures)} failed")
     for failure in t.failures:
         print("FAIL:", failure)
@@ -118,6 +120,40 @@ class Tester:
                              timeout=120)
         self.check(run.returncode == 0 and f"{count - 1} complete already, 1 to render" in run.stdout and same(),
                    f"{what}, rerun: {run.stdout}{run.stderr}")
+
+    def killed_turntable(self, scene_args):
+        """Rank 1 killed in a turntable under plain mpirun: the job ends, the frames written stay whole, and a rerun
+        renders only the others."""
+        directory = os.path.join(self.args.scratch, "killed_turntable")
+        spread = os.path.join(directory, "f_%02d.png")
+        frames = ["--turntable", "12"]
+        job = subprocess.Popen(self.mpirun(3, [*scene_args, *frames, "-o", spread, "--threads", "1"]),
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        start = time.monotonic()
+        victim = None
+        while victim is None and job.poll() is None and time.monotonic() - start < 20:
+            time.sleep(0.05)
+            victim = rank_process(job.pid, 1, started_rendering=True)
+        if victim is None:
+            job.kill()
+            self.check(False, "killed turntable: rank 1 never started rendering")
+            return
+        os.kill(victim, signal.SIGKILL)
+        try:
+            _, stderr = job.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            job.kill()
+            self.check(False, "killed turntable: the job hangs after rank 1 was killed")
+            return
+        written = sorted(os.listdir(directory)) if os.path.isdir(directory) else []
+        self.check(job.returncode != 0 and "frames written" in stderr and len(written) < 12,
+                   f"killed turntable: exit {job.returncode}, {len(written)} files:\n{stderr}")
+        self.check(all(f.endswith(".png") for f in written), f"killed turntable: temporary files left: {written}")
+        self.check(not any(rank_process(job.pid, r) for r in range(3)), "killed turntable: a rank is still running")
+        run = subprocess.run(self.mpirun(2, [*scene_args, *frames, "-o", spread]), capture_output=True, text=True,
+                             timeout=120)
+        self.check(run.returncode == 0 and f"{len(written)} complete already, {12 - len(written)} to render" in run.stdout
+                   and len(os.listdir(directory)) == 12, f"killed turntable, rerun: {run.stdout}{run.stderr}")
 
     def bad_scene(self):
         bad = os.path.join(self.args.scratch, "bad.xml")
