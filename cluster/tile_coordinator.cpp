@@ -40,7 +40,8 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
 class Coordinator {
  public:
   Coordinator(const std::vector<WorkUnit>& units, int ranks, FrameAssembly& assembly, int round)
-      : units_(units), assembly_(assembly), round_(round), dealer_(units.size()), tally_(static_cast<std::size_t>(ranks)),
+      : units_(units), assembly_(assembly), round_(round), dealer_(units.size()),
+        tally_(static_cast<std::size_t>(ranks)),
         held_(static_cast<std::size_t>(ranks), 0), lastHeard_(static_cast<std::size_t>(ranks), Clock::now()),
         lastSent_(static_cast<std::size_t>(ranks), Clock::now()) {}
 

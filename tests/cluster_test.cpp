@@ -83,9 +83,10 @@ TEST(FrameUnits, WholeFramesWhileAsManyRemainAsRanksThenTilesCoveringEachFrameOn
   std::vector<std::vector<int>> covered(7, std::vector<int>(static_cast<std::size_t>(w) * h, 0));
   std::vector<int> whole(7, 0), tiles(7, 0);
   for (const WorkUnit& u : units) {
-    ++(u.whole ? whole : tiles)[static_cast<std::size_t>(u.frame)];
+    const auto f = static_cast<std::size_t>(u.frame);
+    ++(u.whole ? whole : tiles)[f];
     for (int y = u.tile.y0; y < u.tile.y1; ++y)
-      for (int x = u.tile.x0; x < u.tile.x1; ++x) ++covered[static_cast<std::size_t>(u.frame)][static_cast<std::size_t>(y) * w + x];
+      for (int x = u.tile.x0; x < u.tile.x1; ++x) ++covered[f][static_cast<std::size_t>(y) * w + x];
   }
   for (int f = 0; f < 7; ++f) {
     // 7 frames on 3 ranks: frames 0-4 leave at least 3 to do, the last 2 are tiled.
@@ -112,7 +113,8 @@ TEST(FrameAssembly, HandsEachFrameOnOnceWithEveryUnitInPlace) {
     std::vector<std::uint8_t> rgb;
     for (int y = u.tile.y0; y < u.tile.y1; ++y)
       for (int x = u.tile.x0; x < u.tile.x1; ++x)
-        rgb.insert(rgb.end(), {static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(y), static_cast<std::uint8_t>(u.frame)});
+        rgb.insert(rgb.end(),
+                   {static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(y), static_cast<std::uint8_t>(u.frame)});
     return rgb;
   };
   for (std::size_t k = units.size(); k-- > 0;) {  // out of order, as results arrive

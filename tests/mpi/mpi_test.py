@@ -152,8 +152,9 @@ class Tester:
         self.check(not any(rank_process(job.pid, r) for r in range(3)), "killed turntable: a rank is still running")
         run = subprocess.run(self.mpirun(2, [*scene_args, *frames, "-o", spread]), capture_output=True, text=True,
                              timeout=120)
-        self.check(run.returncode == 0 and f"{len(written)} complete already, {12 - len(written)} to render" in run.stdout
-                   and len(os.listdir(directory)) == 12, f"killed turntable, rerun: {run.stdout}{run.stderr}")
+        rest = f"{len(written)} complete already, {12 - len(written)} to render"
+        self.check(run.returncode == 0 and rest in run.stdout and len(os.listdir(directory)) == 12,
+                   f"killed turntable, rerun: {run.stdout}{run.stderr}")
 
     def bad_scene(self):
         bad = os.path.join(self.args.scratch, "bad.xml")
