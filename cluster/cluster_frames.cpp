@@ -1,25 +1,20 @@
 #include <mpi.h>
 
-#include <chrono>
+#include <algorithm>
 #include <cstdio>
+#include <memory>
 #include <string>
-#include <system_error>
 
 #include "cluster_job.h"
 #include "exit_codes.h"
-#include "rayview/image.h"
-#include "rayview/prepared_scene.h"
-#include "rayview/scene_bounds.h"
+#include "frame_scene.h"
+#include "frame_units.h"
 #include "rayview/thread_pool.h"
-#include "rayview/tracer.h"
 #include "scene_distribution.h"
 #include "tile_exchange.h"
-#include "tile_plan.h"
 
 namespace rayview::cluster {
 namespace {
-
-using Clock = std::chrono::steady_clock;
 
 // Rank 0's frames to every rank, as text: scene, frame, frames, output, one field a line.
 std::vector<ClusterFrame> broadcastFrames(int rank, const std::vector<ClusterFrame>& frames, int& code) {
@@ -53,47 +48,78 @@ std::vector<ClusterFrame> broadcastFrames(int rank, const std::vector<ClusterFra
 }
 
 struct FrameTotals {
+  explicit FrameTotals(std::size_t frames, int ranks)
+      : total(frames), progress(frames), ranks(static_cast<std::size_t>(ranks)) {}
+  std::size_t total;
+  FrameProgress progress;
   std::vector<RankTally> ranks;
-  std::size_t written = 0;
-  Clock::time_point start = Clock::now();
 };
 
-// Rank 0's side of one frame: deal, write, say how far the job is.
-int coordinateFrame(const Tracer& tracer, const Camera& camera, const ClusterFrame& frame, int sequence, int ranks,
-                    ThreadPool& pool, std::vector<bool>& lost, FrameTotals& totals, std::size_t total, bool quiet) {
-  Image image(camera.width, camera.height);
-  const ExchangeResult result =
-      coordinateTiles(tracer, clusterTiles(camera.width, camera.height, ranks), ranks, pool, image, sequence, lost);
+// The tracer of the frame a thread renders, built again only when its frame changes: the one thread that renders
+// on a rank (rank 0's render thread, a worker's tile thread) is its only caller.
+class RunTracers {
+ public:
+  RunTracers(const FrameScene& scene, const std::vector<ClusterFrame>& frames, std::size_t first)
+      : scene_(scene), frames_(frames), first_(first) {}
+  const Tracer& operator()(int frame) {
+    if (!current_ || frame != frame_) {
+      const ClusterFrame& f = frames_[first_ + static_cast<std::size_t>(frame)];
+      current_ = scene_.frame(f.frame, f.frames);
+      frame_ = frame;
+    }
+    return current_->tracer;
+  }
+
+ private:
+  const FrameScene& scene_;
+  const std::vector<ClusterFrame>& frames_;
+  std::size_t first_;
+  std::unique_ptr<FrameTracer> current_;
+  int frame_ = -1;
+};
+
+// The frames [first, end) of one scene on every rank: the scene loaded once, its frames dealt as units
+// (frame_units.h); rank 0 writes each frame as its last unit comes in. Returns this rank's exit code.
+int renderRun(const ClusterJob& job, const std::vector<ClusterFrame>& frames, std::size_t first, std::size_t end,
+              int rank, int ranks, ThreadPool& pool, std::vector<bool>& lost, FrameTotals& totals) {
+  ClusterJob sceneJob = job;
+  sceneJob.scenePath = frames[first].scenePath;
+  sceneJob.output = frames[first].output;
+  DistributedScene distributed;
+  if (const int failed = distributeScene(sceneJob, rank, ranks, distributed); failed != kExitOk) return failed;
+  const FrameScene scene(distributed.scene, distributed.settings);
+  const Camera& camera = scene.scene().camera;  // every frame of a turntable keeps the lens: the same size
+  const std::vector<WorkUnit> units = frameUnits(static_cast<int>(end - first), camera.width, camera.height, ranks);
+  RunTracers tracers(scene, frames, first);
+  const TracerFor tracerFor = [&tracers](int frame) -> const Tracer& { return tracers(frame); };
+  // The run's first frame numbers it: a late result of an earlier run is recognised and dropped.
+  const int round = static_cast<int>(first);
+  if (rank != 0) return workOnUnits(units, tracerFor, rank, pool, round);
+  int code = kExitOk;
+  FrameAssembly assembly(units, [&](int frame, Image&& image) {
+    const ClusterFrame& f = frames[first + static_cast<std::size_t>(frame)];
+    code = writeFrameFile(f.output, std::move(image));
+    if (code != kExitOk) return false;
+    totals.progress.frameWritten(f.output, job.quiet);
+    noteFrames(totals.progress.written(), totals.total);
+    return true;
+  });
+  const ExchangeResult result = coordinateUnits(units, assembly, ranks, pool, tracerFor, round, lost);
   for (std::size_t r = 0; r < result.ranks.size(); ++r) {
     totals.ranks[r].busyMs += result.ranks[r].busyMs;
     totals.ranks[r].tiles += result.ranks[r].tiles;
+    totals.ranks[r].frames += result.ranks[r].frames;
   }
-  try {
-    std::error_code ignored;
-    if (frame.output.has_parent_path()) std::filesystem::create_directories(frame.output.parent_path(), ignored);
-    writeImageFile(frame.output, std::move(image));
-  } catch (const ImageIoError& error) {
-    std::fprintf(stderr, "rayview: error: %s\n", error.what());
-    return kExitIoFailure;
-  }
-  ++totals.written;
-  if (!quiet) {
-    const double elapsed = std::chrono::duration<double>(Clock::now() - totals.start).count();
-    const std::size_t left = total - totals.written;
-    std::fprintf(stderr, "rayview: frame %zu of %zu written (%s); %zu remaining, about %.0f s left\n", totals.written,
-                 total, frame.output.filename().c_str(), left,
-                 elapsed / static_cast<double>(totals.written) * static_cast<double>(left));
-  }
-  return kExitOk;
+  return code;
 }
 
 void printFrameSummary(const FrameTotals& totals) {
   double maxBusy = 0.0, sumBusy = 0.0;
   for (const RankTally& rank : totals.ranks) maxBusy = std::max(maxBusy, rank.busyMs), sumBusy += rank.busyMs;
-  std::printf("time       %.1f s for %zu frames\n", std::chrono::duration<double>(Clock::now() - totals.start).count(),
-              totals.written);
+  std::printf("time       %.1f s for %zu frames\n", totals.progress.seconds(), totals.progress.written());
   for (std::size_t r = 0; r < totals.ranks.size(); ++r)
-    std::printf("rank %-5zu busy %.1f ms, %zu tiles\n", r, totals.ranks[r].busyMs, totals.ranks[r].tiles);
+    std::printf("rank %-5zu busy %.1f ms, %zu whole frames, %zu tiles\n", r, totals.ranks[r].busyMs,
+                totals.ranks[r].frames, totals.ranks[r].tiles);
   std::printf("balance    %.3f (mean/max busy time)\n",
               maxBusy > 0.0 ? sumBusy / static_cast<double>(totals.ranks.size()) / maxBusy : 1.0);
 }
@@ -110,40 +136,24 @@ int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& pla
   if (code != kExitOk) return code;
   ThreadPool pool(job.threads);
   std::vector<bool> lost(static_cast<std::size_t>(ranks), false);
-  FrameTotals totals;
-  totals.ranks.resize(static_cast<std::size_t>(ranks));
-  for (std::size_t next = 0; next < frames.size();) {
-    ClusterJob sceneJob = job;
-    sceneJob.scenePath = frames[next].scenePath;
-    sceneJob.output = frames[next].output;
-    DistributedScene distributed;
-    if (const int failed = distributeScene(sceneJob, rank, ranks, distributed); failed != kExitOk) return failed;
-    RenderSettings settings = distributed.settings;
-    const auto geometry = prepareGeometry(distributed.scene, settings.accel, BvhLayout::Fast);
-    if (!geometry->accelFallback.empty()) settings.accel = AccelKind::Reference;
-    const Scene& scene = *distributed.scene;
-    const glm::dvec3 pivot = orbitPivot(scene.camera, sceneBounds(scene));
-    for (; next < frames.size() && frames[next].scenePath == sceneJob.scenePath; ++next) {
-      SceneParameters parameters = scene.parameters();
-      parameters.camera = turntableCamera(scene.camera, pivot, frames[next].frame, frames[next].frames);
-      const Tracer tracer(parameters, *geometry, settings);
-      const Camera& camera = parameters.camera;
-      const int sequence = static_cast<int>(next);
-      if (rank != 0) {
-        if (const int failed = workOnTiles(tracer, clusterTiles(camera.width, camera.height, ranks), rank, pool, sequence);
-            failed != kExitOk || peerLost())
-          return failed;
-        continue;
-      }
-      if (const int failed = coordinateFrame(tracer, camera, frames[next], sequence, ranks, pool, lost, totals,
-                                             frames.size(), job.quiet);
-          failed != kExitOk)
-        return failed;
-      if (peerLost()) {
-        std::fprintf(stderr, "rayview: error: a rank was lost; %zu of %zu frames written, %zu not rendered (rerun the "
-                     "same command to render them)\n", totals.written, frames.size(), frames.size() - totals.written);
-        return kExitIoFailure;
-      }
+  FrameTotals totals(frames.size(), ranks);
+  if (rank == 0) {
+    noteFrames(0, frames.size());
+    handleSignalsOnRankZero();
+  }
+  for (std::size_t first = 0; first < frames.size();) {
+    std::size_t end = first;
+    while (end < frames.size() && frames[end].scenePath == frames[first].scenePath) ++end;
+    if (const int failed = renderRun(job, frames, first, end, rank, ranks, pool, lost, totals); failed != kExitOk)
+      return failed;
+    first = end;
+    // The next scene's broadcast is collective and would wait for a lost rank for ever.
+    if (peerLost() && first < frames.size()) {
+      if (rank == 0)
+        std::fprintf(stderr, "rayview: error: a rank was lost; %zu of %zu frames written, %zu not rendered (rerun "
+                     "the same command to render them)\n", totals.progress.written(), frames.size(),
+                     frames.size() - totals.progress.written());
+      return kExitIoFailure;
     }
   }
   if (rank == 0 && !job.quiet) printFrameSummary(totals);

@@ -34,23 +34,31 @@ char* writeNumber(char* at, std::size_t value) {
   return at;
 }
 
-// Rank 0 stopped by a signal (mpirun ends the job so when a rank dies): the temporary file goes, and the
-// message says how much of the image was not finished. Only async-signal-safe calls.
+// Only async-signal-safe calls: the counters are lock-free atomics.
 extern "C" void onRankZeroSignal(int signal) {
   if (const char* temporary = temporaryFileInProgress()) ::unlink(temporary);
-  char line[160];
+  char line[200];
   char* at = line;
   auto put = [&](const char* text) { while (*text) *at++ = *text++; };
   put("rayview: rank 0 stopped by signal ");
   at = writeNumber(at, static_cast<std::size_t>(signal));
   put(": ");
-  at = writeNumber(at, tilesPlanned() - tilesPlaced());
-  put(" of ");
-  at = writeNumber(at, tilesPlanned());
-  put(" tiles not finished; no image written\n");
+  if (framesPlanned() > 0) {
+    at = writeNumber(at, framesWritten());
+    put(" of ");
+    at = writeNumber(at, framesPlanned());
+    put(" frames written (rerun the same command to render the rest)\n");
+  } else {
+    at = writeNumber(at, tilesPlanned() - tilesPlaced());
+    put(" of ");
+    at = writeNumber(at, tilesPlanned());
+    put(" tiles not finished; no image written\n");
+  }
   (void)!::write(2, line, static_cast<std::size_t>(at - line));
   ::_exit(128 + signal);
 }
+
+}  // namespace
 
 void handleSignalsOnRankZero() {
   struct sigaction action {};
@@ -59,6 +67,8 @@ void handleSignalsOnRankZero() {
   sigaction(SIGINT, &action, nullptr);
   sigaction(SIGTERM, &action, nullptr);
 }
+
+namespace {
 
 std::string countedText(std::size_t count, const char* singular) {
   return std::to_string(count) + " " + singular + (count == 1 ? "" : "s");
@@ -117,12 +127,18 @@ int runClusterRender(const ClusterJob& job) {
   ThreadPool pool(job.threads);
   const Tracer tracer(scene.parameters(), *geometry, settings);
   const std::vector<Tile> tiles = clusterTiles(scene.camera.width, scene.camera.height, ranks);
-  if (rank != 0) return workOnTiles(tracer, tiles, rank, pool, 0);
+  const std::vector<WorkUnit> units = tileUnits(tiles);
+  const TracerFor tracerFor = [&tracer](int) -> const Tracer& { return tracer; };
+  if (rank != 0) return workOnUnits(units, tracerFor, rank, pool, 0);
 
-  Image image(scene.camera.width, scene.camera.height);
+  Image image;
+  FrameAssembly assembly(units, [&image](int, Image&& finished) {
+    image = std::move(finished);
+    return true;
+  });
   const auto renderStart = Clock::now();
   std::vector<bool> lost(static_cast<std::size_t>(ranks), false);
-  const ExchangeResult result = coordinateTiles(tracer, tiles, ranks, pool, image, 0, lost);
+  const ExchangeResult result = coordinateUnits(units, assembly, ranks, pool, tracerFor, 0, lost);
   const double renderMs = msSince(renderStart);
   const auto writeStart = Clock::now();
   try {

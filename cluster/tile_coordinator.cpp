@@ -22,8 +22,12 @@ using Clock = std::chrono::steady_clock;
 std::atomic<std::size_t> gPlaced{0};
 std::atomic<std::size_t> gPlanned{0};
 std::atomic<bool> gPeerLost{false};
+std::atomic<std::size_t> gFramesWritten{0};
+std::atomic<std::size_t> gFramesPlanned{0};
 
-// Tiles a worker holds at once: one to render, one on its way, so that it never waits for the next.
+// Tiles a worker holds at once: one to render, one on its way, so that it never waits for the next. A whole frame
+// fills a worker alone: a second one waiting behind it could leave the other ranks idle at the run's end, and a
+// frame's round trip is small next to its render.
 constexpr int kDepth = 2;
 // An idle worker hears from rank 0 this often, so that its own watch on rank 0 stays quiet.
 constexpr auto kNudgeEvery = std::chrono::milliseconds(1000);
@@ -35,23 +39,24 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
 
 class Coordinator {
  public:
-  Coordinator(const std::vector<Tile>& tiles, int ranks, Image& image, int frame)
-      : tiles_(tiles), image_(image), frame_(frame), dealer_(tiles.size()), tally_(static_cast<std::size_t>(ranks)),
+  Coordinator(const std::vector<WorkUnit>& units, int ranks, FrameAssembly& assembly, int round)
+      : units_(units), assembly_(assembly), round_(round), dealer_(units.size()),
+        tally_(static_cast<std::size_t>(ranks)),
         held_(static_cast<std::size_t>(ranks), 0), lastHeard_(static_cast<std::size_t>(ranks), Clock::now()),
         lastSent_(static_cast<std::size_t>(ranks), Clock::now()) {}
 
-  ExchangeResult run(const Tracer& tracer, ThreadPool& pool, std::vector<bool>& lost) {
+  ExchangeResult run(const TracerFor& tracerFor, ThreadPool& pool, std::vector<bool>& lost) {
     for (int w = 1; w < ranks(); ++w) tally_[w].lost = lost[w];
     if (ranks() == 1) {  // nobody to deal to: no coordinator polling beside the render
-      renderOwnShare(tracer, pool);
+      renderOwnShare(tracerFor, pool);
       return {tally_, dealer_.allFinished()};
     }
-    std::thread local([&] { renderOwnShare(tracer, pool); });
+    std::thread local([&] { renderOwnShare(tracerFor, pool); });
     for (int w = 1; w < ranks(); ++w) deal(w);
     // Each probe runs MPI's progress engine (microseconds of a core): the pause grows while nothing arrives, up to
     // where a worker, holding its next tile already, still never waits.
     auto pause = kProbePause;
-    while (!dealer_.allFinished()) {
+    while (!dealer_.allFinished() && !assembly_.failed()) {
       if (receiveOne()) {
         pause = kProbePause;
         continue;
@@ -60,8 +65,11 @@ class Coordinator {
       std::this_thread::sleep_for(pause);
       pause = std::min(pause * 2, kLongestProbePause);
     }
+    // A frame not written ends the job here, and the workers, a step behind rank 0, end without MPI_Finalize.
+    if (assembly_.failed()) gPeerLost.store(true);
     // Lost ranks too: one only slow (starved of CPU) then ends cleanly; to a dead one the send never completes.
     for (int w = 1; w < ranks(); ++w) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
+    dealer_.stop();  // a frame that could not be written ends the round with units left
     local.join();
     finishSends();
     for (int w = 1; w < ranks(); ++w) lost[w] = tally_[w].lost;
@@ -70,24 +78,32 @@ class Coordinator {
 
  private:
   int ranks() const { return static_cast<int>(tally_.size()); }
+  int weight(std::size_t unit) const { return units_[unit].whole ? kDepth : 1; }
 
   // Rank 0's own share, on a thread of its own: the main thread stays free to deal.
-  void renderOwnShare(const Tracer& tracer, ThreadPool& pool) {
+  void renderOwnShare(const TracerFor& tracerFor, ThreadPool& pool) {
     Image pixels;
-    while (const auto tile = dealer_.takeOrWait(0)) {
+    while (!assembly_.failed()) {
+      const auto unit = dealer_.takeOrWait(0);
+      if (!unit) break;
+      const WorkUnit& u = units_[*unit];
       const auto start = Clock::now();
       RayCounts rays;
-      renderTile(tracer, tiles_[*tile], pool, pixels, rays);
-      tally_[0].busyMs += msBetween(start, Clock::now());
-      tally_[0].rays += rays;
-      ++tally_[0].tiles;
-      if (dealer_.finish(*tile, 0)) place(*tile, pixels.rgb.data());
+      renderTile(tracerFor(u.frame), u.tile, pool, pixels, rays);
+      count(tally_[0], *unit, msBetween(start, Clock::now()), rays);
+      if (dealer_.finish(*unit, 0)) place(*unit, pixels.rgb.data());
     }
   }
 
-  void place(std::size_t tile, const std::uint8_t* rgb) {
-    placeTile(tiles_[tile], rgb, image_);
+  void count(RankTally& tally, std::size_t unit, double busyMs, const RayCounts& rays) {
+    tally.busyMs += busyMs;
+    tally.rays += rays;
+    ++(units_[unit].whole ? tally.frames : tally.tiles);
+  }
+
+  void place(std::size_t unit, const std::uint8_t* rgb) {
     gPlaced.fetch_add(1, std::memory_order_relaxed);
+    assembly_.place(unit, rgb);
   }
 
   void send(int worker, std::int32_t value) {
@@ -108,7 +124,7 @@ class Coordinator {
       const auto tile = dealer_.take(worker);
       if (!tile) return;
       if (held_[worker] == 0) lastHeard_[worker] = Clock::now();  // its silence counts from now
-      ++held_[worker];
+      held_[worker] += weight(*tile);
       send(worker, static_cast<std::int32_t>(*tile));
     }
   }
@@ -144,18 +160,16 @@ class Coordinator {
   void takeResult(int worker) {
     TileResultHeader header;
     std::memcpy(&header, inbox_.data(), sizeof header);
-    if (header.frame != frame_) return;  // a late result of an earlier frame
-    const auto tile = static_cast<std::size_t>(header.tile);
-    const Tile& t = tiles_.at(tile);
+    if (header.frame != round_) return;  // a late result of an earlier round
+    const auto unit = static_cast<std::size_t>(header.tile);
+    if (unit >= units_.size()) return;
+    const Tile& t = units_[unit].tile;
     const std::size_t expected = sizeof header + static_cast<std::size_t>(t.x1 - t.x0) * (t.y1 - t.y0) * 3;
     if (inbox_.size() - 1 != expected) return;
-    RankTally& tally = tally_[worker];
-    tally.busyMs += header.busyMs;
-    ++tally.tiles;
-    tally.rays += RayCounts{header.camera, header.shadow, header.reflection};
-    // A late result from a rank declared lost still counts, if no one else finished the tile first.
-    if (dealer_.finish(tile, worker)) place(tile, inbox_.data() + sizeof header);
-    if (held_[worker] > 0) --held_[worker];
+    count(tally_[worker], unit, header.busyMs, RayCounts{header.camera, header.shadow, header.reflection});
+    // A late result from a rank declared lost still counts, if no one else finished the unit first.
+    if (dealer_.finish(unit, worker)) place(unit, inbox_.data() + sizeof header);
+    held_[worker] = std::max(0, held_[worker] - weight(unit));
     deal(worker);
   }
 
@@ -179,10 +193,14 @@ class Coordinator {
     gPeerLost.store(true);
     held_[worker] = 0;
     const std::vector<std::size_t> back = dealer_.reclaim(worker);
-    std::fprintf(stderr,
-                 "rayview: warning: rank %d fell silent for %.0f s holding %zu unfinished tile%s; dealing %s to the "
-                 "other ranks\n",
-                 worker, std::chrono::duration<double>(kLostAfter).count(), back.size(), back.size() == 1 ? "" : "s",
+    std::size_t frames = 0;
+    for (std::size_t unit : back) frames += units_[unit].whole ? 1 : 0;
+    const std::size_t tiles = back.size() - frames;
+    auto counted = [](std::size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); };
+    std::string what = frames > 0 ? counted(frames, "unfinished frame") : counted(tiles, "unfinished tile");
+    if (frames > 0 && tiles > 0) what += " and " + counted(tiles, "tile");
+    std::fprintf(stderr, "rayview: warning: rank %d fell silent for %.0f s holding %s; dealing %s to the other "
+                 "ranks\n", worker, std::chrono::duration<double>(kLostAfter).count(), what.c_str(),
                  back.size() == 1 ? "it" : "them");
   }
 
@@ -202,9 +220,9 @@ class Coordinator {
     MPI_Request request;
   };
 
-  const std::vector<Tile>& tiles_;
-  Image& image_;
-  int frame_;
+  const std::vector<WorkUnit>& units_;
+  FrameAssembly& assembly_;
+  int round_;
   TileDealer dealer_;
   std::vector<RankTally> tally_;
   std::vector<int> held_;
@@ -216,16 +234,22 @@ class Coordinator {
 
 }  // namespace
 
-ExchangeResult coordinateTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int ranks, ThreadPool& pool,
-                               Image& image, int frame, std::vector<bool>& lost) {
-  gPlanned.store(tiles.size());
+ExchangeResult coordinateUnits(const std::vector<WorkUnit>& units, FrameAssembly& assembly, int ranks,
+                               ThreadPool& pool, const TracerFor& tracerFor, int round, std::vector<bool>& lost) {
+  gPlanned.store(units.size());
   gPlaced.store(0);
-  Coordinator coordinator(tiles, ranks, image, frame);
-  return coordinator.run(tracer, pool, lost);
+  Coordinator coordinator(units, ranks, assembly, round);
+  return coordinator.run(tracerFor, pool, lost);
 }
 
 std::size_t tilesPlaced() { return gPlaced.load(std::memory_order_relaxed); }
 std::size_t tilesPlanned() { return gPlanned.load(std::memory_order_relaxed); }
+void noteFrames(std::size_t written, std::size_t total) {
+  gFramesWritten.store(written);
+  gFramesPlanned.store(total);
+}
+std::size_t framesWritten() { return gFramesWritten.load(std::memory_order_relaxed); }
+std::size_t framesPlanned() { return gFramesPlanned.load(std::memory_order_relaxed); }
 bool peerLost() { return gPeerLost.load(); }
 void notePeerLost() { gPeerLost.store(true); }
 

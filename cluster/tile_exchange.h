@@ -1,10 +1,12 @@
 #pragma once
-// The dealing of a distributed render's tiles: rank 0's coordinator (its main thread, the only one that calls
-// MPI, while a thread of its own renders tiles too) and the workers' loop.
+// The dealing of a distributed render's units (tiles, or whole frames): rank 0's coordinator (its main thread, the
+// only one that calls MPI, while a thread of its own renders units too) and the workers' loop.
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
+#include "frame_units.h"
 #include "rayview/image.h"
 #include "rayview/thread_pool.h"
 #include "rayview/tiles.h"
@@ -13,8 +15,9 @@
 namespace rayview::cluster {
 
 struct RankTally {
-  double busyMs = 0.0;  // rendering tiles
+  double busyMs = 0.0;  // rendering tiles and whole frames
   std::size_t tiles = 0;
+  std::size_t frames = 0;  // rendered whole
   RayCounts rays;
   bool lost = false;  // fell silent while it held tiles; they were dealt again
 };
@@ -24,20 +27,31 @@ struct ExchangeResult {
   bool complete = false;         // every tile is in the image
 };
 
-// Rank 0: deals `tiles` to the other ranks and to its own render thread until every tile is in `image`
-// (width x height, already sized). Never blocks on another rank: a silent rank's tiles go to the others.
-// `frame` numbers the job's frames (0 for a single image); `lost` (one per rank) carries the ranks lost in
-// earlier frames, and gains those lost in this one.
-ExchangeResult coordinateTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int ranks, ThreadPool& pool,
-                               Image& image, int frame, std::vector<bool>& lost);
+// The tracer of a frame of the run (an index into it), called only by the thread that renders: rank 0's render
+// thread, a worker's tile thread.
+using TracerFor = std::function<const Tracer&(int frame)>;
 
-// Every other rank: renders the tiles rank 0 deals until it says there are no more. Returns the exit code
+// Rank 0: deals `units` to the other ranks and to its own render thread until every unit is placed in `assembly`
+// (which hands each frame on as it completes) or a frame could not be written. Never blocks on another rank: a
+// silent rank's units go to the others. `round` numbers the job's calls (a late result of an earlier one is
+// dropped); `lost` (one per rank) carries the ranks lost in earlier rounds, and gains those lost in this one.
+ExchangeResult coordinateUnits(const std::vector<WorkUnit>& units, FrameAssembly& assembly, int ranks,
+                               ThreadPool& pool, const TracerFor& tracerFor, int round, std::vector<bool>& lost);
+
+// Every other rank: renders the units rank 0 deals until it says there are no more. Returns the exit code
 // (kExitIoFailure when rank 0 fell silent).
-int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, ThreadPool& pool, int frame);
+int workOnUnits(const std::vector<WorkUnit>& units, const TracerFor& tracerFor, int rank, ThreadPool& pool, int round);
 
-// For the signal handler: tiles in the image so far, and in all.
+// For the signal handler: units placed so far, and in all; of a run of frames, the frames written and asked.
 std::size_t tilesPlaced();
 std::size_t tilesPlanned();
+void noteFrames(std::size_t written, std::size_t total);
+std::size_t framesWritten();
+std::size_t framesPlanned();  // 0: a single image
+
+// Rank 0 stopped by a signal (mpirun ends the job so when a rank dies): the temporary file of the image being
+// written goes, and one line says how far the job got.
+void handleSignalsOnRankZero();
 
 // Whether a rank of this job was lost (or, on a worker, rank 0 said so or fell silent): MPI_Finalize would
 // wait for it for ever, so the process ends without it.

@@ -19,12 +19,12 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// The tile being rendered, on a thread of its own, so that the main thread (the one that calls MPI) can keep
+// The unit being rendered, on a thread of its own, so that the main thread (the one that calls MPI) can keep
 // rank 0 told that this rank is alive.
 class TileRenderThread {
  public:
-  TileRenderThread(const Tracer& tracer, const std::vector<Tile>& tiles, ThreadPool& pool, int frame)
-      : frame_(frame), thread_([this, &tracer, &tiles, &pool] { loop(tracer, tiles, pool); }) {}
+  TileRenderThread(const TracerFor& tracerFor, const std::vector<WorkUnit>& units, ThreadPool& pool, int round)
+      : round_(round), thread_([this, &tracerFor, &units, &pool] { loop(tracerFor, units, pool); }) {}
   ~TileRenderThread() {
     {
       std::lock_guard lock(mutex_);
@@ -55,7 +55,7 @@ class TileRenderThread {
   }
 
  private:
-  void loop(const Tracer& tracer, const std::vector<Tile>& tiles, ThreadPool& pool) {
+  void loop(const TracerFor& tracerFor, const std::vector<WorkUnit>& units, ThreadPool& pool) {
     std::unique_lock lock(mutex_);
     for (;;) {
       changed_.wait(lock, [this] { return quit_ || job_ >= 0; });
@@ -65,10 +65,11 @@ class TileRenderThread {
       lock.unlock();
       const auto start = Clock::now();
       RayCounts rays;
-      renderTile(tracer, tiles.at(static_cast<std::size_t>(tile)), pool, pixels_, rays);
+      const WorkUnit& unit = units.at(static_cast<std::size_t>(tile));
+      renderTile(tracerFor(unit.frame), unit.tile, pool, pixels_, rays);
       const double ms = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
       lock.lock();
-      header_ = {tile, frame_, ms, rays.camera, rays.shadow, rays.reflection};
+      header_ = {tile, round_, ms, rays.camera, rays.shadow, rays.reflection};
       done_ = true;
       changed_.notify_all();
     }
@@ -80,7 +81,7 @@ class TileRenderThread {
   bool done_ = false, quit_ = false;
   TileResultHeader header_;
   Image pixels_;
-  int frame_;
+  int round_;
   std::thread thread_;  // last: starts once the members it uses exist
 };
 
@@ -99,8 +100,8 @@ bool completeSend(MPI_Request& request, std::chrono::milliseconds patience) {
 
 }  // namespace
 
-int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, ThreadPool& pool, int frame) {
-  TileRenderThread renderer(tracer, tiles, pool, frame);
+int workOnUnits(const std::vector<WorkUnit>& units, const TracerFor& tracerFor, int rank, ThreadPool& pool, int round) {
+  TileRenderThread renderer(tracerFor, units, pool, round);
   std::deque<std::int32_t> queue;
   bool ended = false, rendering = false;
   auto lastFromZero = Clock::now();
@@ -108,14 +109,14 @@ int workOnTiles(const Tracer& tracer, const std::vector<Tile>& tiles, int rank, 
   MPI_Request pending = MPI_REQUEST_NULL;
   for (;;) {
     MPI_Status status;
-    // Nothing past the end of this frame's tiles is read: what follows belongs to the next frame.
+    // Nothing past the end of this round's units is read: what follows belongs to the next round.
     while (!ended && messageWaiting(0, kTagTile, status)) {
       std::int32_t value = 0;
       MPI_Recv(&value, 1, MPI_INT32_T, 0, kTagTile, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       lastFromZero = Clock::now();
       if (value == kNoMoreTilesRankLost) notePeerLost();
       if (value == kNoMoreTiles || value == kNoMoreTilesRankLost) ended = true;
-      else if (value >= 0 && static_cast<std::size_t>(value) < tiles.size()) queue.push_back(value);
+      else if (value >= 0 && static_cast<std::size_t>(value) < units.size()) queue.push_back(value);
     }
     if (rendering) {
       std::vector<std::uint8_t> finished;

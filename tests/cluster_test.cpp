@@ -1,5 +1,6 @@
 // The parts of a distributed render that need no MPI: the tile plan, the dealer that re-deals a lost rank's
-// tiles, a tile's pixels against the whole frame's, and the scene hash.
+// tiles, a tile's pixels against the whole frame's, the frames dealt whole or in tiles and put together, and the
+// scene hash.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -7,6 +8,7 @@
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/scene_source.h"
+#include "frame_units.h"
 #include "scene_hash.h"
 #include "tile_dealer.h"
 #include "tile_plan.h"
@@ -73,6 +75,72 @@ TEST(ClusterTiles, TilesPutTogetherAreTheWholeFrameBitForBit) {
   }
   EXPECT_TRUE(whole.rgb == pieced.rgb);
   EXPECT_EQ(rays.total(), stats.rays.total());
+}
+
+TEST(FrameUnits, WholeFramesWhileAsManyRemainAsRanksThenTilesCoveringEachFrameOnce) {
+  const int w = 100, h = 60;
+  const std::vector<WorkUnit> units = frameUnits(7, w, h, 3);
+  std::vector<std::vector<int>> covered(7, std::vector<int>(static_cast<std::size_t>(w) * h, 0));
+  std::vector<int> whole(7, 0), tiles(7, 0);
+  for (const WorkUnit& u : units) {
+    const auto f = static_cast<std::size_t>(u.frame);
+    ++(u.whole ? whole : tiles)[f];
+    for (int y = u.tile.y0; y < u.tile.y1; ++y)
+      for (int x = u.tile.x0; x < u.tile.x1; ++x) ++covered[f][static_cast<std::size_t>(y) * w + x];
+  }
+  for (int f = 0; f < 7; ++f) {
+    // 7 frames on 3 ranks: frames 0-4 leave at least 3 to do, the last 2 are tiled.
+    EXPECT_EQ(whole[static_cast<std::size_t>(f)], f < 5 ? 1 : 0) << f;
+    EXPECT_EQ(tiles[static_cast<std::size_t>(f)], f < 5 ? 0 : static_cast<int>(clusterTiles(w, h, 3).size())) << f;
+    for (int c : covered[static_cast<std::size_t>(f)]) ASSERT_EQ(c, 1);
+  }
+  for (const WorkUnit& u : frameUnits(4, w, h, 1)) EXPECT_TRUE(u.whole);  // one rank: no tiles
+  for (const WorkUnit& u : frameUnits(1, w, h, 2)) EXPECT_FALSE(u.whole);  // one huge frame: all ranks on it
+}
+
+TEST(FrameAssembly, HandsEachFrameOnOnceWithEveryUnitInPlace) {
+  const int w = 37, h = 21;
+  const std::vector<WorkUnit> units = frameUnits(3, w, h, 2);  // frames 0, 1 whole, frame 2 in tiles
+  std::vector<Image> written(3);
+  std::vector<int> calls(3, 0);
+  FrameAssembly assembly(units, [&](int frame, Image&& image) {
+    ++calls[static_cast<std::size_t>(frame)];
+    written[static_cast<std::size_t>(frame)] = std::move(image);
+    return true;
+  });
+  // Each pixel's bytes say where it is and in which frame, so a misplaced unit shows.
+  auto pixelsOf = [](const WorkUnit& u) {
+    std::vector<std::uint8_t> rgb;
+    for (int y = u.tile.y0; y < u.tile.y1; ++y)
+      for (int x = u.tile.x0; x < u.tile.x1; ++x)
+        rgb.insert(rgb.end(),
+                   {static_cast<std::uint8_t>(x), static_cast<std::uint8_t>(y), static_cast<std::uint8_t>(u.frame)});
+    return rgb;
+  };
+  for (std::size_t k = units.size(); k-- > 0;) {  // out of order, as results arrive
+    const int frame = units[k].frame;
+    EXPECT_EQ(calls[static_cast<std::size_t>(frame)], 0);
+    assembly.place(k, pixelsOf(units[k]).data());
+  }
+  for (int f = 0; f < 3; ++f) {
+    EXPECT_EQ(calls[static_cast<std::size_t>(f)], 1);
+    const Image& image = written[static_cast<std::size_t>(f)];
+    ASSERT_EQ(image.width, w);
+    ASSERT_EQ(image.height, h);
+    EXPECT_EQ(*image.pixel(36, 20), 36);
+    EXPECT_EQ(image.pixel(36, 20)[1], 20);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x) ASSERT_EQ(image.pixel(x, y)[2], f);
+  }
+  EXPECT_FALSE(assembly.failed());
+}
+
+TEST(FrameAssembly, AFrameNotWrittenFailsTheRun) {
+  const std::vector<WorkUnit> units = frameUnits(2, 8, 8, 1);
+  FrameAssembly assembly(units, [](int, Image&&) { return false; });
+  const std::vector<std::uint8_t> rgb(8 * 8 * 3, 7);
+  assembly.place(0, rgb.data());
+  EXPECT_TRUE(assembly.failed());
 }
 
 TEST(SceneHash, SeesAnyChange) {

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """rayview render under mpirun: the image is the single process's byte for byte, a bad scene fails once, a killed
-rank ends the job cleanly (or, with mpirun --enable-recovery, the survivors finish the same image)."""
+rank ends the job cleanly (or, with mpirun --enable-recovery, the survivors finish the same image); turntables give
+the single process's frames, dealt whole to ranks, and a killed one is finished by a rerun."""
 import argparse
 import os
 import shutil
@@ -46,10 +47,12 @@ def main():
     for scene, options, ranks, threads in cases:
         t.identical(scene, options, min(ranks, args.max_ranks), threads)
     t.bad_scene()
-    t.frames(os.path.join(scenes, "triangular_light.xml"), min(3, args.max_ranks))
+    t.frames(os.path.join(scenes, "triangular_light.xml"), min(3, args.max_ranks), 4)
+    t.frames(os.path.join(scenes, "triangular_light.xml"), min(2, args.max_ranks), 6)
     slow = [os.path.join(conformance, "monkey.xml"), "--samples", "9"]
     t.killed_rank(slow, recovery=False)
     t.killed_rank(slow, recovery=True)
+    t.killed_turntable([os.path.join(conformance, "monkey.xml"), "--samples", "4"])
     print(f"{t.passed} passed, {len(t.failures)} failed")
     for failure in t.failures:
         print("FAIL:", failure)
@@ -92,24 +95,68 @@ class Tester:
         same = os.path.exists(spread) and open(single, "rb").read() == open(spread, "rb").read()
         self.check(same, f"{what}: the image differs from the single process's")
 
-    def frames(self, scene, ranks):
-        """A turntable under MPI: the single process's frames byte for byte; a rerun renders only the missing one."""
-        single = os.path.join(self.args.scratch, "frames_single", "f_%d.png")
-        spread = os.path.join(self.args.scratch, "frames_mpi", "f_%d.png")
-        options = ["--turntable", "3", "--light-samples", "2"]
-        subprocess.run([self.args.rayview, "render", scene, *options, "-o", single, "--quiet"], check=True)
+    def frames(self, scene, ranks, count):
+        """A turntable under MPI: the single process's frames byte for byte, the first count - (ranks - 1) frames
+        dealt whole to ranks and the last ones in tiles; a rerun renders only the missing one."""
+        single = os.path.join(self.args.scratch, f"frames_single_{count}", "f_%d.png")
+        spread = os.path.join(self.args.scratch, f"frames_mpi_{ranks}x{count}", "f_%d.png")
+        options = ["--turntable", str(count), "--light-samples", "2"]
+        what = f"turntable of {count} on {ranks} ranks"
+        if not os.path.exists(single % (count - 1)):
+            subprocess.run([self.args.rayview, "render", scene, *options, "-o", single, "--quiet"], check=True)
         run = subprocess.run(self.mpirun(ranks, [scene, *options, "-o", spread, "--threads", "1"]),
                              capture_output=True, text=True, timeout=120)
-        self.check(run.returncode == 0 and "3 to render" in run.stdout and "frame 3 of 3 written" in run.stderr,
-                   f"turntable on {ranks} ranks: exit {run.returncode}: {run.stdout}{run.stderr}")
+        self.check(run.returncode == 0 and f"{count} to render" in run.stdout
+                   and f"frame {count} of {count} written" in run.stderr,
+                   f"{what}: exit {run.returncode}: {run.stdout}{run.stderr}")
+        # "rank 1     busy 72.7 ms, 3 whole frames, 7 tiles": whole frames add up to those dealt whole.
+        rows = [line.split(",") for line in run.stdout.splitlines() if line.startswith("rank ")]
+        whole = sum(int(row[1].split()[0]) for row in rows if len(row) == 3 and "whole frames" in row[1])
+        self.check(len(rows) == ranks and whole == count - (ranks - 1),
+                   f"{what}: {whole} frames rendered whole, not {count - (ranks - 1)}:\n{run.stdout}")
         same = lambda: all(os.path.exists(spread % k) and open(spread % k, "rb").read() == open(single % k, "rb").read()
-                           for k in range(3))
-        self.check(same(), f"turntable on {ranks} ranks: frames differ from the single process's")
+                           for k in range(count))
+        self.check(same(), f"{what}: frames differ from the single process's")
         os.remove(spread % 1)
         run = subprocess.run(self.mpirun(ranks, [scene, *options, "-o", spread]), capture_output=True, text=True,
                              timeout=120)
-        self.check(run.returncode == 0 and "2 complete already, 1 to render" in run.stdout and same(),
-                   f"turntable rerun on {ranks} ranks: {run.stdout}{run.stderr}")
+        self.check(run.returncode == 0 and f"{count - 1} complete already, 1 to render" in run.stdout and same(),
+                   f"{what}, rerun: {run.stdout}{run.stderr}")
+
+    def killed_turntable(self, scene_args):
+        """Rank 1 killed in a turntable under plain mpirun: the job ends, the frames written stay whole, and a rerun
+        renders only the others."""
+        directory = os.path.join(self.args.scratch, "killed_turntable")
+        spread = os.path.join(directory, "f_%02d.png")
+        frames = ["--turntable", "12"]
+        job = subprocess.Popen(self.mpirun(3, [*scene_args, *frames, "-o", spread, "--threads", "1"]),
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        start = time.monotonic()
+        victim = None
+        while victim is None and job.poll() is None and time.monotonic() - start < 20:
+            time.sleep(0.05)
+            victim = rank_process(job.pid, 1, started_rendering=True)
+        if victim is None:
+            job.kill()
+            self.check(False, "killed turntable: rank 1 never started rendering")
+            return
+        os.kill(victim, signal.SIGKILL)
+        try:
+            _, stderr = job.communicate(timeout=30)
+        except subprocess.TimeoutExpired:
+            job.kill()
+            self.check(False, "killed turntable: the job hangs after rank 1 was killed")
+            return
+        written = sorted(os.listdir(directory)) if os.path.isdir(directory) else []
+        self.check(job.returncode != 0 and "frames written" in stderr and len(written) < 12,
+                   f"killed turntable: exit {job.returncode}, {len(written)} files:\n{stderr}")
+        self.check(all(f.endswith(".png") for f in written), f"killed turntable: temporary files left: {written}")
+        self.check(not any(rank_process(job.pid, r) for r in range(3)), "killed turntable: a rank is still running")
+        run = subprocess.run(self.mpirun(2, [*scene_args, *frames, "-o", spread]), capture_output=True, text=True,
+                             timeout=120)
+        rest = f"{len(written)} complete already, {12 - len(written)} to render"
+        self.check(run.returncode == 0 and rest in run.stdout and len(os.listdir(directory)) == 12,
+                   f"killed turntable, rerun: {run.stdout}{run.stderr}")
 
     def bad_scene(self):
         bad = os.path.join(self.args.scratch, "bad.xml")
