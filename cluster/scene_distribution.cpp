@@ -11,10 +11,10 @@
 
 #include "mpi_link.h"
 #include "exit_codes.h"
-#include "rayview/file_read.h"
 #include "rayview/image.h"
 #include "rayview/scene_source.h"
 #include "scene_hash.h"
+#include "view_codec.h"
 
 namespace rayview::cluster {
 namespace {
@@ -28,67 +28,43 @@ void broadcastBytes(void* data, std::size_t bytes) {
     MPI_Bcast(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
-// Rank 0: the output checks and the scene's bytes. Returns the exit code (printed) when the job cannot start.
-int readOnRankZero(const ClusterJob& job, std::string& bytes) {
+// Rank 0: the output checks and the scene, loaded from its file exactly as a single process loads it (the same
+// messages). Returns the exit code (printed) when the job cannot start.
+int loadOnRankZero(const ClusterJob& job, LoadedScene& loaded) {
   if (const std::string problem = renderOutputProblem(job.output, job.scenePath); !problem.empty()) {
     std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
     return kExitBadInput;
   }
-  if (job.scenePath.empty()) {
-    bytes = std::string(defaultSceneXml());
-    return kExitOk;
-  }
-  detail::UserFileRead read = detail::readUserFile(job.scenePath, std::uintmax_t{1} << 36);
-  if (read.problem.empty()) {
-    bytes = std::move(read.bytes);
-    return kExitOk;
-  }
-  // The loader says why in its usual words.
-  try {
-    loadSceneOrDefault(job.scenePath, LoadOptions{});
-  } catch (const SceneError& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return kExitBadInput;
-  }
-  std::fprintf(stderr, "rayview: error: %s %s\n", job.scenePath.c_str(), read.problem.c_str());
-  return kExitBadInput;
-}
-
-// Every rank: the scene from the bytes (rank 0 from its file, as a single process does, with the texture).
-std::string loadOnRank(const ClusterJob& job, int rank, const std::string& bytes, LoadedScene& loaded) {
   LoadOptions options;
   options.strict = job.strict;
   try {
-    if (rank == 0) {
-      loaded = loadSceneOrDefault(job.scenePath, options);
-    } else {
-      options.loadTexture = false;
-      const std::filesystem::path path(job.scenePath);
-      loaded = loadSceneText(bytes, job.scenePath.empty() ? kDefaultSceneName : job.scenePath, path.parent_path(),
-                             options);
-    }
+    loaded = loadSceneOrDefault(job.scenePath, options);
   } catch (const SceneError& error) {
-    return error.what();
+    std::fprintf(stderr, "%s\n", error.what());
+    return kExitBadInput;
   } catch (const std::bad_alloc&) {
-    return "rayview: error: out of memory loading " + job.scenePath;
+    std::fprintf(stderr, "rayview: error: out of memory loading %s\n", job.scenePath.c_str());
+    return kExitOutOfMemory;
   }
-  return {};
+  return kExitOk;
 }
 
-// Rank 0's decoded texture to every rank.
-void broadcastTexture(int rank, LoadedScene& loaded) {
-  std::int64_t shape[3] = {0, 0, 0};
-  if (rank == 0 && loaded.scene.texture) shape[0] = 1, shape[1] = loaded.scene.texture->width, shape[2] = loaded.scene.texture->height;
-  MPI_Bcast(shape, 3, MPI_INT64_T, 0, MPI_COMM_WORLD);
-  if (shape[0] == 0) return;
-  if (rank != 0) {
-    Texture texture;
-    texture.width = static_cast<int>(shape[1]);
-    texture.height = static_cast<int>(shape[2]);
-    texture.rgb.resize(static_cast<std::size_t>(shape[1] * shape[2] * 3));
-    loaded.scene.texture = std::move(texture);
+// Every other rank: the scene from rank 0's bytes ("" on success, else why not).
+std::string decodeOnRank(const ClusterJob& job, const Bytes& geometry, const Bytes& parameters, Scene& scene,
+                         RenderSettings& settings) {
+  try {
+    ShippedGeometry shipped = decodeGeometry(geometry.data(), geometry.size());
+    static_cast<SceneGeometry&>(scene) = std::move(*shipped.geometry);
+    Snapshot snapshot = decodeSnapshot(parameters.data(), parameters.size());
+    scene.parameters() = std::move(snapshot.parameters);
+    settings = snapshot.settings;
+    scene.sourcePath = job.scenePath;
+  } catch (const CodecError& error) {
+    return std::string("rayview: error: the scene from rank 0 is malformed: ") + error.what();
+  } catch (const std::bad_alloc&) {
+    return "rayview: error: out of memory receiving " + job.scenePath;
   }
-  broadcastBytes(loaded.scene.texture->rgb.data(), loaded.scene.texture->rgb.size());
+  return {};
 }
 
 struct RankCheck {
@@ -127,22 +103,31 @@ int verdictOnRankZero(const std::vector<RankCheck>& checks, const std::string& o
 
 int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene& out) {
   const auto start = std::chrono::steady_clock::now();
-  std::string bytes;
-  std::int64_t header[2] = {kExitOk, 0};  // exit code, byte count
-  if (rank == 0) {
-    header[0] = readOnRankZero(job, bytes);
-    header[1] = static_cast<std::int64_t>(bytes.size());
-  }
-  MPI_Bcast(header, 2, MPI_INT64_T, 0, MPI_COMM_WORLD);
-  if (header[0] != kExitOk) return static_cast<int>(header[0]);
-  bytes.resize(static_cast<std::size_t>(header[1]));
-  broadcastBytes(bytes.data(), bytes.size());
-
+  // Rank 0 alone reads and parses; the others receive the loaded arrays and the parameters with the knobs applied
+  // (cluster/view_codec.h, 36 bytes a triangle instead of ~53 of text), so they parse nothing.
   LoadedScene loaded;
-  const std::string error = loadOnRank(job, rank, bytes, loaded);
-  std::string().swap(bytes);
-  broadcastTexture(rank, loaded);
-  applyKnobs(job.knobs, {&loaded.scene.parameters(), &out.settings});
+  Bytes geometry, parameters;
+  std::int64_t header[3] = {kExitOk, 0, 0};  // exit code, byte counts
+  if (rank == 0) {
+    header[0] = loadOnRankZero(job, loaded);
+    if (header[0] == kExitOk) {
+      applyKnobs(job.knobs, {&loaded.scene.parameters(), &out.settings});
+      if (ranks > 1) {
+        geometry = encodeGeometry(loaded.scene.geometry(), loaded.scene.camera.position, out.settings.accel);
+        parameters = encodeSnapshot(loaded.scene.parameters(), out.settings);
+      }
+      header[1] = static_cast<std::int64_t>(geometry.size());
+      header[2] = static_cast<std::int64_t>(parameters.size());
+    }
+  }
+  MPI_Bcast(header, 3, MPI_INT64_T, 0, MPI_COMM_WORLD);
+  if (header[0] != kExitOk) return static_cast<int>(header[0]);
+  geometry.resize(static_cast<std::size_t>(header[1]));
+  parameters.resize(static_cast<std::size_t>(header[2]));
+  broadcastBytes(geometry.data(), geometry.size());
+  broadcastBytes(parameters.data(), parameters.size());
+  const std::string error = rank == 0 ? std::string() : decodeOnRank(job, geometry, parameters, loaded.scene, out.settings);
+  Bytes().swap(geometry);
 
   RankCheck own{error.empty() ? sceneHash(loaded.scene) : 0, error.empty() ? 1 : 0, 0};
   std::vector<RankCheck> checks(rank == 0 ? static_cast<std::size_t>(ranks) : 0);
