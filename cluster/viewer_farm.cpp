@@ -210,7 +210,13 @@ class ViewerFarm::Pass {
 
 ViewerFarm::ViewerFarm(int ranks, int threads)
     : ranks_(std::max(ranks, 1)), pool_(threads), lost_(static_cast<std::size_t>(ranks_), false),
-      tilesTraced_(static_cast<std::size_t>(ranks_), 0) {}
+      tilesTraced_(std::make_unique<std::atomic<std::size_t>[]>(static_cast<std::size_t>(ranks_))) {}
+
+std::string ViewerFarm::describe() const {
+  std::string text = std::to_string(ranks_) + " ranks, tiles";
+  for (int r = 0; r < ranks_; ++r) text += (r == 0 ? " " : " / ") + std::to_string(tilesTraced_[r].load());
+  return text;
+}
 
 ViewerFarm::~ViewerFarm() = default;
 
@@ -306,7 +312,8 @@ void ViewerFarm::shutdown() {
   if (waiting > 0) notePeerLost();
   // Who traced what, for the user deciding how many ranks are worth it (and for the tests).
   std::printf("tiles traced:");
-  for (int r = 0; r < ranks_; ++r) std::printf(" rank %d %zu%s", r, tilesTraced_[r], r + 1 < ranks_ ? "," : "\n");
+  for (int r = 0; r < ranks_; ++r)
+    std::printf(" rank %d %zu%s", r, tilesTraced_[r].load(), r + 1 < ranks_ ? "," : "\n");
   std::fflush(stdout);
 }
 

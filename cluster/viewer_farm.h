@@ -5,7 +5,9 @@
 // only from the thread that calls renderPass (the renderer's controller) and, once it has ended, from the one
 // that calls shutdown(): MPI_THREAD_SERIALIZED.
 
+#include <atomic>
 #include <cstdint>
+#include <string>
 #include <memory>
 #include <vector>
 
@@ -28,6 +30,7 @@ class ViewerFarm final : public PassFarm {
   // viewer, and with it the renderer's controller thread, is gone.
   void shutdown();
 
+  std::string describe() const override;
   int ranks() const { return ranks_; }
 
  private:
@@ -39,7 +42,8 @@ class ViewerFarm final : public PassFarm {
   int ranks_;
   ThreadPool pool_;  // rank 0's own share of each pass
   std::vector<bool> lost_;  // per rank: said it cannot trace, or fell silent; dealt no more tiles
-  std::vector<std::size_t> tilesTraced_;  // per rank: tiles whose pixels were used
+  // Per rank: tiles whose pixels were used. Atomic: the viewer's stats read them while a pass runs.
+  std::unique_ptr<std::atomic<std::size_t>[]> tilesTraced_;
   std::shared_ptr<const PreparedGeometry> shippedGeometry_;
   std::uint64_t geometrySerial_ = 0;
   std::uint64_t shippedGeneration_ = 0;

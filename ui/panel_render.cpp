@@ -156,7 +156,7 @@ StatsText statsText(const ViewerStats& s) {
       {"Read", formatted("%.1f ms", s.readMs)},
       {"BVH build", formatted("%.1f ms", s.bvhBuildMs)},
       {"Traversal", s.traversal.empty() ? std::string(toString(s.accel)) : s.traversal},
-      {"Threads", std::to_string(s.threads)},
+      {"Threads", std::to_string(s.threads) + (s.tracedBy.empty() ? "" : " on rank 0; " + s.tracedBy)},
       {"Memory", memoryText(s.residentBytes, s.peakResidentBytes)},
       {"Generation", std::to_string(s.generation)},
   };

@@ -133,6 +133,7 @@ struct ViewerStats {
   AccelKind accel = AccelKind::Embree;  // the back-end built for the scene (the packet BVH for a small one)
   std::string traversal;                // how the stats name it ("" = toString(accel))
   int threads = 0;
+  std::string tracedBy;  // the other processes tracing the passes (rayview/pass_farm.h); "" when none
   // The process's resident memory and its peak, in bytes, read at each pass shown (0: not known).
   std::uint64_t residentBytes = 0, peakResidentBytes = 0;
 };

@@ -11,7 +11,7 @@
 namespace rayview {
 
 RenderController::RenderController(int threads, std::shared_ptr<PassFarm> farm)
-    : renderer_(threads, std::move(farm)) {
+    : farm_(farm), renderer_(threads, std::move(farm)) {
   stats_.threads = renderer_.threads();
   // Wake the UI loop when a pass is published, so it can sleep while passes render.
   renderer_.setFrameListener([] { glfwPostEmptyEvent(); });
@@ -50,6 +50,7 @@ bool RenderController::takeNewFrame() {
   const ProcessMemory memory = processMemory();
   stats_.residentBytes = memory.resident;
   stats_.peakResidentBytes = memory.peak;
+  if (farm_) stats_.tracedBy = farm_->describe();
   stats_.width = frame_.width;
   stats_.height = frame_.height;
   return true;

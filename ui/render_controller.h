@@ -62,6 +62,7 @@ class RenderController {
   const ViewerStats& stats() const { return stats_; }
 
  private:
+  std::shared_ptr<PassFarm> farm_;  // null: this process's threads trace
   ProgressiveRenderer renderer_;
   std::uint64_t generation_ = 0;  // of the latest restart
   ProgressiveFrame frame_;        // the newest pass of generation_ (or the last one before it): what is shown

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <string>
 
 #include "rayview/color.h"
 #include "rayview/pixel_source.h"
@@ -32,6 +33,8 @@ class PassFarm {
   // `stopped()` turned true before the pass was complete.
   virtual bool renderPass(const PixelSource& source, const FarmPass& pass, const FarmSink& sink,
                           const std::function<bool()>& stopped, RayCounts& rays) = 0;
+  // Who traces, and how much each has, for the viewer's stats ("3 ranks, tiles 120 / 80 / 75"). Any thread.
+  virtual std::string describe() const { return {}; }
 };
 
 }  // namespace rayview
