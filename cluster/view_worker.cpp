@@ -2,6 +2,7 @@
 // tiles it is dealt, and drops those of a generation an edit has replaced.
 #include <mpi.h>
 
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstring>
@@ -117,12 +118,23 @@ class ViewWorker {
     RayCounts rays;
     const TracedImage& image = *image_;
     const int sample = request.sample;
-    traceColors(
-        [&](const PixelXY* p, int n, Color* out, RayCounts& c) {
-          if (sample < 0) image.pixels(p, n, out, c);
-          else image.samples(p, n, sample, out, c);
-        },
-        pixels_, pool_, colors_, rays);
+    // Traced on a thread of its own while this one keeps MPI moving: a result larger than OpenMPI sends eagerly
+    // reaches rank 0 only while its sender makes MPI calls, and rank 0 should not wait a tile's time for it.
+    std::atomic<bool> traced{false};
+    std::thread tracer([&] {
+      traceColors(
+          [&](const PixelXY* p, int n, Color* out, RayCounts& c) {
+            if (sample < 0) image.pixels(p, n, out, c);
+            else image.samples(p, n, sample, out, c);
+          },
+          pixels_, pool_, colors_, rays);
+      traced.store(true);
+    });
+    while (!traced.load()) {
+      completeSends(false);
+      std::this_thread::sleep_for(kProbePause);
+    }
+    tracer.join();
     ViewTileResultHeader header{request.pass, request.tile, static_cast<std::int32_t>(pixels_.size()),
                                 std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
                                 rays.camera, rays.shadow, rays.reflection};

@@ -94,14 +94,18 @@ class ViewerFarm::Pass {
     std::vector<PixelXY> pixels;
     std::vector<Color> colors;
     RayCounts rays;
+    std::uint64_t busyMicroseconds = 0;
   };
 
   // Rank 0's own share, on a thread of its own: the calling thread stays free to deal and receive.
   void traceOwnShare() {
     while (const auto tile = dealer_.takeOrWait(0)) {
-      LocalTile done{*tile, {}, {}, {}};
+      LocalTile done{*tile, {}, {}, {}, 0};
       gridTilePixels(tiles_[*tile], pass_.stride, pass_.skipStride, done.pixels);
+      const auto start = Clock::now();
       traceColors(traceFunction(source_, pass_.sample), done.pixels, farm_.pool_, done.colors, done.rays);
+      done.busyMicroseconds =
+          static_cast<std::uint64_t>(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
       std::lock_guard lock(localMutex_);
       local_.push_back(std::move(done));
     }
@@ -117,6 +121,7 @@ class ViewerFarm::Pass {
       rays += t.rays;
       if (!dealer_.finish(t.tile, 0)) continue;
       ++farm_.tilesTraced_[0];
+      farm_.busyMicroseconds_[0] += t.busyMicroseconds;
       sink_(t.pixels.data(), t.colors.data(), static_cast<int>(t.pixels.size()));
     }
     return !done.empty();
@@ -142,7 +147,23 @@ class ViewerFarm::Pass {
     int bytes = 0;
     MPI_Get_count(&status, MPI_BYTE, &bytes);
     inbox_.resize(static_cast<std::size_t>(bytes) + 1);
-    MPI_Recv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+    // Never a blocking receive: a worker that died mid-message would hold the window's renderer for ever.
+    MPI_Request request;
+    MPI_Irecv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, &request);
+    const auto deadline = Clock::now() + kSilentFor;
+    for (int done = 0;;) {
+      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+      if (done) break;
+      if (Clock::now() > deadline) {
+        farm_.abandoned_.push_back(std::move(inbox_));  // its receive may still write there: never freed
+        inbox_ = {};
+        std::fprintf(stderr, "rayview: warning: rank %d fell silent mid-message; the other ranks go on without it\n",
+                     worker);
+        lose(worker);
+        return true;
+      }
+      std::this_thread::sleep_for(kProbePause);
+    }
     lastHeard_[worker] = Clock::now();
     if (status.MPI_TAG == kTagViewProblem) {
       std::fprintf(stderr, "rayview: error: rank %d cannot trace: %.*s; the other ranks go on without it\n", worker,
@@ -168,6 +189,7 @@ class ViewerFarm::Pass {
         std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
         rays += RayCounts{header.camera, header.shadow, header.reflection};
         ++farm_.tilesTraced_[worker];
+        farm_.busyMicroseconds_[worker] += static_cast<std::uint64_t>(header.busyMs * 1000.0);
         sink_(pixels_.data(), colors_.data(), static_cast<int>(pixels_.size()));
       }
     }
@@ -210,11 +232,13 @@ class ViewerFarm::Pass {
 
 ViewerFarm::ViewerFarm(int ranks, int threads)
     : ranks_(std::max(ranks, 1)), pool_(threads), lost_(static_cast<std::size_t>(ranks_), false),
-      tilesTraced_(std::make_unique<std::atomic<std::size_t>[]>(static_cast<std::size_t>(ranks_))) {}
+      tilesTraced_(std::make_unique<std::atomic<std::size_t>[]>(static_cast<std::size_t>(ranks_))),
+      busyMicroseconds_(std::make_unique<std::atomic<std::uint64_t>[]>(static_cast<std::size_t>(ranks_))) {}
 
 std::string ViewerFarm::describe() const {
-  std::string text = std::to_string(ranks_) + " ranks, tiles";
-  for (int r = 0; r < ranks_; ++r) text += (r == 0 ? " " : " / ") + std::to_string(tilesTraced_[r].load());
+  std::string text = std::to_string(ranks_) + " ranks, busy";
+  for (int r = 0; r < ranks_; ++r)
+    text += (r == 0 ? " " : " / ") + std::to_string(busyMicroseconds_[r].load() / 1000) + (r + 1 < ranks_ ? "" : " ms");
   return text;
 }
 
@@ -313,7 +337,8 @@ void ViewerFarm::shutdown() {
   // Who traced what, for the user deciding how many ranks are worth it (and for the tests).
   std::printf("tiles traced:");
   for (int r = 0; r < ranks_; ++r)
-    std::printf(" rank %d %zu%s", r, tilesTraced_[r].load(), r + 1 < ranks_ ? "," : "\n");
+    std::printf(" rank %d %zu (busy %.0f ms)%s", r, tilesTraced_[r].load(),
+                static_cast<double>(busyMicroseconds_[r].load()) / 1000.0, r + 1 < ranks_ ? "," : "\n");
   std::fflush(stdout);
 }
 

@@ -68,7 +68,7 @@ def edited_render_matches(args, scene, name, edits, options):
         failures.append(f"{name}: exit {run.returncode}:\n{run.stdout}\n{run.stderr}")
     if "rendering on 3 ranks" not in run.stdout:
         failures.append(f"{name}: the window does not say it renders on 3 ranks:\n{run.stdout}")
-    traced = re.search(r"tiles traced: rank 0 (\d+), rank 1 (\d+), rank 2 (\d+)", run.stdout)
+    traced = re.search(r"tiles traced: rank 0 (\d+) [^,]*, rank 1 (\d+) [^,]*, rank 2 (\d+)", run.stdout)
     if not traced or int(traced.group(2)) == 0 or int(traced.group(3)) == 0:
         failures.append(f"{name}: the other ranks traced no tiles:\n{run.stdout}")
     for stage, settings in (("first", []), ("edited", options)):
