@@ -126,7 +126,8 @@ int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene
   parameters.resize(static_cast<std::size_t>(header[2]));
   broadcastBytes(geometry.data(), geometry.size());
   broadcastBytes(parameters.data(), parameters.size());
-  const std::string error = rank == 0 ? std::string() : decodeOnRank(job, geometry, parameters, loaded.scene, out.settings);
+  const std::string error =
+      rank == 0 ? std::string() : decodeOnRank(job, geometry, parameters, loaded.scene, out.settings);
   Bytes().swap(geometry);
 
   RankCheck own{error.empty() ? sceneHash(loaded.scene) : 0, error.empty() ? 1 : 0, 0};

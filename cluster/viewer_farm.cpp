@@ -184,7 +184,8 @@ class ViewerFarm::Pass {
     if (tile < tiles_.size()) {
       gridTilePixels(tiles_[tile], pass_.stride, pass_.skipStride, pixels_);
       const std::size_t expected = sizeof header + pixels_.size() * sizeof(Color);
-      if (bytes == expected && static_cast<std::size_t>(header.pixels) == pixels_.size() && dealer_.finish(tile, worker)) {
+      const bool whole = bytes == expected && static_cast<std::size_t>(header.pixels) == pixels_.size();
+      if (whole && dealer_.finish(tile, worker)) {
         colors_.resize(pixels_.size());
         std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
         rays += RayCounts{header.camera, header.shadow, header.reflection};
