@@ -122,6 +122,8 @@ int workOnUnits(const std::vector<WorkUnit>& units, const TracerFor& tracerFor, 
       std::vector<std::uint8_t> finished;
       if (renderer.waitDone(std::chrono::duration_cast<std::chrono::milliseconds>(kAliveEvery), finished)) {
         rendering = false;
+        // Rank 0's silence counts from here: while this rank rendered (a whole frame can take long) it owed nothing.
+        lastFromZero = Clock::now();
         if (!queue.empty()) {  // the next tile starts before this one's pixels travel
           renderer.start(queue.front());
           queue.pop_front();

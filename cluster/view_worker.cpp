@@ -140,7 +140,8 @@ class ViewWorker {
                                 rays.camera, rays.shadow, rays.reflection};
     std::vector<std::uint8_t> message(sizeof header + colors_.size() * sizeof(Color));
     std::memcpy(message.data(), &header, sizeof header);
-    std::memcpy(message.data() + sizeof header, colors_.data(), colors_.size() * sizeof(Color));
+    // A tile may hold no pixel of the pass (all on the coarser grid), and memcpy must not see a null pointer.
+    if (!colors_.empty()) std::memcpy(message.data() + sizeof header, colors_.data(), colors_.size() * sizeof(Color));
     send(kTagViewResult, std::move(message));
     return true;
   }

@@ -187,7 +187,8 @@ class ViewerFarm::Pass {
       const bool whole = bytes == expected && static_cast<std::size_t>(header.pixels) == pixels_.size();
       if (whole && dealer_.finish(tile, worker)) {
         colors_.resize(pixels_.size());
-        std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
+        // A tile may hold no pixel of the pass (all on the coarser grid), and memcpy must not see a null pointer.
+        if (!pixels_.empty()) std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
         rays += RayCounts{header.camera, header.shadow, header.reflection};
         ++farm_.tilesTraced_[worker];
         farm_.busyMicroseconds_[worker] += static_cast<std::uint64_t>(header.busyMs * 1000.0);
