@@ -143,8 +143,9 @@ int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& pla
     noteFrames(0, frames.size());
     handleSignalsOnRankZero();
   }
-  // Several scenes: each dealt whole to one rank, which alone builds it (scene_batch.h).
-  if (const std::vector<SceneRun> runs = sceneRuns(frames); runs.size() > 1 && ranks > 1) {
+  // At least as many scenes as ranks: each dealt whole to one rank, which alone builds it (scene_batch.h). Fewer:
+  // one after another, each tiled across every rank, so that none is idle.
+  if (const std::vector<SceneRun> runs = sceneRuns(frames); runs.size() > 1 && runs.size() >= static_cast<std::size_t>(ranks)) {
     code = rank == 0 ? dealScenes(job, frames, runs, pool, totals.progress, totals.ranks) : workOnScenes(rank, pool);
     if (rank == 0 && code == kExitOk && !job.quiet) printFrameSummary(totals, true);
     return code;
