@@ -164,7 +164,11 @@ class SceneCoordinator {
     MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, worker, tag, MPI_COMM_WORLD,
               &outbox_.back().request);
     lastSent_[worker] = Clock::now();
-    // Completed sends leave; a send to a lost rank may never complete and is left alone.
+    reapSends();
+  }
+
+  // Completed sends leave, and a scene's bytes with them; a send to a lost rank may never complete and is left alone.
+  void reapSends() {
     std::erase_if(outbox_, [this](Outgoing& out) {
       int done = 0;
       if (!tally_[out.rank].lost) MPI_Test(&out.request, &done, MPI_STATUS_IGNORE);
@@ -255,6 +259,7 @@ class SceneCoordinator {
 
   // Silent workers holding a scene are lost and their scene dealt again; idle ones get a nudge.
   void watchWorkers() {
+    reapSends();
     const auto now = Clock::now();
     for (int w = 1; w < ranks(); ++w) {
       if (tally_[w].lost) continue;

@@ -50,11 +50,12 @@ class SceneWorker {
   int run(int rank) {
     for (;;) {
       if (!readMessages()) break;
+      // The end can come while a copy of a scene another rank finished first is still rendering: it is not needed.
+      if (ended_) return completeSend(pending_) ? code_ : kExitIoFailure;
       if (left_ > 0) {
         if (!answer()) break;
         continue;
       }
-      if (ended_) return completeSend(pending_) ? code_ : kExitIoFailure;
       if (Clock::now() - lastFromZero_ > kRankZeroLostAfter) break;
       std::this_thread::sleep_for(kProbePause);
     }
