@@ -23,7 +23,6 @@ void SceneRenderThread::start(SceneJob job) {
   {
     std::lock_guard lock(mutex_);
     job_ = std::move(job);
-    busy_ = true;
   }
   changed_.notify_all();
 }
@@ -34,11 +33,6 @@ std::optional<SceneFrameDone> SceneRenderThread::next(std::chrono::milliseconds 
   SceneFrameDone done = std::move(finished_.front());
   finished_.pop_front();
   return done;
-}
-
-bool SceneRenderThread::idle() const {
-  std::lock_guard lock(mutex_);
-  return !busy_ && finished_.empty();
 }
 
 void SceneRenderThread::post(SceneFrameDone done) {
@@ -59,8 +53,6 @@ void SceneRenderThread::loop() {
     lock.unlock();
     render(job);
     lock.lock();
-    busy_ = false;
-    changed_.notify_all();
   }
 }
 

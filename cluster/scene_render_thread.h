@@ -56,8 +56,6 @@ class SceneRenderThread {
   void start(SceneJob job);
   // The next finished frame (or error), waiting up to `wait` for one.
   std::optional<SceneFrameDone> next(std::chrono::milliseconds wait);
-  // No scene being rendered and nothing finished left to take.
-  bool idle() const;
 
  private:
   void loop();
@@ -65,10 +63,10 @@ class SceneRenderThread {
   void post(SceneFrameDone done);
 
   ThreadPool& pool_;
-  mutable std::mutex mutex_;
+  std::mutex mutex_;
   std::condition_variable changed_;
   std::optional<SceneJob> job_;
-  bool busy_ = false, quit_ = false;
+  bool quit_ = false;
   std::deque<SceneFrameDone> finished_;
   std::thread thread_;  // last: starts once the members it uses exist
 };
