@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """rayview render under mpirun: the image is the single process's byte for byte, a bad scene fails once, a killed
 rank ends the job cleanly (or, with mpirun --enable-recovery, the survivors finish the same image); turntables give
-the single process's frames, dealt whole to ranks, and a killed one is finished by a rerun."""
+the single process's frames, dealt whole to ranks, and a killed one is finished by a rerun; a batch of scenes is
+dealt by scene with the single process's images, its resume, a bad scene in it and a killed rank's scene."""
 import argparse
 import os
 import shutil
@@ -51,8 +52,7 @@ def main():
     t.frames(os.path.join(scenes, "triangular_light.xml"), min(2, args.max_ranks), 6)
     batch = [os.path.join(scenes, "triangular_light.xml"), os.path.join(scenes, "textured_2025.xml"),
              os.path.join(conformance, "bunny.xml"), os.path.join(conformance, "scienceTree_512x512.xml")]
-    t.batch(batch, min(2, args.max_ranks))
-    t.batch(batch, min(3, args.max_ranks))
+    t.batch(batch, min(2, args.max_ranks))  # 3 ranks: bad_scene_in_batch, killed_batch
     t.bad_scene_in_batch(batch)
     t.killed_batch(os.path.join(conformance, "monkey.xml"))
     slow = [os.path.join(conformance, "monkey.xml"), "--samples", "9"]
