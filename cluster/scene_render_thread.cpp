@@ -1,6 +1,7 @@
 #include "scene_render_thread.h"
 
 #include <exception>
+#include <new>
 
 #include "frame_scene.h"
 #include "rayview/frame_renderer.h"
@@ -71,12 +72,17 @@ void SceneRenderThread::render(const SceneJob& job) {
     return;
   }
   for (std::size_t k = 0; k + 1 < job.frames.size(); k += 2) {
-    const auto frame = scene->frame(job.frames[k], job.frames[k + 1]);
     SceneFrameDone done{job.run, static_cast<std::int32_t>(k / 2), Image(), 0.0, RayCounts(), hash, {}};
-    FrameStats stats;
-    renderFrame(frame->tracer, frame->parameters.camera.width, frame->parameters.camera.height, pool_, done.image,
-                stats);
-    done.rays = stats.rays;
+    try {
+      const auto frame = scene->frame(job.frames[k], job.frames[k + 1]);
+      FrameStats stats;
+      renderFrame(frame->tracer, frame->parameters.camera.width, frame->parameters.camera.height, pool_, done.image,
+                  stats);
+      done.rays = stats.rays;
+    } catch (const std::bad_alloc&) {
+      post({job.run, done.frame, Image(), 0.0, RayCounts(), 0, "rayview: error: out of memory rendering the scene"});
+      return;
+    }
     done.busyMs = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
     start = Clock::now();
     post(std::move(done));
