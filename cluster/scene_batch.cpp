@@ -57,6 +57,7 @@ class SceneCoordinator {
     for (;;) {
       const bool worked = takeOwnResults() | receiveOne();
       if (!stopped_) dealToIdleRanks();
+      if (!stopped_) loadAhead();
       if (pile_.allFinished() || (stopped_ && nothingHeld())) break;
       if (worked) {
         pause = kProbePause;
@@ -104,6 +105,12 @@ class SceneCoordinator {
       if (r == 0) renderOwn(*run);
       else sendScene(r, *run);
     }
+  }
+
+  // The next scene of the pile, loaded while the ranks render, so that the next idle rank does not wait for its
+  // parse; still in the batch's order (every scene before it is dealt), so a load error stops the same way.
+  void loadAhead() {
+    if (const auto next = pile_.next()) loaded(*next);
   }
 
   bool loaded(std::size_t run) {

@@ -41,6 +41,7 @@ TEST(TileDealer, ALostRanksTilesGoToTheOthersAndEveryTileIsFinishedOnce) {
   EXPECT_TRUE(dealer.finish(*a, 1));
   EXPECT_EQ(dealer.reclaim(1), std::vector<std::size_t>{*b});
   // The reclaimed tile comes first, before the ones never dealt.
+  EXPECT_EQ(dealer.next(), b);
   EXPECT_EQ(dealer.take(0), b);
   // A late result from the lost rank counts once; the other copy is not kept.
   EXPECT_TRUE(dealer.finish(*b, 1));
