@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <future>
 #include <memory>
 #include <string>
 #include <thread>
@@ -37,6 +38,26 @@ struct SceneInFlight {
   bool hashed = false;
   std::vector<bool> written;  // per frame of the run
 };
+
+struct SceneLoad {
+  int code = kExitOk;
+  std::string message;  // the located load error
+  std::shared_ptr<const Scene> scene;
+  RenderSettings settings;
+};
+
+// A scene of the batch loaded as the single process loads it (its warnings printed), the knobs applied.
+SceneLoad loadScene(const ClusterJob& job) {
+  SceneLoad load;
+  LoadedScene loaded;
+  load.code = loadSceneOnRankZero(job, loaded, load.message);
+  if (load.code != kExitOk) return load;
+  if (!job.quiet)
+    for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
+  applyKnobs(job.knobs, {&loaded.scene.parameters(), &load.settings});
+  load.scene = std::make_shared<const Scene>(std::move(loaded.scene));
+  return load;
+}
 
 struct Outgoing {
   std::shared_ptr<const Bytes> data;  // kept until the send completes
@@ -91,14 +112,14 @@ class SceneCoordinator {
     message_ = std::move(message);
   }
 
-  // Idle ranks (rank 0's own thread among them) get the next scene, loaded now: scenes load in the batch's order,
-  // so a scene that fails to load stops the dealing with every scene before it dealt.
+  // Idle ranks (rank 0's own thread among them) get the next scene once it is loaded: scenes load in the batch's
+  // order, so a scene that fails to load stops the dealing with every scene before it dealt.
   void dealToIdleRanks() {
     for (int r = 0; r < ranks() && !stopped_; ++r) {
       if (held_[r] != kNobody || tally_[r].lost) continue;
+      const auto next = pile_.next();
+      if (!next || !ready(*next)) return;
       const auto run = pile_.take(r);
-      if (!run) return;
-      if (!loaded(*run)) return;
       held_[r] = static_cast<int>(*run);
       heldLeft_[r] = framesOf(*run);
       lastHeard_[r] = Clock::now();  // its silence counts from now
@@ -108,27 +129,32 @@ class SceneCoordinator {
   }
 
   // The next scene of the pile, loaded while the ranks render, so that the next idle rank does not wait for its
-  // parse; still in the batch's order (every scene before it is dealt), so a load error stops the same way.
+  // parse.
   void loadAhead() {
-    if (const auto next = pile_.next()) loaded(*next);
+    if (const auto next = pile_.next()) ready(*next);
   }
 
-  bool loaded(std::size_t run) {
+  // Whether `run` is loaded; if not, its load is started (one at a time, on a thread of its own, so that this
+  // thread keeps answering the ranks however long a parse takes). A load that failed stops the batch.
+  bool ready(std::size_t run) {
     SceneInFlight& scene = scenes_[run];
     if (scene.scene) return true;
-    ClusterJob sceneJob = job_;
-    sceneJob.scenePath = frameOf(run, 0).scenePath;
-    sceneJob.output = frameOf(run, 0).output;
-    LoadedScene loadedScene;
-    std::string message;
-    if (const int code = loadSceneOnRankZero(sceneJob, loadedScene, message); code != kExitOk) {
-      stop(code, message);
+    if (!loading_.valid()) {
+      ClusterJob sceneJob = job_;
+      sceneJob.scenePath = frameOf(run, 0).scenePath;
+      sceneJob.output = frameOf(run, 0).output;
+      loadingRun_ = run;
+      loading_ = std::async(std::launch::async, [sceneJob] { return loadScene(sceneJob); });
       return false;
     }
-    if (!job_.quiet)
-      for (const Diagnostic& warning : loadedScene.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
-    applyKnobs(job_.knobs, {&loadedScene.scene.parameters(), &scene.settings});
-    scene.scene = std::make_shared<const Scene>(std::move(loadedScene.scene));
+    if (loadingRun_ != run || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+    SceneLoad load = loading_.get();
+    if (load.code != kExitOk) {
+      stop(load.code, load.message);
+      return false;
+    }
+    scene.scene = std::move(load.scene);
+    scene.settings = load.settings;
     scene.written.assign(framesOf(run), false);
     return true;
   }
@@ -314,6 +340,8 @@ class SceneCoordinator {
   std::deque<Outgoing> outbox_;
   Bytes inbox_;
   std::vector<Bytes> abandoned_;  // buffers of receives given up on: never freed under MPI
+  std::future<SceneLoad> loading_;  // the scene being loaded, at most one
+  std::size_t loadingRun_ = 0;
   bool stopped_ = false;
   int code_ = kExitOk;
   std::string message_;
