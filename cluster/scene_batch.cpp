@@ -80,11 +80,11 @@ class SceneCoordinator {
       if (!stopped_) dealToIdleRanks();
       if (!stopped_) loadAhead();
       if (pile_.allFinished() || (stopped_ && nothingHeld())) break;
+      watchWorkers();  // every time round, so that a stream of messages never holds back the nudges
       if (worked) {
         pause = kProbePause;
         continue;
       }
-      watchWorkers();
       std::this_thread::sleep_for(pause);
       pause = std::min(pause * 2, kLongestProbePause);
     }
