@@ -112,10 +112,12 @@ class SceneCoordinator {
     message_ = std::move(message);
   }
 
-  // Idle ranks (rank 0's own thread among them) get the next scene once it is loaded: scenes load in the batch's
-  // order, so a scene that fails to load stops the dealing with every scene before it dealt.
+  // Idle ranks get the next scene once it is loaded: scenes load in the batch's order, so a scene that fails to
+  // load stops the dealing with every scene before it dealt. Rank 0's own thread comes last: a worker's scene has
+  // further to go.
   void dealToIdleRanks() {
-    for (int r = 0; r < ranks() && !stopped_; ++r) {
+    for (int k = 1; k <= ranks() && !stopped_; ++k) {
+      const int r = k % ranks();
       if (held_[r] != kNobody || tally_[r].lost) continue;
       const auto next = pile_.next();
       if (!next || !ready(*next)) return;
