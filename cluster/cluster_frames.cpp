@@ -10,6 +10,7 @@
 #include "frame_scene.h"
 #include "frame_units.h"
 #include "rayview/thread_pool.h"
+#include "scene_batch.h"
 #include "scene_distribution.h"
 #include "tile_exchange.h"
 
@@ -113,13 +114,14 @@ int renderRun(const ClusterJob& job, const std::vector<ClusterFrame>& frames, st
   return code;
 }
 
-void printFrameSummary(const FrameTotals& totals) {
+void printFrameSummary(const FrameTotals& totals, bool byScene) {
   double maxBusy = 0.0, sumBusy = 0.0;
   for (const RankTally& rank : totals.ranks) maxBusy = std::max(maxBusy, rank.busyMs), sumBusy += rank.busyMs;
   std::printf("time       %.1f s for %zu frames\n", totals.progress.seconds(), totals.progress.written());
   for (std::size_t r = 0; r < totals.ranks.size(); ++r)
-    std::printf("rank %-5zu busy %.1f ms, %zu whole frames, %zu tiles\n", r, totals.ranks[r].busyMs,
-                totals.ranks[r].frames, totals.ranks[r].tiles);
+    std::printf("rank %-5zu busy %.1f ms, %s%zu whole frames, %zu tiles\n", r, totals.ranks[r].busyMs,
+                byScene ? (std::to_string(totals.ranks[r].scenes) + (totals.ranks[r].scenes == 1 ? " scene, " : " scenes, ")).c_str() : "", totals.ranks[r].frames,
+                totals.ranks[r].tiles);
   std::printf("balance    %.3f (mean/max busy time)\n",
               maxBusy > 0.0 ? sumBusy / static_cast<double>(totals.ranks.size()) / maxBusy : 1.0);
 }
@@ -141,6 +143,13 @@ int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& pla
     noteFrames(0, frames.size());
     handleSignalsOnRankZero();
   }
+  // At least as many scenes as ranks: each dealt whole to one rank, which alone builds it (scene_batch.h). Fewer:
+  // one after another, each tiled across every rank, so that none is idle.
+  if (const std::vector<SceneRun> runs = sceneRuns(frames); runs.size() > 1 && runs.size() >= static_cast<std::size_t>(ranks)) {
+    code = rank == 0 ? dealScenes(job, frames, runs, pool, totals.progress, totals.ranks) : workOnScenes(rank, pool);
+    if (rank == 0 && code == kExitOk && !job.quiet) printFrameSummary(totals, true);
+    return code;
+  }
   for (std::size_t first = 0; first < frames.size();) {
     std::size_t end = first;
     while (end < frames.size() && frames[end].scenePath == frames[first].scenePath) ++end;
@@ -156,7 +165,7 @@ int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& pla
       return kExitIoFailure;
     }
   }
-  if (rank == 0 && !job.quiet) printFrameSummary(totals);
+  if (rank == 0 && !job.quiet) printFrameSummary(totals, false);
   return kExitOk;
 }
 

@@ -28,11 +28,13 @@ struct ClusterFrame {
 };
 
 // Frames under MPI: rank 0 passes the frames still to render (its plan; `planCode` not kExitOk: the plan's
-// error, printed), the other ranks nothing; rank 0 broadcasts them. The scene of consecutive frames is loaded once
-// and its frames dealt as whole frames to the ranks while at least as many remain as there are ranks, the last
-// ones as tiles to all ranks (frame_units.h); rank 0 writes every frame. Returns this rank's exit code. Under
-// --enable-recovery a lost rank's frames and tiles go to the others; the job ends after that scene's frames
-// (finished frames stay written; a rerun renders the rest).
+// error, printed), the other ranks nothing; rank 0 broadcasts them. A batch of at least as many scenes as ranks is
+// dealt by scene (scene_batch.h: each scene loaded by rank 0 and built by the one rank that renders it). Otherwise
+// the scene of consecutive frames is loaded once on every rank and its frames dealt as whole frames to the ranks
+// while at least as many remain as there are ranks, the last ones as tiles to all ranks (frame_units.h). Rank 0
+// writes every frame. Returns this rank's exit code. Under --enable-recovery a lost rank's scenes, frames and tiles
+// go to the others; scene by scene, the job ends after that scene's frames (finished frames stay written; a rerun
+// renders the rest).
 int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& frames, int planCode);
 
 // Runs on every rank between MPI_Init_thread (MPI_THREAD_FUNNELED at least) and MPI_Finalize; returns this

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <thread>
 
 namespace rayview::cluster {
 
@@ -13,6 +14,12 @@ enum Tag : int {
   kTagResult = 2,     // worker -> rank 0: TileResultHeader, then the tile's RGB rows
   kTagAlive = 3,      // worker -> rank 0, while it renders: nothing (a heartbeat)
   kTagLoadError = 4,  // worker -> rank 0: the text of its load error
+  // A batch dealt by scene (scene_batch.h):
+  kTagScene = 5,        // rank 0 -> worker: an int64, the size of the scene order that follows
+  kTagSceneBytes = 6,   // rank 0 -> worker: the scene order (scene_orders.h), in pieces of at most 1 GiB
+  kTagSceneResult = 7,  // worker -> rank 0: SceneResultHeader, then the frame's RGB rows
+  kTagSceneEnd = 8,     // rank 0 -> worker: two int32, the exit code and whether a rank was lost
+  kTagNudge = 9,        // rank 0 -> idle worker: nothing (rank 0 is alive)
 };
 
 inline constexpr std::int32_t kNoMoreTiles = -1;
@@ -39,6 +46,21 @@ inline constexpr auto kLongestProbePause = std::chrono::microseconds(2000);
 inline bool messageWaiting(int source, int tag, MPI_Status& status) {
   int flag = 0;
   return MPI_Iprobe(source, tag, MPI_COMM_WORLD, &flag, &status) == MPI_SUCCESS && flag != 0;
+}
+
+// Receives a message `probed` announced, waiting at most `patience`: a large message is read from the sender's
+// memory, and a blocking receive from a sender that died meanwhile would never return. False: given up (the
+// buffer then belongs to MPI for good and must not be freed).
+inline bool receiveWithin(void* buffer, int bytes, const MPI_Status& probed, std::chrono::milliseconds patience) {
+  MPI_Request request;
+  MPI_Irecv(buffer, bytes, MPI_BYTE, probed.MPI_SOURCE, probed.MPI_TAG, MPI_COMM_WORLD, &request);
+  const auto deadline = std::chrono::steady_clock::now() + patience;
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return true;
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    std::this_thread::sleep_for(kProbePause);
+  }
 }
 
 }  // namespace rayview::cluster

@@ -28,27 +28,6 @@ void broadcastBytes(void* data, std::size_t bytes) {
     MPI_Bcast(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
 }
 
-// Rank 0: the output checks and the scene, loaded from its file exactly as a single process loads it (the same
-// messages). Returns the exit code (printed) when the job cannot start.
-int loadOnRankZero(const ClusterJob& job, LoadedScene& loaded) {
-  if (const std::string problem = renderOutputProblem(job.output, job.scenePath); !problem.empty()) {
-    std::fprintf(stderr, "rayview: error: %s\n", problem.c_str());
-    return kExitBadInput;
-  }
-  LoadOptions options;
-  options.strict = job.strict;
-  try {
-    loaded = loadSceneOrDefault(job.scenePath, options);
-  } catch (const SceneError& error) {
-    std::fprintf(stderr, "%s\n", error.what());
-    return kExitBadInput;
-  } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "rayview: error: out of memory loading %s\n", job.scenePath.c_str());
-    return kExitOutOfMemory;
-  }
-  return kExitOk;
-}
-
 // Every other rank: the scene from rank 0's bytes ("" on success, else why not).
 std::string decodeOnRank(const ClusterJob& job, const Bytes& geometry, const Bytes& parameters, Scene& scene,
                          RenderSettings& settings) {
@@ -101,6 +80,25 @@ int verdictOnRankZero(const std::vector<RankCheck>& checks, const std::string& o
 
 }  // namespace
 
+int loadSceneOnRankZero(const ClusterJob& job, LoadedScene& loaded, std::string& message) {
+  if (const std::string problem = renderOutputProblem(job.output, job.scenePath); !problem.empty()) {
+    message = "rayview: error: " + problem;
+    return kExitBadInput;
+  }
+  LoadOptions options;
+  options.strict = job.strict;
+  try {
+    loaded = loadSceneOrDefault(job.scenePath, options);
+  } catch (const SceneError& error) {
+    message = error.what();
+    return kExitBadInput;
+  } catch (const std::bad_alloc&) {
+    message = "rayview: error: out of memory loading " + job.scenePath;
+    return kExitOutOfMemory;
+  }
+  return kExitOk;
+}
+
 int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene& out) {
   const auto start = std::chrono::steady_clock::now();
   // Rank 0 alone reads and parses; the others receive the loaded arrays and the parameters with the knobs applied
@@ -109,7 +107,9 @@ int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene
   Bytes geometry, parameters;
   std::int64_t header[3] = {kExitOk, 0, 0};  // exit code, byte counts
   if (rank == 0) {
-    header[0] = loadOnRankZero(job, loaded);
+    std::string message;
+    header[0] = loadSceneOnRankZero(job, loaded, message);
+    if (header[0] != kExitOk) std::fprintf(stderr, "%s\n", message.c_str());
     if (header[0] == kExitOk) {
       applyKnobs(job.knobs, {&loaded.scene.parameters(), &out.settings});
       if (ranks > 1) {

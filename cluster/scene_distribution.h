@@ -4,10 +4,12 @@
 // hold the same scene. Workers need no shared file system.
 
 #include <memory>
+#include <string>
 
 #include "cluster_job.h"
 #include "rayview/render_settings.h"
 #include "rayview/scene.h"
+#include "rayview/scene_source.h"
 
 namespace rayview::cluster {
 
@@ -16,6 +18,10 @@ struct DistributedScene {
   RenderSettings settings;
   double loadMs = 0.0;  // reading, broadcasting, loading and checking, on this rank
 };
+
+// Rank 0: the output checks and the scene, loaded from its file exactly as a single process loads it. Returns
+// kExitOk, or the exit code with the message to print (the located load error) in `message`.
+int loadSceneOnRankZero(const ClusterJob& job, LoadedScene& loaded, std::string& message);
 
 // Collective. Returns kExitOk with `out` filled, or the exit code every rank ends with; rank 0 has then printed
 // the one message (a located load error, from whichever rank failed first, or a scene that differs).

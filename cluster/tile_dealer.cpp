@@ -18,6 +18,13 @@ std::optional<std::size_t> TileDealer::take(int rank) {
   return std::nullopt;
 }
 
+std::optional<std::size_t> TileDealer::next() const {
+  std::lock_guard lock(mutex_);
+  for (std::size_t tile : pile_)
+    if (!done_[tile]) return tile;
+  return std::nullopt;
+}
+
 std::optional<std::size_t> TileDealer::takeOrWait(int rank) {
   std::unique_lock lock(mutex_);
   for (;;) {

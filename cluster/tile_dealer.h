@@ -25,6 +25,8 @@ class TileDealer {
   bool finish(std::size_t tile, int rank);
   // `rank` is lost: the tiles it holds and has not finished go back to the front of the pile; returns them.
   std::vector<std::size_t> reclaim(int rank);
+  // The tile take would give next, left in the pile; nullopt when none is left to deal.
+  std::optional<std::size_t> next() const;
   // The tiles `rank` holds and has not finished.
   std::vector<std::size_t> heldBy(int rank) const;
   // Wakes every takeOrWait for good.

@@ -18,6 +18,7 @@ struct RankTally {
   double busyMs = 0.0;  // rendering tiles and whole frames
   std::size_t tiles = 0;
   std::size_t frames = 0;  // rendered whole
+  std::size_t scenes = 0;  // of a batch dealt by scene: scenes rendered whole (scene_batch.h)
   RayCounts rays;
   bool lost = false;  // fell silent while it held tiles; they were dealt again
 };

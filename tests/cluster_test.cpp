@@ -1,6 +1,6 @@
 // The parts of a distributed render that need no MPI: the tile plan, the dealer that re-deals a lost rank's
 // tiles, a tile's pixels against the whole frame's, the frames dealt whole or in tiles and put together, and the
-// scene hash.
+// scene hash, and a batch's scenes as runs and as the orders rank 0 sends.
 #include <gtest/gtest.h>
 
 #include <set>
@@ -10,6 +10,7 @@
 #include "rayview/scene_source.h"
 #include "frame_units.h"
 #include "scene_hash.h"
+#include "scene_orders.h"
 #include "tile_dealer.h"
 #include "tile_plan.h"
 #include "tile_render.h"
@@ -40,6 +41,7 @@ TEST(TileDealer, ALostRanksTilesGoToTheOthersAndEveryTileIsFinishedOnce) {
   EXPECT_TRUE(dealer.finish(*a, 1));
   EXPECT_EQ(dealer.reclaim(1), std::vector<std::size_t>{*b});
   // The reclaimed tile comes first, before the ones never dealt.
+  EXPECT_EQ(dealer.next(), b);
   EXPECT_EQ(dealer.take(0), b);
   // A late result from the lost rank counts once; the other copy is not kept.
   EXPECT_TRUE(dealer.finish(*b, 1));
@@ -153,6 +155,50 @@ TEST(SceneHash, SeesAnyChange) {
   Scene lit = scene;
   lit.maxRayDepth += 1;
   EXPECT_NE(sceneHash(lit), original);
+}
+
+TEST(SceneRuns, ConsecutiveFramesOfOneSceneAreOneRun) {
+  const std::vector<ClusterFrame> frames = {{"a.xml", 0, 0, "a.png"}, {"b.xml", 0, 3, "b0.png"},
+                                            {"b.xml", 1, 3, "b1.png"}, {"c.xml", 0, 0, "c.png"}};
+  const std::vector<SceneRun> runs = sceneRuns(frames);
+  ASSERT_EQ(runs.size(), 3u);
+  EXPECT_EQ(runs[0].first, 0u);
+  EXPECT_EQ(runs[1].first, 1u);
+  EXPECT_EQ(runs[1].end, 3u);
+  EXPECT_EQ(runs[2].end, 4u);
+  EXPECT_TRUE(sceneRuns({}).empty());
+}
+
+TEST(SceneOrder, CarriesTheLoadedSceneExactlyAndRefusesMalformedBytes) {
+  Scene scene = loadSceneOrDefault("", {}).scene;
+  RenderSettings settings;
+  settings.pixelSamples = 4;
+  SceneOrder order;
+  order.run = 7;
+  order.scenePath = "scenes/x.xml";
+  order.frames = {0, 0};
+  order.geometry = encodeGeometry(scene.geometry(), scene.camera.position, settings.accel);
+  order.parameters = encodeSnapshot(scene.parameters(), settings);
+  const Bytes bytes = encodeSceneOrder(order);
+  const SceneOrder back = decodeSceneOrder(bytes.data(), bytes.size());
+  EXPECT_EQ(back.run, 7);
+  EXPECT_EQ(back.scenePath, order.scenePath);
+  EXPECT_EQ(back.frames, order.frames);
+  // The scene a worker rebuilds from the order is rank 0's, hash for hash.
+  Scene rebuilt;
+  static_cast<SceneGeometry&>(rebuilt) = std::move(*decodeGeometry(back.geometry.data(), back.geometry.size()).geometry);
+  const Snapshot snapshot = decodeSnapshot(back.parameters.data(), back.parameters.size());
+  rebuilt.parameters() = snapshot.parameters;
+  EXPECT_EQ(sceneHash(rebuilt), sceneHash(scene));
+  EXPECT_EQ(snapshot.settings.pixelSamples, 4);
+  for (std::size_t cut : {std::size_t{0}, std::size_t{3}, std::size_t{12}, bytes.size() / 2, bytes.size() - 1})
+    EXPECT_THROW(decodeSceneOrder(bytes.data(), cut), CodecError) << cut;
+  Bytes longer = bytes;
+  longer.push_back(0);
+  EXPECT_THROW(decodeSceneOrder(longer.data(), longer.size()), CodecError);
+  Bytes foreign = bytes;
+  foreign[0] ^= 1;
+  EXPECT_THROW(decodeSceneOrder(foreign.data(), foreign.size()), CodecError);
 }
 
 }  // namespace

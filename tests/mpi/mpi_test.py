@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """rayview render under mpirun: the image is the single process's byte for byte, a bad scene fails once, a killed
 rank ends the job cleanly (or, with mpirun --enable-recovery, the survivors finish the same image); turntables give
-the single process's frames, dealt whole to ranks, and a killed one is finished by a rerun."""
+the single process's frames, dealt whole to ranks, and a killed one is finished by a rerun; a batch of scenes is
+dealt by scene with the single process's images, its resume, a bad scene in it and a killed rank's scene."""
 import argparse
 import os
 import shutil
@@ -49,6 +50,11 @@ def main():
     t.bad_scene()
     t.frames(os.path.join(scenes, "triangular_light.xml"), min(3, args.max_ranks), 4)
     t.frames(os.path.join(scenes, "triangular_light.xml"), min(2, args.max_ranks), 6)
+    batch = [os.path.join(scenes, "triangular_light.xml"), os.path.join(scenes, "textured_2025.xml"),
+             os.path.join(conformance, "bunny.xml"), os.path.join(conformance, "scienceTree_512x512.xml")]
+    t.batch(batch, min(2, args.max_ranks))  # 3 ranks: bad_scene_in_batch, killed_batch
+    t.bad_scene_in_batch(batch)
+    t.killed_batch(os.path.join(conformance, "monkey.xml"))
     slow = [os.path.join(conformance, "monkey.xml"), "--samples", "9"]
     t.killed_rank(slow, recovery=False)
     t.killed_rank(slow, recovery=True)
@@ -122,6 +128,89 @@ class Tester:
                              timeout=120)
         self.check(run.returncode == 0 and f"{count - 1} complete already, 1 to render" in run.stdout and same(),
                    f"{what}, rerun: {run.stdout}{run.stderr}")
+
+    def batch(self, scenes, ranks):
+        """A batch of different scenes under MPI: dealt whole to ranks (the summary counts each scene once), the
+        single process's images byte for byte; a rerun renders only the missing ones."""
+        single = os.path.join(self.args.scratch, "batch_single") + "/"
+        spread = os.path.join(self.args.scratch, f"batch_{ranks}") + "/"
+        names = [os.path.splitext(os.path.basename(s))[0] + ".png" for s in scenes]
+        what = f"batch of {len(scenes)} on {ranks} ranks"
+        if not os.path.isdir(single):
+            subprocess.run([self.args.rayview, "render", *scenes, "-o", single, "--quiet"], check=True)
+        run = subprocess.run(self.mpirun(ranks, [*scenes, "-o", spread, "--threads", "1"]), capture_output=True,
+                             text=True, timeout=120)
+        self.check(run.returncode == 0 and f"frame {len(scenes)} of {len(scenes)} written" in run.stderr,
+                   f"{what}: exit {run.returncode}: {run.stdout}{run.stderr}")
+        # "rank 1     busy 72.7 ms, 2 scenes, 2 whole frames, 0 tiles"
+        rows = [line.split(",") for line in run.stdout.splitlines() if line.startswith("rank ")]
+        whole = sum(int(row[1].split()[0]) for row in rows if len(row) == 4 and "scene" in row[1])
+        self.check(len(rows) == ranks and whole == len(scenes), f"{what}: {whole} scenes rendered whole:\n{run.stdout}")
+        same = lambda: all(os.path.exists(spread + n) and open(spread + n, "rb").read() == open(single + n, "rb").read()
+                           for n in names)
+        self.check(same(), f"{what}: images differ from the single process's")
+        for n in names[1:3]:
+            os.remove(spread + n)
+        run = subprocess.run(self.mpirun(ranks, [*scenes, "-o", spread]), capture_output=True, text=True, timeout=120)
+        self.check(run.returncode == 0 and f"{len(scenes) - 2} complete already, 2 to render" in run.stdout and same(),
+                   f"{what}, rerun: {run.stdout}{run.stderr}")
+
+    def bad_scene_in_batch(self, scenes):
+        """A batch whose third scene does not load: as the single process, the scenes before it written, the
+        located message once, exit 2, nothing after it and no temporary file."""
+        bad = os.path.join(self.args.scratch, "bad.xml")
+        with open(bad, "w") as f:
+            f.write("<scene>\n<camera>\n<position>0 0 oops</position>\n</camera>\n</scene>\n")
+        listed = [*scenes[:2], bad, *scenes[2:]]
+        single_dir = os.path.join(self.args.scratch, "bad_batch_single") + "/"
+        spread_dir = os.path.join(self.args.scratch, "bad_batch") + "/"
+        single = subprocess.run([self.args.rayview, "render", *listed, "-o", single_dir], capture_output=True, text=True)
+        run = subprocess.run(self.mpirun(3, [*listed, "-o", spread_dir, "--threads", "1"]), capture_output=True,
+                             text=True, timeout=60)
+        message = single.stderr.strip().splitlines()[-1]
+        self.check(run.returncode == 2 and single.returncode == 2, f"bad batch: exit {run.returncode}, not 2")
+        self.check(run.stderr.count(message) == 1, f"bad batch: the located message once:\n{message}\nbut:\n{run.stderr}")
+        listing = lambda d: sorted(os.listdir(d)) if os.path.isdir(d) else []
+        self.check(listing(spread_dir) == listing(single_dir) == ["textured_2025.png", "triangular_light.png"],
+                   f"bad batch: wrote {listing(spread_dir)}, the single process {listing(single_dir)}")
+
+    def killed_batch(self, scene):
+        """Rank 1 killed in a batch under mpirun --enable-recovery: its scene goes to the others and every image is
+        the single process's."""
+        directory = os.path.join(self.args.scratch, "killed_batch")
+        os.makedirs(directory)
+        copies = []
+        for k in range(4):
+            copies.append(os.path.join(directory, f"m{k}.xml"))
+            shutil.copy(scene, copies[-1])
+        options = ["--samples", "4"]
+        single = os.path.join(directory, "single.png")
+        subprocess.run([self.args.rayview, "render", scene, "-o", single, "--quiet", *options], check=True)
+        out = os.path.join(directory, "out") + "/"
+        job = subprocess.Popen(self.mpirun(3, [*copies, "-o", out, "--threads", "1", *options], ["--enable-recovery"]),
+                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        start = time.monotonic()
+        victim = None
+        while victim is None and job.poll() is None and time.monotonic() - start < 20:
+            time.sleep(0.05)
+            victim = rank_process(job.pid, 1, started_rendering=True)
+        if victim is None:
+            job.kill()
+            self.check(False, "killed batch: rank 1 never started rendering")
+            return
+        os.kill(victim, signal.SIGKILL)
+        try:
+            _, stderr = job.communicate(timeout=60)
+        except subprocess.TimeoutExpired:
+            job.kill()
+            self.check(False, "killed batch: the job hangs after rank 1 was killed")
+            return
+        expected = open(single, "rb").read()
+        written = sorted(os.listdir(out)) if os.path.isdir(out) else []
+        same = written == [f"m{k}.png" for k in range(4)] and all(open(out + n, "rb").read() == expected for n in written)
+        self.check(job.returncode == 0 and same and "rank 1 fell silent" in stderr,
+                   f"killed batch: exit {job.returncode}, files {written}, same {same}:\n{stderr}")
+        self.check(not any(rank_process(job.pid, r) for r in range(3)), "killed batch: a rank is still running")
 
     def killed_turntable(self, scene_args):
         """Rank 1 killed in a turntable under plain mpirun: the job ends, the frames written stay whole, and a rerun

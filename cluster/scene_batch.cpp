@@ -1,0 +1,361 @@
+#include "scene_batch.h"
+
+#include <mpi.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <future>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "exit_codes.h"
+#include "mpi_link.h"
+#include "scene_distribution.h"
+#include "scene_hash.h"
+#include "scene_render_thread.h"
+#include "tile_dealer.h"
+
+namespace rayview::cluster {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// MPI counts are ints: a scene order goes in pieces.
+constexpr std::size_t kPiece = std::size_t{1} << 30;
+// An idle worker hears from rank 0 this often, so that its own watch on rank 0 stays quiet.
+constexpr auto kNudgeEvery = std::chrono::milliseconds(1000);
+constexpr int kNobody = -1;
+
+// A scene between its load on rank 0 and its last frame written.
+struct SceneInFlight {
+  std::shared_ptr<const Scene> scene;
+  RenderSettings settings;
+  std::uint64_t hash = 0;  // computed when first sent to a worker
+  bool hashed = false;
+  std::vector<bool> written;  // per frame of the run
+};
+
+struct SceneLoad {
+  int code = kExitOk;
+  std::string message;  // the located load error
+  std::shared_ptr<const Scene> scene;
+  RenderSettings settings;
+};
+
+// A scene of the batch loaded as the single process loads it (its warnings printed), the knobs applied.
+SceneLoad loadScene(const ClusterJob& job) {
+  SceneLoad load;
+  LoadedScene loaded;
+  load.code = loadSceneOnRankZero(job, loaded, load.message);
+  if (load.code != kExitOk) return load;
+  if (!job.quiet)
+    for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
+  applyKnobs(job.knobs, {&loaded.scene.parameters(), &load.settings});
+  load.scene = std::make_shared<const Scene>(std::move(loaded.scene));
+  return load;
+}
+
+struct Outgoing {
+  std::shared_ptr<const Bytes> data;  // kept until the send completes
+  int rank = 0;
+  MPI_Request request = MPI_REQUEST_NULL;
+};
+
+class SceneCoordinator {
+ public:
+  SceneCoordinator(const ClusterJob& job, const std::vector<ClusterFrame>& frames, const std::vector<SceneRun>& runs,
+                   ThreadPool& pool, FrameProgress& progress, std::vector<RankTally>& tally)
+      : job_(job), frames_(frames), runs_(runs), progress_(progress), tally_(tally), pile_(runs.size()),
+        scenes_(runs.size()), held_(tally.size(), kNobody), heldLeft_(tally.size(), 0),
+        lastHeard_(tally.size(), Clock::now()), lastSent_(tally.size(), Clock::now()), own_(pool) {}
+
+  int run() {
+    auto pause = kProbePause;
+    for (;;) {
+      const bool worked = takeOwnResults() | receiveOne();
+      if (!stopped_) dealToIdleRanks();
+      if (!stopped_) loadAhead();
+      if (pile_.allFinished() || (stopped_ && nothingHeld())) break;
+      watchWorkers();  // every time round, so that a stream of messages never holds back the nudges
+      if (worked) {
+        pause = kProbePause;
+        continue;
+      }
+      std::this_thread::sleep_for(pause);
+      pause = std::min(pause * 2, kLongestProbePause);
+    }
+    const std::int32_t end[2] = {code_, peerLost() ? 1 : 0};
+    for (int w = 1; w < ranks(); ++w) send(w, kTagSceneEnd, std::make_shared<const Bytes>(
+        reinterpret_cast<const std::uint8_t*>(end), reinterpret_cast<const std::uint8_t*>(end) + sizeof end));
+    finishSends();
+    if (!message_.empty()) std::fprintf(stderr, "%s\n", message_.c_str());
+    return code_;
+  }
+
+ private:
+  int ranks() const { return static_cast<int>(tally_.size()); }
+  std::size_t framesOf(std::size_t run) const { return runs_[run].end - runs_[run].first; }
+  const ClusterFrame& frameOf(std::size_t run, std::size_t k) const { return frames_[runs_[run].first + k]; }
+
+  bool nothingHeld() const {
+    return std::all_of(held_.begin(), held_.end(), [](int run) { return run == kNobody; });
+  }
+
+  void stop(int code, std::string message) {
+    if (stopped_) return;
+    stopped_ = true;
+    code_ = code;
+    message_ = std::move(message);
+  }
+
+  // Idle ranks get the next scene once it is loaded: scenes load in the batch's order, so a scene that fails to
+  // load stops the dealing with every scene before it dealt. Rank 0's own thread comes last: a worker's scene has
+  // further to go.
+  void dealToIdleRanks() {
+    for (int k = 1; k <= ranks() && !stopped_; ++k) {
+      const int r = k % ranks();
+      if (held_[r] != kNobody || tally_[r].lost) continue;
+      const auto next = pile_.next();
+      if (!next || !ready(*next)) return;
+      const auto run = pile_.take(r);
+      held_[r] = static_cast<int>(*run);
+      heldLeft_[r] = framesOf(*run);
+      lastHeard_[r] = Clock::now();  // its silence counts from now
+      if (r == 0) renderOwn(*run);
+      else sendScene(r, *run);
+    }
+  }
+
+  // The next scene of the pile, loaded while the ranks render, so that the next idle rank does not wait for its
+  // parse.
+  void loadAhead() {
+    if (const auto next = pile_.next()) ready(*next);
+  }
+
+  // Whether `run` is loaded; if not, its load is started (one at a time, on a thread of its own, so that this
+  // thread keeps answering the ranks however long a parse takes). A load that failed stops the batch.
+  bool ready(std::size_t run) {
+    SceneInFlight& scene = scenes_[run];
+    if (scene.scene) return true;
+    if (!loading_.valid()) {
+      ClusterJob sceneJob = job_;
+      sceneJob.scenePath = frameOf(run, 0).scenePath;
+      sceneJob.output = frameOf(run, 0).output;
+      loadingRun_ = run;
+      loading_ = std::async(std::launch::async, [sceneJob] { return loadScene(sceneJob); });
+      return false;
+    }
+    if (loadingRun_ != run || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+    SceneLoad load = loading_.get();
+    if (load.code != kExitOk) {
+      stop(load.code, load.message);
+      return false;
+    }
+    scene.scene = std::move(load.scene);
+    scene.settings = load.settings;
+    scene.written.assign(framesOf(run), false);
+    return true;
+  }
+
+  std::vector<std::int32_t> frameList(std::size_t run) const {
+    std::vector<std::int32_t> list;
+    for (std::size_t k = 0; k < framesOf(run); ++k) list.insert(list.end(), {frameOf(run, k).frame, frameOf(run, k).frames});
+    return list;
+  }
+
+  void renderOwn(std::size_t run) {
+    const SceneToRender given{scenes_[run].scene, scenes_[run].settings};
+    own_.start({static_cast<std::int32_t>(run), [given] { return given; }, frameList(run), false});
+  }
+
+  // The scene as loaded, knobs applied, to `worker` alone: the order's size, then the order in pieces.
+  void sendScene(int worker, std::size_t run) {
+    SceneInFlight& scene = scenes_[run];
+    if (!scene.hashed) scene.hash = sceneHash(*scene.scene), scene.hashed = true;
+    SceneOrder order;
+    order.run = static_cast<std::int32_t>(run);
+    order.scenePath = frameOf(run, 0).scenePath;
+    order.frames = frameList(run);
+    order.geometry = encodeGeometry(scene.scene->geometry(), scene.scene->camera.position, scene.settings.accel);
+    order.parameters = encodeSnapshot(scene.scene->parameters(), scene.settings);
+    auto bytes = std::make_shared<const Bytes>(encodeSceneOrder(order));
+    const auto size = static_cast<std::int64_t>(bytes->size());
+    send(worker, kTagScene, std::make_shared<const Bytes>(reinterpret_cast<const std::uint8_t*>(&size),
+                                                          reinterpret_cast<const std::uint8_t*>(&size) + sizeof size));
+    for (std::size_t at = 0; at < bytes->size(); at += kPiece) {
+      outbox_.push_back({bytes, worker, MPI_REQUEST_NULL});
+      MPI_Isend(bytes->data() + at, static_cast<int>(std::min(kPiece, bytes->size() - at)), MPI_BYTE, worker,
+                kTagSceneBytes, MPI_COMM_WORLD, &outbox_.back().request);
+    }
+  }
+
+  void send(int worker, int tag, std::shared_ptr<const Bytes> data) {
+    outbox_.push_back({std::move(data), worker, MPI_REQUEST_NULL});
+    const Bytes& bytes = *outbox_.back().data;
+    MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, worker, tag, MPI_COMM_WORLD,
+              &outbox_.back().request);
+    lastSent_[worker] = Clock::now();
+    reapSends();
+  }
+
+  // Completed sends leave, and a scene's bytes with them; a send to a lost rank may never complete and is left alone.
+  void reapSends() {
+    std::erase_if(outbox_, [this](Outgoing& out) {
+      int done = 0;
+      if (!tally_[out.rank].lost) MPI_Test(&out.request, &done, MPI_STATUS_IGNORE);
+      return done != 0;
+    });
+  }
+
+  bool takeOwnResults() {
+    bool any = false;
+    while (auto done = own_.next(std::chrono::milliseconds(0))) {
+      any = true;
+      if (!done->error.empty()) {
+        stop(kExitBadInput, "rayview: rank 0: " + done->error);
+        held_[0] = kNobody;
+        continue;
+      }
+      frameDone(0, *done, done->image.rgb.data(), done->image.rgb.size());
+    }
+    return any;
+  }
+
+  bool receiveOne() {
+    MPI_Status status;
+    if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) return false;
+    const int worker = status.MPI_SOURCE;
+    int bytes = 0;
+    MPI_Get_count(&status, MPI_BYTE, &bytes);
+    inbox_.resize(static_cast<std::size_t>(bytes) + 1);
+    if (!receiveWithin(inbox_.data(), bytes, status, std::chrono::duration_cast<std::chrono::milliseconds>(kLostAfter))) {
+      abandoned_.push_back(std::move(inbox_));
+      inbox_ = {};
+      loseWorker(worker);
+      return true;
+    }
+    lastHeard_[worker] = Clock::now();
+    if (status.MPI_TAG == kTagSceneResult && static_cast<std::size_t>(bytes) >= sizeof(SceneResultHeader)) {
+      SceneResultHeader header;
+      std::memcpy(&header, inbox_.data(), sizeof header);
+      SceneFrameDone done{header.run, header.frame, Image(), header.busyMs,
+                          RayCounts{header.camera, header.shadow, header.reflection}, header.hash, {}};
+      frameDone(worker, done, inbox_.data() + sizeof header, static_cast<std::size_t>(bytes) - sizeof header);
+    } else if (status.MPI_TAG == kTagLoadError) {
+      stop(kExitBadInput, "rayview: rank " + std::to_string(worker) + ": " +
+                              std::string(reinterpret_cast<const char*>(inbox_.data()), static_cast<std::size_t>(bytes)));
+      if (!tally_[worker].lost) held_[worker] = kNobody;
+    }
+    return true;
+  }
+
+  // A frame from `rank` (its pixels `rgb`): written unless another rank wrote it first; the rank is idle again after
+  // its run's last frame.
+  void frameDone(int rank, const SceneFrameDone& done, const std::uint8_t* rgb, std::size_t bytes) {
+    const auto run = static_cast<std::size_t>(done.run);
+    if (run >= runs_.size() || done.frame < 0 || static_cast<std::size_t>(done.frame) >= framesOf(run)) return;
+    RankTally& tally = tally_[rank];
+    tally.busyMs += done.busyMs;
+    tally.rays += done.rays;
+    ++tally.frames;
+    if (held_[rank] == static_cast<int>(run) && --heldLeft_[rank] == 0) held_[rank] = kNobody, ++tally.scenes;
+    SceneInFlight& scene = scenes_[run];
+    if (!scene.scene || scene.written[static_cast<std::size_t>(done.frame)]) return;  // a late copy
+    if (rank != 0 && done.hash != scene.hash) {
+      char text[200];
+      std::snprintf(text, sizeof text, "rayview: error: rank %d loaded a scene that differs from rank 0's (hash "
+                    "%016llx, not %016llx)", rank, static_cast<unsigned long long>(done.hash),
+                    static_cast<unsigned long long>(scene.hash));
+      return stop(kExitIoFailure, text);
+    }
+    writeFrame(run, static_cast<std::size_t>(done.frame), rgb, bytes, rank);
+  }
+
+  void writeFrame(std::size_t run, std::size_t k, const std::uint8_t* rgb, std::size_t bytes, int rank) {
+    SceneInFlight& scene = scenes_[run];
+    const Camera& camera = scene.scene->camera;  // a turntable's frames keep the lens: the same size
+    Image image(camera.width, camera.height);
+    if (bytes != image.rgb.size())
+      return stop(kExitIoFailure, "rayview: error: rank " + std::to_string(rank) + " sent a frame of the wrong size");
+    std::memcpy(image.rgb.data(), rgb, bytes);
+    const ClusterFrame& frame = frameOf(run, k);
+    if (const int code = writeFrameFile(frame.output, std::move(image)); code != kExitOk) return stop(code, {});
+    scene.written[k] = true;
+    progress_.frameWritten(frame.output, job_.quiet);
+    noteFrames(progress_.written(), frames_.size());
+    if (std::find(scene.written.begin(), scene.written.end(), false) != scene.written.end()) return;
+    pile_.finish(run, rank);
+    scene = SceneInFlight();  // rank 0 holds only the scenes in flight
+  }
+
+  // Silent workers holding a scene are lost and their scene dealt again; idle ones get a nudge.
+  void watchWorkers() {
+    reapSends();
+    const auto now = Clock::now();
+    for (int w = 1; w < ranks(); ++w) {
+      if (tally_[w].lost) continue;
+      if (held_[w] != kNobody && now - lastHeard_[w] > kLostAfter) loseWorker(w);
+      else if (held_[w] == kNobody && now - lastSent_[w] > kNudgeEvery) send(w, kTagNudge, std::make_shared<const Bytes>());
+    }
+  }
+
+  void loseWorker(int worker) {
+    if (tally_[worker].lost) return;
+    tally_[worker].lost = true;
+    notePeerLost();
+    const int run = held_[worker];
+    held_[worker] = kNobody;
+    pile_.reclaim(worker);
+    if (run == kNobody) return;
+    std::fprintf(stderr, "rayview: warning: rank %d fell silent for %.0f s holding the scene %s; dealing it to the "
+                 "other ranks\n", worker, std::chrono::duration<double>(kLostAfter).count(),
+                 frameOf(static_cast<std::size_t>(run), 0).scenePath.c_str());
+  }
+
+  // The last sends (the end) are small and go eagerly; a lost rank's are not waited for.
+  void finishSends() {
+    const auto deadline = Clock::now() + std::chrono::seconds(1);
+    for (auto& out : outbox_) {
+      while (!tally_[out.rank].lost && Clock::now() < deadline) {
+        int done = 0;
+        MPI_Test(&out.request, &done, MPI_STATUS_IGNORE);
+        if (done) break;
+        std::this_thread::sleep_for(kProbePause);
+      }
+    }
+  }
+
+  const ClusterJob& job_;
+  const std::vector<ClusterFrame>& frames_;
+  const std::vector<SceneRun>& runs_;
+  FrameProgress& progress_;
+  std::vector<RankTally>& tally_;
+  TileDealer pile_;  // the scenes, dealt in order; a lost rank's back to the front
+  std::vector<SceneInFlight> scenes_;
+  std::vector<int> held_;                 // per rank: the run it renders
+  std::vector<std::size_t> heldLeft_;     // per rank: frames of that run not yet sent back
+  std::vector<Clock::time_point> lastHeard_, lastSent_;
+  std::deque<Outgoing> outbox_;
+  Bytes inbox_;
+  std::vector<Bytes> abandoned_;  // buffers of receives given up on: never freed under MPI
+  std::future<SceneLoad> loading_;  // the scene being loaded, at most one
+  std::size_t loadingRun_ = 0;
+  bool stopped_ = false;
+  int code_ = kExitOk;
+  std::string message_;
+  SceneRenderThread own_;  // last: its thread ends before the members it reports to
+};
+
+}  // namespace
+
+int dealScenes(const ClusterJob& job, const std::vector<ClusterFrame>& frames, const std::vector<SceneRun>& runs,
+               ThreadPool& pool, FrameProgress& progress, std::vector<RankTally>& tally) {
+  SceneCoordinator coordinator(job, frames, runs, pool, progress, tally);
+  return coordinator.run();
+}
+
+}  // namespace rayview::cluster
