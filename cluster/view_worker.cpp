@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstring>
 #include <deque>
+#include <exception>
 #include <memory>
 #include <new>
 #include <string>
@@ -21,6 +22,7 @@
 #include "rayview/prepared_scene.h"
 #include "rayview/thread_pool.h"
 #include "view_codec.h"
+#include "tile_exchange.h"
 #include "view_messages.h"
 
 namespace rayview::cluster {
@@ -68,7 +70,10 @@ class ViewWorker {
       MPI_Recv(inbox_.data(), bytes, MPI_BYTE, 0, status.MPI_TAG, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
       const auto size = static_cast<std::size_t>(bytes);
       try {
-        if (status.MPI_TAG == kTagViewQuit) return false;
+        if (status.MPI_TAG == kTagViewQuit) {
+          if (size >= 1 && inbox_[0] != 0) notePeerLost();  // MPI_Finalize would wait for the lost rank
+          return false;
+        }
         if (status.MPI_TAG == kTagViewGeometry) takeGeometry(size);
         if (status.MPI_TAG == kTagViewSnapshot) takeSnapshot(size);
         if (status.MPI_TAG == kTagViewTile && size == sizeof(ViewTileRequest)) {
@@ -91,8 +96,18 @@ class ViewWorker {
     if (size < sizeof(std::uint64_t)) throw CodecError("truncated");
     std::memcpy(&geometrySerial_, inbox_.data(), sizeof geometrySerial_);
     ShippedGeometry shipped = decodeGeometry(inbox_.data() + sizeof geometrySerial_, size - sizeof geometrySerial_);
-    geometry_ = prepareGeometry(std::shared_ptr<const SceneGeometry>(std::move(shipped.geometry)), shipped.origin,
-                                shipped.accel);
+    std::shared_ptr<const SceneGeometry> geometry(std::move(shipped.geometry));
+    std::shared_ptr<const PreparedGeometry> prepared;
+    std::exception_ptr failure;
+    whileAlive([&] {
+      try {
+        prepared = prepareGeometry(geometry, shipped.origin, shipped.accel);
+      } catch (...) {
+        failure = std::current_exception();  // rethrown here, where a std::bad_alloc is reported to rank 0
+      }
+    });
+    if (failure) std::rethrow_exception(failure);
+    geometry_ = std::move(prepared);
   }
 
   void takeSnapshot(std::size_t size) {
@@ -118,23 +133,14 @@ class ViewWorker {
     RayCounts rays;
     const TracedImage& image = *image_;
     const int sample = request.sample;
-    // Traced on a thread of its own while this one keeps MPI moving: a result larger than OpenMPI sends eagerly
-    // reaches rank 0 only while its sender makes MPI calls, and rank 0 should not wait a tile's time for it.
-    std::atomic<bool> traced{false};
-    std::thread tracer([&] {
+    whileAlive([&] {
       traceColors(
           [&](const PixelXY* p, int n, Color* out, RayCounts& c) {
             if (sample < 0) image.pixels(p, n, out, c);
             else image.samples(p, n, sample, out, c);
           },
           pixels_, pool_, colors_, rays);
-      traced.store(true);
     });
-    while (!traced.load()) {
-      completeSends(false);
-      std::this_thread::sleep_for(kProbePause);
-    }
-    tracer.join();
     ViewTileResultHeader header{request.pass, request.tile, static_cast<std::int32_t>(pixels_.size()),
                                 std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
                                 rays.camera, rays.shadow, rays.reflection};
@@ -144,6 +150,27 @@ class ViewWorker {
     if (!colors_.empty()) std::memcpy(message.data() + sizeof header, colors_.data(), colors_.size() * sizeof(Color));
     send(kTagViewResult, std::move(message));
     return true;
+  }
+
+  // Runs `work` on a thread of its own while this one keeps MPI moving (a result larger than OpenMPI sends eagerly
+  // reaches rank 0 only while its sender makes MPI calls) and tells rank 0 it is alive, however long the work.
+  template <class Work>
+  void whileAlive(Work&& work) {
+    std::atomic<bool> done{false};
+    std::thread worker([&] {
+      work();
+      done.store(true);
+    });
+    auto lastAlive = Clock::now();
+    while (!done.load()) {
+      completeSends(false);
+      if (Clock::now() - lastAlive > kAliveEvery) {
+        send(kTagViewAlive, {});
+        lastAlive = Clock::now();
+      }
+      std::this_thread::sleep_for(kProbePause);
+    }
+    worker.join();
   }
 
   void problem(const std::string& why) {

@@ -27,9 +27,9 @@ using Clock = std::chrono::steady_clock;
 
 // Tiles a worker holds at once: one to trace, one on its way.
 constexpr int kDepth = 2;
-// A worker holding tiles and silent this long is left out, its tiles dealt to the others (a viewer's tile takes
-// milliseconds; this is a rank that stopped, not a slow one).
-constexpr auto kSilentFor = std::chrono::seconds(10);
+// A worker holding tiles and silent this long is left out, its tiles dealt to the others: it says it is alive every
+// kAliveEvery while it builds or traces, so this is a rank that stopped, not a slow one.
+constexpr auto kSilentFor = kLostAfter;
 
 template <class T>
 std::vector<std::uint8_t> bytesOf(const T& value) {
@@ -47,6 +47,7 @@ PixelBatchFunction traceFunction(const PixelSource& source, int sample) {
 }  // namespace
 
 struct ViewerFarm::Outgoing {
+  int rank = 0;
   std::vector<std::uint8_t> bytes;
   MPI_Request request = MPI_REQUEST_NULL;
 };
@@ -289,6 +290,7 @@ void ViewerFarm::sendTo(int worker, int tag, std::vector<std::uint8_t> bytes) {
     return;
   }
   auto message = std::make_unique<Outgoing>();
+  message->rank = worker;
   message->bytes = std::move(bytes);
   MPI_Isend(message->bytes.data(), static_cast<int>(message->bytes.size()), MPI_BYTE, worker, tag, MPI_COMM_WORLD,
             &message->request);
@@ -304,7 +306,10 @@ void ViewerFarm::completeSends(bool all) {
       MPI_Test(&message->request, &done, MPI_STATUS_IGNORE);
       return done != 0;
     });
-    if (!all || outbox_.empty()) return;
+    // A send to a lost rank may never complete: it is not waited for (nor its buffer freed).
+    const bool waiting = std::any_of(outbox_.begin(), outbox_.end(),
+                                     [this](const std::unique_ptr<Outgoing>& message) { return !lost_[message->rank]; });
+    if (!all || !waiting) return;
     std::this_thread::sleep_for(kProbePause);
   } while (Clock::now() < deadline);
 }
@@ -312,10 +317,14 @@ void ViewerFarm::completeSends(bool all) {
 void ViewerFarm::shutdown() {
   if (ended_) return;
   ended_ = true;
-  for (int w = 1; w < ranks_; ++w) sendTo(w, kTagViewQuit, {});
+  // With a rank lost, MPI_Finalize would wait for it for ever: the others are told to end without it.
+  const bool anyLost = std::find(lost_.begin(), lost_.end(), true) != lost_.end();
+  if (anyLost) notePeerLost();
+  // A rank left out only for its silence may still be there and hear it; a dead one's send is not waited for.
+  for (int w = 1; w < ranks_; ++w) sendTo(w, kTagViewQuit, {static_cast<std::uint8_t>(anyLost ? 1 : 0)});
   // Every worker's last message is its goodbye: what it sent before (late results) is read and dropped.
-  std::vector<bool> gone(static_cast<std::size_t>(ranks_), false);
-  int waiting = ranks_ - 1;
+  std::vector<bool> gone(lost_.begin(), lost_.end());
+  int waiting = static_cast<int>(std::count(gone.begin() + 1, gone.end(), false));
   std::vector<std::uint8_t> inbox;
   const auto deadline = Clock::now() + std::chrono::seconds(5);
   while (waiting > 0 && Clock::now() < deadline) {

@@ -6,6 +6,7 @@ import argparse
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 
@@ -42,6 +43,7 @@ def main():
                    ["--samples", "2", "--light-samples", "3"]))
     for scene, name, edits, options in scenes:
         failures += edited_render_matches(args, scene, name, edits, options)
+    failures += killed_worker(args, textured)
     for failure in failures:
         print("FAIL:", failure)
     print(f"{len(failures)} failed")
@@ -80,6 +82,58 @@ def edited_render_matches(args, scene, name, edits, options):
                 and open(shown, "rb").read() == open(reference, "rb").read()):
             failures.append(f"{name}: the {stage} final pass is not `rayview render`'s image ({shown}, {reference})")
     return failures
+
+
+def killed_worker(args, scene):
+    """Under mpirun --enable-recovery, a worker killed while the passes render: the window goes on with the other
+    ranks, the final pass is still `rayview render`'s image, and quitting ends every rank."""
+    out = os.path.join(args.scratch, "killed.png")
+    script = os.path.join(args.scratch, "killed.txt")
+    with open(script, "w") as f:
+        f.write(f"view image\nwait-final\nset samples 40\nwait-final\nsave-frame {out}\nquit\n")
+    marker = f"rayview-killed-{os.getpid()}"
+    env = dict(os.environ, RAYVIEW_TEST_JOB=marker)
+    job = subprocess.Popen(["xvfb-run", "-a", "mpirun", "--enable-recovery", "-n", "3", args.rayview, "--threads", "1",
+                            "--script", script, scene], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                           env=env)
+    seen = []
+    for line in job.stdout:  # the first final pass: the workers hold the geometry and trace
+        seen.append(line)
+        if "final pass generation 2" in line:
+            break
+    victim = job_rank(marker, 1)
+    if victim is None:
+        job.kill()
+        return [f"killed worker: rank 1 not found:\n{''.join(seen)}"]
+    os.kill(victim, signal.SIGKILL)
+    try:
+        rest, _ = job.communicate(timeout=180)
+    except subprocess.TimeoutExpired:
+        job.kill()
+        return ["killed worker: the job did not end within 180 s"]
+    text = "".join(seen) + rest
+    failures = []
+    if job.returncode != 0 or "rank 1 fell silent" not in text:
+        failures.append(f"killed worker: exit {job.returncode}, or no word of rank 1:\n{text}")
+    reference = os.path.join(args.scratch, "killed_render.png")
+    subprocess.run([args.rayview, "render", scene, "--samples", "40", "-o", reference, "--quiet"], check=False)
+    if not (os.path.exists(out) and open(out, "rb").read() == open(reference, "rb").read()):
+        failures.append(f"killed worker: the final pass is not `rayview render`'s image ({out})")
+    if job_rank(marker, 2) is not None:
+        failures.append("killed worker: rank 2 still runs after the window closed")
+    return failures
+
+
+def job_rank(marker, rank):
+    """The pid of `rank` of the job whose environment holds `marker`, or None."""
+    for pid in filter(str.isdigit, os.listdir("/proc")):
+        try:
+            environ = open(f"/proc/{pid}/environ", "rb").read().split(b"\0")
+        except OSError:
+            continue
+        if f"RAYVIEW_TEST_JOB={marker}".encode() in environ and f"OMPI_COMM_WORLD_RANK={rank}".encode() in environ:
+            return int(pid)
+    return None
 
 
 if __name__ == "__main__":
