@@ -14,6 +14,7 @@
 
 #include "exit_codes.h"
 #include "mpi_link.h"
+#include "mpi_outbox.h"
 #include "scene_distribution.h"
 #include "scene_hash.h"
 #include "scene_render_thread.h"
@@ -59,12 +60,6 @@ SceneLoad loadScene(const ClusterJob& job) {
   return load;
 }
 
-struct Outgoing {
-  std::shared_ptr<const Bytes> data;  // kept until the send completes
-  int rank = 0;
-  MPI_Request request = MPI_REQUEST_NULL;
-};
-
 class SceneCoordinator {
  public:
   SceneCoordinator(const ClusterJob& job, const std::vector<ClusterFrame>& frames, const std::vector<SceneRun>& runs,
@@ -89,9 +84,11 @@ class SceneCoordinator {
       pause = std::min(pause * 2, kLongestProbePause);
     }
     const std::int32_t end[2] = {code_, peerLost() ? 1 : 0};
-    for (int w = 1; w < ranks(); ++w) send(w, kTagSceneEnd, std::make_shared<const Bytes>(
-        reinterpret_cast<const std::uint8_t*>(end), reinterpret_cast<const std::uint8_t*>(end) + sizeof end));
-    finishSends();
+    for (int w = 1; w < ranks(); ++w)
+      send(w, kTagSceneEnd, Bytes(reinterpret_cast<const std::uint8_t*>(end),
+                                  reinterpret_cast<const std::uint8_t*>(end) + sizeof end));
+    // The end is small and goes eagerly; a lost rank's is not waited for.
+    outbox_.drain(std::chrono::seconds(1));
     if (!message_.empty()) std::fprintf(stderr, "%s\n", message_.c_str());
     return code_;
   }
@@ -184,31 +181,15 @@ class SceneCoordinator {
     order.parameters = encodeSnapshot(scene.scene->parameters(), scene.settings);
     auto bytes = std::make_shared<const Bytes>(encodeSceneOrder(order));
     const auto size = static_cast<std::int64_t>(bytes->size());
-    send(worker, kTagScene, std::make_shared<const Bytes>(reinterpret_cast<const std::uint8_t*>(&size),
-                                                          reinterpret_cast<const std::uint8_t*>(&size) + sizeof size));
-    for (std::size_t at = 0; at < bytes->size(); at += kPiece) {
-      outbox_.push_back({bytes, worker, MPI_REQUEST_NULL});
-      MPI_Isend(bytes->data() + at, static_cast<int>(std::min(kPiece, bytes->size() - at)), MPI_BYTE, worker,
-                kTagSceneBytes, MPI_COMM_WORLD, &outbox_.back().request);
-    }
+    send(worker, kTagScene, Bytes(reinterpret_cast<const std::uint8_t*>(&size),
+                                  reinterpret_cast<const std::uint8_t*>(&size) + sizeof size));
+    for (std::size_t at = 0; at < bytes->size(); at += kPiece)
+      outbox_.sendPart(worker, kTagSceneBytes, bytes, at, std::min(kPiece, bytes->size() - at));
   }
 
-  void send(int worker, int tag, std::shared_ptr<const Bytes> data) {
-    outbox_.push_back({std::move(data), worker, MPI_REQUEST_NULL});
-    const Bytes& bytes = *outbox_.back().data;
-    MPI_Isend(bytes.data(), static_cast<int>(bytes.size()), MPI_BYTE, worker, tag, MPI_COMM_WORLD,
-              &outbox_.back().request);
+  void send(int worker, int tag, Bytes bytes) {
+    outbox_.send(worker, tag, std::move(bytes));
     lastSent_[worker] = Clock::now();
-    reapSends();
-  }
-
-  // Completed sends leave, and a scene's bytes with them; a send to a lost rank may never complete and is left alone.
-  void reapSends() {
-    std::erase_if(outbox_, [this](Outgoing& out) {
-      int done = 0;
-      if (!tally_[out.rank].lost) MPI_Test(&out.request, &done, MPI_STATUS_IGNORE);
-      return done != 0;
-    });
   }
 
   bool takeOwnResults() {
@@ -232,7 +213,7 @@ class SceneCoordinator {
     int bytes = 0;
     MPI_Get_count(&status, MPI_BYTE, &bytes);
     inbox_.resize(static_cast<std::size_t>(bytes) + 1);
-    if (!receiveWithin(inbox_.data(), bytes, status, std::chrono::duration_cast<std::chrono::milliseconds>(kLostAfter))) {
+    if (!receiveWithin(inbox_.data(), bytes, status, kLostAfter)) {
       abandoned_.push_back(std::move(inbox_));
       inbox_ = {};
       loseWorker(worker);
@@ -294,12 +275,12 @@ class SceneCoordinator {
 
   // Silent workers holding a scene are lost and their scene dealt again; idle ones get a nudge.
   void watchWorkers() {
-    reapSends();
+    outbox_.reap();
     const auto now = Clock::now();
     for (int w = 1; w < ranks(); ++w) {
       if (tally_[w].lost) continue;
       if (held_[w] != kNobody && now - lastHeard_[w] > kLostAfter) loseWorker(w);
-      else if (held_[w] == kNobody && now - lastSent_[w] > kNudgeEvery) send(w, kTagNudge, std::make_shared<const Bytes>());
+      else if (held_[w] == kNobody && now - lastSent_[w] > kNudgeEvery) send(w, kTagNudge, {});
     }
   }
 
@@ -316,19 +297,6 @@ class SceneCoordinator {
                  frameOf(static_cast<std::size_t>(run), 0).scenePath.c_str());
   }
 
-  // The last sends (the end) are small and go eagerly; a lost rank's are not waited for.
-  void finishSends() {
-    const auto deadline = Clock::now() + std::chrono::seconds(1);
-    for (auto& out : outbox_) {
-      while (!tally_[out.rank].lost && Clock::now() < deadline) {
-        int done = 0;
-        MPI_Test(&out.request, &done, MPI_STATUS_IGNORE);
-        if (done) break;
-        std::this_thread::sleep_for(kProbePause);
-      }
-    }
-  }
-
   const ClusterJob& job_;
   const std::vector<ClusterFrame>& frames_;
   const std::vector<SceneRun>& runs_;
@@ -339,7 +307,7 @@ class SceneCoordinator {
   std::vector<int> held_;                 // per rank: the run it renders
   std::vector<std::size_t> heldLeft_;     // per rank: frames of that run not yet sent back
   std::vector<Clock::time_point> lastHeard_, lastSent_;
-  std::deque<Outgoing> outbox_;
+  Outbox outbox_{[this](int rank) { return tally_[static_cast<std::size_t>(rank)].lost; }};
   Bytes inbox_;
   std::vector<Bytes> abandoned_;  // buffers of receives given up on: never freed under MPI
   std::future<SceneLoad> loading_;  // the scene being loaded, at most one

@@ -9,6 +9,7 @@
 
 #include "exit_codes.h"
 #include "mpi_link.h"
+#include "mpi_outbox.h"
 #include "scene_batch.h"
 #include "scene_render_thread.h"
 
@@ -30,18 +31,6 @@ SceneToRender decodeScene(const SceneOrder& order) {
   return {std::make_shared<const Scene>(std::move(scene)), snapshot.settings};
 }
 
-// Completes a send, giving up after a while (rank 0 gone): never a hang.
-bool completeSend(MPI_Request& request) {
-  const auto deadline = Clock::now() + kPatience;
-  for (;;) {
-    int done = 0;
-    if (request == MPI_REQUEST_NULL) return true;
-    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-    if (done) return true;
-    if (Clock::now() > deadline) return false;
-    std::this_thread::sleep_for(kProbePause);
-  }
-}
 
 class SceneWorker {
  public:
@@ -51,7 +40,7 @@ class SceneWorker {
     for (;;) {
       if (!readMessages()) break;
       // The end can come while a copy of a scene another rank finished first is still rendering: it is not needed.
-      if (ended_) return completeSend(pending_) ? code_ : kExitIoFailure;
+      if (ended_) return completeWithin(pending_, kPatience) ? code_ : kExitIoFailure;
       if (left_ > 0) {
         if (!answer()) break;
         continue;
@@ -141,7 +130,7 @@ class SceneWorker {
       return true;
     }
     --left_;
-    if (!completeSend(pending_)) return false;
+    if (!completeWithin(pending_, kPatience)) return false;
     const SceneResultHeader header{done->run, done->frame, done->busyMs, done->hash,
                                    done->rays.camera, done->rays.shadow, done->rays.reflection};
     message_.resize(sizeof header + done->image.rgb.size());

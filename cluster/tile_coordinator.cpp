@@ -138,19 +138,11 @@ class Coordinator {
     inbox_.resize(static_cast<std::size_t>(bytes) + 1);
     // A big message is read from the sender's memory: if the sender dies meanwhile, a blocking receive would
     // never return, so the receive is waited for with a deadline and abandoned (its buffer with it) after it.
-    MPI_Request request;
-    MPI_Irecv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, &request);
-    const auto deadline = Clock::now() + kLostAfter;
-    for (int done = 0; !done;) {
-      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-      if (done) break;
-      if (Clock::now() > deadline) {
-        abandoned_.push_back(std::move(inbox_));
-        inbox_ = {};
-        loseWorker(worker);
-        return true;
-      }
-      std::this_thread::sleep_for(kProbePause);
+    if (!receiveWithin(inbox_.data(), bytes, status, kLostAfter)) {
+      abandoned_.push_back(std::move(inbox_));
+      inbox_ = {};
+      loseWorker(worker);
+      return true;
     }
     lastHeard_[worker] = Clock::now();
     if (status.MPI_TAG == kTagResult && static_cast<std::size_t>(bytes) >= sizeof(TileResultHeader)) takeResult(worker);

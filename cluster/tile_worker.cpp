@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "mpi_link.h"
+#include "mpi_outbox.h"
 #include "exit_codes.h"
 #include "tile_exchange.h"
 #include "tile_render.h"
@@ -85,18 +86,6 @@ class TileRenderThread {
   std::thread thread_;  // last: starts once the members it uses exist
 };
 
-// Completes a send, giving up after a while (rank 0 gone): never a hang.
-bool completeSend(MPI_Request& request, std::chrono::milliseconds patience) {
-  const auto deadline = Clock::now() + patience;
-  for (;;) {
-    int done = 0;
-    if (request == MPI_REQUEST_NULL) return true;
-    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-    if (done) return true;
-    if (Clock::now() > deadline) return false;
-    std::this_thread::sleep_for(kProbePause);
-  }
-}
 
 }  // namespace
 
@@ -129,7 +118,7 @@ int workOnUnits(const std::vector<WorkUnit>& units, const TracerFor& tracerFor, 
           queue.pop_front();
           rendering = true;
         }
-        if (!completeSend(pending, std::chrono::milliseconds(kRankZeroLostAfter))) break;
+        if (!completeWithin(pending, std::chrono::milliseconds(kRankZeroLostAfter))) break;
         message.swap(finished);
         MPI_Isend(message.data(), static_cast<int>(message.size()), MPI_BYTE, 0, kTagResult, MPI_COMM_WORLD, &pending);
       } else {
@@ -143,7 +132,7 @@ int workOnUnits(const std::vector<WorkUnit>& units, const TracerFor& tracerFor, 
       rendering = true;
       continue;
     }
-    if (ended) return completeSend(pending, std::chrono::milliseconds(kRankZeroLostAfter)) ? kExitOk : kExitIoFailure;
+    if (ended) return completeWithin(pending, std::chrono::milliseconds(kRankZeroLostAfter)) ? kExitOk : kExitIoFailure;
     if (Clock::now() - lastFromZero > kRankZeroLostAfter) break;
     std::this_thread::sleep_for(kProbePause);
   }

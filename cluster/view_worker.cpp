@@ -17,6 +17,7 @@
 #include "cluster_job.h"
 #include "exit_codes.h"
 #include "mpi_link.h"
+#include "mpi_outbox.h"
 #include "rayview/grid_render.h"
 #include "rayview/pixel_source.h"
 #include "rayview/prepared_scene.h"
@@ -45,21 +46,16 @@ class ViewWorker {
         pause = kProbePause;
         continue;
       }
-      completeSends(false);
+      outbox_.reap();
       std::this_thread::sleep_for(pause);
       pause = std::min<std::chrono::microseconds>(pause * 2, kIdlePause);
     }
     send(kTagViewBye, {});
-    completeSends(true);
+    outbox_.drain(std::chrono::seconds(5));
     return kExitOk;
   }
 
  private:
-  struct Outgoing {
-    std::vector<std::uint8_t> bytes;
-    MPI_Request request = MPI_REQUEST_NULL;
-  };
-
   // Every message waiting, in the order rank 0 sent them. False once rank 0 said the window closed.
   bool readMessages() {
     MPI_Status status;
@@ -163,7 +159,7 @@ class ViewWorker {
     });
     auto lastAlive = Clock::now();
     while (!done.load()) {
-      completeSends(false);
+      outbox_.reap();
       if (Clock::now() - lastAlive > kAliveEvery) {
         send(kTagViewAlive, {});
         lastAlive = Clock::now();
@@ -179,26 +175,7 @@ class ViewWorker {
     send(kTagViewProblem, std::vector<std::uint8_t>(why.begin(), why.end()));
   }
 
-  void send(int tag, std::vector<std::uint8_t> bytes) {
-    auto message = std::make_unique<Outgoing>();
-    message->bytes = std::move(bytes);
-    MPI_Isend(message->bytes.data(), static_cast<int>(message->bytes.size()), MPI_BYTE, 0, tag, MPI_COMM_WORLD,
-              &message->request);
-    outbox_.push_back(std::move(message));
-  }
-
-  void completeSends(bool all) {
-    const auto deadline = Clock::now() + std::chrono::seconds(5);
-    do {
-      std::erase_if(outbox_, [](const std::unique_ptr<Outgoing>& message) {
-        int done = 0;
-        MPI_Test(&message->request, &done, MPI_STATUS_IGNORE);
-        return done != 0;
-      });
-      if (!all || outbox_.empty()) return;
-      std::this_thread::sleep_for(kProbePause);
-    } while (Clock::now() < deadline);
-  }
+  void send(int tag, std::vector<std::uint8_t> bytes) { outbox_.send(0, tag, std::move(bytes)); }
 
   ThreadPool pool_;
   std::shared_ptr<const PreparedGeometry> geometry_;
@@ -206,7 +183,7 @@ class ViewWorker {
   std::shared_ptr<const TracedImage> image_;
   std::uint64_t generation_ = 0;
   std::deque<ViewTileRequest> queue_;
-  std::vector<std::unique_ptr<Outgoing>> outbox_;
+  Outbox outbox_;
   std::vector<std::uint8_t> inbox_;
   std::vector<PixelXY> pixels_;
   std::vector<Color> colors_;

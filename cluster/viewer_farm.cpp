@@ -46,12 +46,6 @@ PixelBatchFunction traceFunction(const PixelSource& source, int sample) {
 
 }  // namespace
 
-struct ViewerFarm::Outgoing {
-  int rank = 0;
-  std::vector<std::uint8_t> bytes;
-  MPI_Request request = MPI_REQUEST_NULL;
-};
-
 // One pass: its tiles dealt to the workers and to rank 0's own thread, their pixels handed to the sink as they come.
 class ViewerFarm::Pass {
  public:
@@ -149,21 +143,13 @@ class ViewerFarm::Pass {
     MPI_Get_count(&status, MPI_BYTE, &bytes);
     inbox_.resize(static_cast<std::size_t>(bytes) + 1);
     // Never a blocking receive: a worker that died mid-message would hold the window's renderer for ever.
-    MPI_Request request;
-    MPI_Irecv(inbox_.data(), bytes, MPI_BYTE, worker, status.MPI_TAG, MPI_COMM_WORLD, &request);
-    const auto deadline = Clock::now() + kSilentFor;
-    for (int done = 0;;) {
-      MPI_Test(&request, &done, MPI_STATUS_IGNORE);
-      if (done) break;
-      if (Clock::now() > deadline) {
-        farm_.abandoned_.push_back(std::move(inbox_));  // its receive may still write there: never freed
-        inbox_ = {};
-        std::fprintf(stderr, "rayview: warning: rank %d fell silent mid-message; the other ranks go on without it\n",
-                     worker);
-        lose(worker);
-        return true;
-      }
-      std::this_thread::sleep_for(kProbePause);
+    if (!receiveWithin(inbox_.data(), bytes, status, kSilentFor)) {
+      farm_.abandoned_.push_back(std::move(inbox_));  // its receive may still write there: never freed
+      inbox_ = {};
+      std::fprintf(stderr, "rayview: warning: rank %d fell silent mid-message; the other ranks go on without it\n",
+                   worker);
+      lose(worker);
+      return true;
     }
     lastHeard_[worker] = Clock::now();
     if (status.MPI_TAG == kTagViewProblem) {
@@ -189,7 +175,8 @@ class ViewerFarm::Pass {
       if (whole && dealer_.finish(tile, worker)) {
         colors_.resize(pixels_.size());
         // A tile may hold no pixel of the pass (all on the coarser grid), and memcpy must not see a null pointer.
-        if (!pixels_.empty()) std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
+        if (!pixels_.empty())
+          std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
         rays += RayCounts{header.camera, header.shadow, header.reflection};
         ++farm_.tilesTraced_[worker];
         farm_.busyMicroseconds_[worker] += static_cast<std::uint64_t>(header.busyMs * 1000.0);
@@ -257,7 +244,7 @@ bool ViewerFarm::renderPass(const PixelSource& source, const FarmPass& pass, con
   ++passSerial_;
   Pass running(*this, source, pass, sink);
   const bool complete = running.run(stopped, rays);
-  completeSends(false);
+  outbox_.reap();
   return complete;
 }
 
@@ -270,48 +257,31 @@ void ViewerFarm::ship(const TracedImage& image, std::uint64_t generation) {
     Bytes bytes = bytesOf(geometrySerial_);
     const Bytes body = encodeGeometry(*geometry.source, geometry.shading.origin, geometry.accel->kind());
     bytes.insert(bytes.end(), body.begin(), body.end());
-    for (int w = 1; w < ranks_; ++w)
-      if (!lost_[w]) sendTo(w, kTagViewGeometry, bytes);
+    sendToAll(kTagViewGeometry, std::move(bytes));
   }
   if (generation == shippedGeneration_) return;
   shippedGeneration_ = generation;
   Bytes bytes = bytesOf(ViewSnapshotHeader{generation, geometrySerial_});
   const Bytes body = encodeSnapshot(*image.parameters(), image.settings());
   bytes.insert(bytes.end(), body.begin(), body.end());
-  for (int w = 1; w < ranks_; ++w)
-    if (!lost_[w]) sendTo(w, kTagViewSnapshot, bytes);
+  sendToAll(kTagViewSnapshot, std::move(bytes));
 }
 
 void ViewerFarm::sendTo(int worker, int tag, std::vector<std::uint8_t> bytes) {
-  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
-    std::fprintf(stderr, "rayview: error: the scene is too large to send to rank %d (over 2 GB); it is left out\n",
-                 worker);
-    lost_[worker] = true;
-    return;
-  }
-  auto message = std::make_unique<Outgoing>();
-  message->rank = worker;
-  message->bytes = std::move(bytes);
-  MPI_Isend(message->bytes.data(), static_cast<int>(message->bytes.size()), MPI_BYTE, worker, tag, MPI_COMM_WORLD,
-            &message->request);
-  outbox_.push_back(std::move(message));
-  completeSends(false);
+  outbox_.send(worker, tag, std::move(bytes));
 }
 
-void ViewerFarm::completeSends(bool all) {
-  const auto deadline = Clock::now() + std::chrono::seconds(5);
-  do {
-    std::erase_if(outbox_, [](const std::unique_ptr<Outgoing>& message) {
-      int done = 0;
-      MPI_Test(&message->request, &done, MPI_STATUS_IGNORE);
-      return done != 0;
-    });
-    // A send to a lost rank may never complete: it is not waited for (nor its buffer freed).
-    const bool waiting = std::any_of(outbox_.begin(), outbox_.end(),
-                                     [this](const std::unique_ptr<Outgoing>& message) { return !lost_[message->rank]; });
-    if (!all || !waiting) return;
-    std::this_thread::sleep_for(kProbePause);
-  } while (Clock::now() < deadline);
+// One buffer for every worker not left out (a scene's geometry is sent once, not copied per rank).
+void ViewerFarm::sendToAll(int tag, std::vector<std::uint8_t> bytes) {
+  if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
+    std::fprintf(stderr, "rayview: error: the scene is too large to send to the other ranks (over 2 GB); this window "
+                 "traces it alone\n");
+    std::fill(lost_.begin() + 1, lost_.end(), true);
+    return;
+  }
+  const auto shared = std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes));
+  for (int w = 1; w < ranks_; ++w)
+    if (!lost_[w]) outbox_.sendPart(w, tag, shared, 0, shared->size());
 }
 
 void ViewerFarm::shutdown() {
@@ -330,7 +300,7 @@ void ViewerFarm::shutdown() {
   while (waiting > 0 && Clock::now() < deadline) {
     MPI_Status status;
     if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) {
-      completeSends(false);
+      outbox_.reap();
       std::this_thread::sleep_for(kLongestProbePause);
       continue;
     }
@@ -343,7 +313,7 @@ void ViewerFarm::shutdown() {
       --waiting;
     }
   }
-  completeSends(true);
+  outbox_.drain(std::chrono::seconds(5));
   if (waiting > 0) notePeerLost();
   // Who traced what, for the user deciding how many ranks are worth it (and for the tests).
   std::printf("tiles traced:");

@@ -11,6 +11,7 @@
 #include <memory>
 #include <vector>
 
+#include "mpi_outbox.h"
 #include "rayview/pass_farm.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/thread_pool.h"
@@ -37,7 +38,7 @@ class ViewerFarm final : public PassFarm {
   class Pass;
   void ship(const TracedImage& image, std::uint64_t generation);
   void sendTo(int worker, int tag, std::vector<std::uint8_t> bytes);
-  void completeSends(bool all);
+  void sendToAll(int tag, std::vector<std::uint8_t> bytes);
 
   int ranks_;
   ThreadPool pool_;  // rank 0's own share of each pass
@@ -50,8 +51,7 @@ class ViewerFarm final : public PassFarm {
   std::uint64_t geometrySerial_ = 0;
   std::uint64_t shippedGeneration_ = 0;
   std::uint64_t passSerial_ = 0;
-  struct Outgoing;
-  std::vector<std::unique_ptr<Outgoing>> outbox_;
+  Outbox outbox_{[this](int rank) { return lost_[rank]; }};
   bool ended_ = false;
 };
 
