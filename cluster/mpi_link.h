@@ -5,7 +5,11 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
 #include <thread>
+#include <vector>
 
 namespace rayview::cluster {
 
@@ -61,6 +65,38 @@ inline bool receiveWithin(void* buffer, int bytes, const MPI_Status& probed, std
     if (std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(kProbePause);
   }
+}
+
+// A buffer MPI may still write or read (a receive or send given up on): kept until the process ends.
+inline void keepForMpi(std::shared_ptr<const void> buffer) {
+  static std::mutex mutex;
+  static std::vector<std::shared_ptr<const void>> kept;
+  std::lock_guard lock(mutex);
+  kept.push_back(std::move(buffer));
+}
+
+// One message from any rank, read into `inbox` (resized to its size plus one byte, so that an empty message has a
+// buffer too).
+struct Arrival {
+  int source = 0;
+  int tag = 0;
+  std::size_t bytes = 0;
+  bool whole = true;  // false: the sender fell silent mid-message, and `inbox` is a new, empty buffer
+};
+// nullopt when no message is waiting. A message not whole within `patience` is given up on (its buffer kept for MPI).
+inline std::optional<Arrival> receiveAny(std::vector<std::uint8_t>& inbox, std::chrono::milliseconds patience) {
+  MPI_Status status;
+  if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) return std::nullopt;
+  int bytes = 0;
+  MPI_Get_count(&status, MPI_BYTE, &bytes);
+  inbox.resize(static_cast<std::size_t>(bytes) + 1);
+  Arrival arrival{status.MPI_SOURCE, status.MPI_TAG, static_cast<std::size_t>(bytes), true};
+  if (!receiveWithin(inbox.data(), bytes, status, patience)) {
+    keepForMpi(std::make_shared<std::vector<std::uint8_t>>(std::move(inbox)));
+    inbox = {};
+    arrival.whole = false;
+  }
+  return arrival;
 }
 
 }  // namespace rayview::cluster

@@ -86,10 +86,7 @@ class Outbox {
   // Sends still pending when the outbox goes (to a lost rank) keep their bytes until the process ends: MPI may
   // still read them.
   void release() {
-    static std::mutex mutex;
-    static std::vector<std::shared_ptr<const Bytes>> kept;
-    std::lock_guard lock(mutex);
-    for (Pending& out : pending_) kept.push_back(out.bytes);
+    for (Pending& out : pending_) keepForMpi(out.bytes);
   }
 
   Lost lost_;

@@ -207,28 +207,23 @@ class SceneCoordinator {
   }
 
   bool receiveOne() {
-    MPI_Status status;
-    if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) return false;
-    const int worker = status.MPI_SOURCE;
-    int bytes = 0;
-    MPI_Get_count(&status, MPI_BYTE, &bytes);
-    inbox_.resize(static_cast<std::size_t>(bytes) + 1);
-    if (!receiveWithin(inbox_.data(), bytes, status, kLostAfter)) {
-      abandoned_.push_back(std::move(inbox_));
-      inbox_ = {};
+    const std::optional<Arrival> arrival = receiveAny(inbox_, kLostAfter);
+    if (!arrival) return false;
+    const int worker = arrival->source;
+    if (!arrival->whole) {
       loseWorker(worker);
       return true;
     }
     lastHeard_[worker] = Clock::now();
-    if (status.MPI_TAG == kTagSceneResult && static_cast<std::size_t>(bytes) >= sizeof(SceneResultHeader)) {
+    if (arrival->tag == kTagSceneResult && arrival->bytes >= sizeof(SceneResultHeader)) {
       SceneResultHeader header;
       std::memcpy(&header, inbox_.data(), sizeof header);
       SceneFrameDone done{header.run, header.frame, Image(), header.busyMs,
                           RayCounts{header.camera, header.shadow, header.reflection}, header.hash, {}};
-      frameDone(worker, done, inbox_.data() + sizeof header, static_cast<std::size_t>(bytes) - sizeof header);
-    } else if (status.MPI_TAG == kTagLoadError) {
+      frameDone(worker, done, inbox_.data() + sizeof header, arrival->bytes - sizeof header);
+    } else if (arrival->tag == kTagLoadError) {
       stop(kExitBadInput, "rayview: rank " + std::to_string(worker) + ": " +
-                              std::string(reinterpret_cast<const char*>(inbox_.data()), static_cast<std::size_t>(bytes)));
+                              std::string(reinterpret_cast<const char*>(inbox_.data()), arrival->bytes));
       if (!tally_[worker].lost) held_[worker] = kNobody;
     }
     return true;
@@ -309,7 +304,6 @@ class SceneCoordinator {
   std::vector<Clock::time_point> lastHeard_, lastSent_;
   Outbox outbox_{[this](int rank) { return tally_[static_cast<std::size_t>(rank)].lost; }};
   Bytes inbox_;
-  std::vector<Bytes> abandoned_;  // buffers of receives given up on: never freed under MPI
   std::future<SceneLoad> loading_;  // the scene being loaded, at most one
   std::size_t loadingRun_ = 0;
   bool stopped_ = false;

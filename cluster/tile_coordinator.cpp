@@ -130,22 +130,15 @@ class Coordinator {
   }
 
   bool receiveOne() {
-    MPI_Status status;
-    if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) return false;
-    const int worker = status.MPI_SOURCE;
-    int bytes = 0;
-    MPI_Get_count(&status, MPI_BYTE, &bytes);
-    inbox_.resize(static_cast<std::size_t>(bytes) + 1);
-    // A big message is read from the sender's memory: if the sender dies meanwhile, a blocking receive would
-    // never return, so the receive is waited for with a deadline and abandoned (its buffer with it) after it.
-    if (!receiveWithin(inbox_.data(), bytes, status, kLostAfter)) {
-      abandoned_.push_back(std::move(inbox_));
-      inbox_ = {};
+    const std::optional<Arrival> arrival = receiveAny(inbox_, kLostAfter);
+    if (!arrival) return false;
+    const int worker = arrival->source;
+    if (!arrival->whole) {
       loseWorker(worker);
       return true;
     }
     lastHeard_[worker] = Clock::now();
-    if (status.MPI_TAG == kTagResult && static_cast<std::size_t>(bytes) >= sizeof(TileResultHeader)) takeResult(worker);
+    if (arrival->tag == kTagResult && arrival->bytes >= sizeof(TileResultHeader)) takeResult(worker);
     return true;
   }
 
@@ -221,7 +214,6 @@ class Coordinator {
   std::vector<Clock::time_point> lastHeard_, lastSent_;
   std::deque<Outgoing> outbox_;  // a deque: each value stays where its send reads it
   std::vector<std::uint8_t> inbox_;
-  std::vector<std::vector<std::uint8_t>> abandoned_;  // buffers of receives given up on: never freed under MPI
 };
 
 }  // namespace

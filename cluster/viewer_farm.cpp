@@ -136,28 +136,23 @@ class ViewerFarm::Pass {
   }
 
   bool receiveOne(RayCounts& rays) {
-    MPI_Status status;
-    if (!messageWaiting(MPI_ANY_SOURCE, MPI_ANY_TAG, status)) return false;
-    const int worker = status.MPI_SOURCE;
-    int bytes = 0;
-    MPI_Get_count(&status, MPI_BYTE, &bytes);
-    inbox_.resize(static_cast<std::size_t>(bytes) + 1);
     // Never a blocking receive: a worker that died mid-message would hold the window's renderer for ever.
-    if (!receiveWithin(inbox_.data(), bytes, status, kSilentFor)) {
-      farm_.abandoned_.push_back(std::move(inbox_));  // its receive may still write there: never freed
-      inbox_ = {};
+    const std::optional<Arrival> arrival = receiveAny(inbox_, kSilentFor);
+    if (!arrival) return false;
+    const int worker = arrival->source;
+    if (!arrival->whole) {
       std::fprintf(stderr, "rayview: warning: rank %d fell silent mid-message; the other ranks go on without it\n",
                    worker);
       lose(worker);
       return true;
     }
     lastHeard_[worker] = Clock::now();
-    if (status.MPI_TAG == kTagViewProblem) {
+    if (arrival->tag == kTagViewProblem) {
       std::fprintf(stderr, "rayview: error: rank %d cannot trace: %.*s; the other ranks go on without it\n", worker,
-                   bytes, reinterpret_cast<const char*>(inbox_.data()));
+                   static_cast<int>(arrival->bytes), reinterpret_cast<const char*>(inbox_.data()));
       lose(worker);
-    } else if (status.MPI_TAG == kTagViewResult && static_cast<std::size_t>(bytes) >= sizeof(ViewTileResultHeader)) {
-      takeResult(worker, static_cast<std::size_t>(bytes), rays);
+    } else if (arrival->tag == kTagViewResult && arrival->bytes >= sizeof(ViewTileResultHeader)) {
+      takeResult(worker, arrival->bytes, rays);
     }
     return true;
   }

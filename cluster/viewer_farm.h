@@ -46,7 +46,6 @@ class ViewerFarm final : public PassFarm {
   // Per rank: tiles whose pixels were used. Atomic: the viewer's stats read them while a pass runs.
   std::unique_ptr<std::atomic<std::size_t>[]> tilesTraced_;
   std::unique_ptr<std::atomic<std::uint64_t>[]> busyMicroseconds_;  // per rank: time spent tracing them
-  std::vector<std::vector<std::uint8_t>> abandoned_;  // buffers of receives given up on: never freed under MPI
   std::shared_ptr<const PreparedGeometry> shippedGeometry_;
   std::uint64_t geometrySerial_ = 0;
   std::uint64_t shippedGeneration_ = 0;
