@@ -25,14 +25,7 @@ def main():
     if shutil.which("mpirun") is None:
         print("mpirun not found: skipped")
         return SKIP
-    shutil.rmtree(args.scratch, ignore_errors=True)
-    os.makedirs(args.scratch)
-    os.environ.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
-    # Under ASan, OpenMPI's components keep allocations to the end and are unloaded before the leak check, so LSan
-    # reports them from "<unknown module>", which no suppression can name: the rest of the suite checks the same
-    # renderer code for leaks in one process; here ASan and UBSan check every access and operation.
-    if os.environ.get("ASAN_OPTIONS") is not None:
-        os.environ["ASAN_OPTIONS"] += ":detect_leaks=0"
+    prepare(args.scratch)
     conformance = os.path.join(args.shared, "conformance", "ceng477")
     scenes = os.path.join(args.source, "scenes")
     t = Tester(args)
@@ -63,6 +56,18 @@ def main():
     for failure in t.failures:
         print("FAIL:", failure)
     return 1 if t.failures else 0
+
+
+def prepare(scratch):
+    """An empty scratch folder, and mpirun allowed as root and past the cores."""
+    shutil.rmtree(scratch, ignore_errors=True)
+    os.makedirs(scratch)
+    os.environ.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
+    # Under ASan, OpenMPI's components keep allocations to the end and are unloaded before the leak check, so LSan
+    # reports them from "<unknown module>", which no suppression can name: the rest of the suite checks the same
+    # renderer code for leaks in one process; here ASan and UBSan check every access and operation.
+    if os.environ.get("ASAN_OPTIONS") is not None:
+        os.environ["ASAN_OPTIONS"] += ":detect_leaks=0"
 
 
 class Tester:
@@ -187,24 +192,11 @@ class Tester:
         single = os.path.join(directory, "single.png")
         subprocess.run([self.args.rayview, "render", scene, "-o", single, "--quiet", *options], check=True)
         out = os.path.join(directory, "out") + "/"
-        job = subprocess.Popen(self.mpirun(3, [*copies, "-o", out, "--threads", "1", *options], ["--enable-recovery"]),
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        start = time.monotonic()
-        victim = None
-        while victim is None and job.poll() is None and time.monotonic() - start < 20:
-            time.sleep(0.05)
-            victim = rank_process(job.pid, 1, started_rendering=True)
-        if victim is None:
-            job.kill()
-            self.check(False, "killed batch: rank 1 never started rendering")
+        ended = self.kill_rank_one(self.mpirun(3, [*copies, "-o", out, "--threads", "1", *options], ["--enable-recovery"]),
+                                   "killed batch", 60)
+        if ended is None:
             return
-        os.kill(victim, signal.SIGKILL)
-        try:
-            _, stderr = job.communicate(timeout=60)
-        except subprocess.TimeoutExpired:
-            job.kill()
-            self.check(False, "killed batch: the job hangs after rank 1 was killed")
-            return
+        job, stderr, _ = ended
         expected = open(single, "rb").read()
         written = sorted(os.listdir(out)) if os.path.isdir(out) else []
         same = written == [f"m{k}.png" for k in range(4)] and all(open(out + n, "rb").read() == expected for n in written)
@@ -218,24 +210,11 @@ class Tester:
         directory = os.path.join(self.args.scratch, "killed_turntable")
         spread = os.path.join(directory, "f_%02d.png")
         frames = ["--turntable", "12"]
-        job = subprocess.Popen(self.mpirun(3, [*scene_args, *frames, "-o", spread, "--threads", "1"]),
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
-        start = time.monotonic()
-        victim = None
-        while victim is None and job.poll() is None and time.monotonic() - start < 20:
-            time.sleep(0.05)
-            victim = rank_process(job.pid, 1, started_rendering=True)
-        if victim is None:
-            job.kill()
-            self.check(False, "killed turntable: rank 1 never started rendering")
+        ended = self.kill_rank_one(self.mpirun(3, [*scene_args, *frames, "-o", spread, "--threads", "1"]),
+                                   "killed turntable", 30)
+        if ended is None:
             return
-        os.kill(victim, signal.SIGKILL)
-        try:
-            _, stderr = job.communicate(timeout=30)
-        except subprocess.TimeoutExpired:
-            job.kill()
-            self.check(False, "killed turntable: the job hangs after rank 1 was killed")
-            return
+        job, stderr, _ = ended
         written = sorted(os.listdir(directory)) if os.path.isdir(directory) else []
         self.check(job.returncode != 0 and "frames written" in stderr and len(written) < 12,
                    f"killed turntable: exit {job.returncode}, {len(written)} files:\n{stderr}")
@@ -261,32 +240,40 @@ class Tester:
                    f"bad scene: the located message once, as a single process prints it:\n{message}\nbut:\n{run.stderr}")
         self.check(not os.path.exists(output), "bad scene: an image was written")
 
-    def killed_rank(self, scene_args, recovery):
-        name = "recovered" if recovery else "killed"
-        output = self.out(name)
-        extra = ["--enable-recovery"] if recovery else []
+    def kill_rank_one(self, command, name, timeout):
+        """Starts `command` (an mpirun), kills rank 1 with SIGKILL once it renders, and waits for the job to end.
+        Returns (job, stderr, seconds from the kill to the end), or None with the failure recorded."""
         start = time.monotonic()
-        job = subprocess.Popen(self.mpirun(3, [*scene_args, "-o", output, "--threads", "1"], extra),
-                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        job = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
         victim = None
         while victim is None and job.poll() is None and time.monotonic() - start < 20:
-            time.sleep(0.1)
+            time.sleep(0.05)
             victim = rank_process(job.pid, 1, started_rendering=True)
         if victim is None:
             job.kill()
             self.check(False, f"{name}: rank 1 never started rendering")
-            return
+            return None
         os.kill(victim, signal.SIGKILL)
         killed = time.monotonic()
         try:
-            stdout, stderr = job.communicate(timeout=30)
+            _, stderr = job.communicate(timeout=timeout)
         except subprocess.TimeoutExpired:
             job.kill()
             self.check(False, f"{name}: the job hangs after rank 1 was killed")
+            return None
+        return job, stderr, time.monotonic() - killed
+
+    def killed_rank(self, scene_args, recovery):
+        name = "recovered" if recovery else "killed"
+        output = self.out(name)
+        extra = ["--enable-recovery"] if recovery else []
+        ended = self.kill_rank_one(self.mpirun(3, [*scene_args, "-o", output, "--threads", "1"], extra), name, 30)
+        if ended is None:
             return
+        job, stderr, seconds = ended
         # Ending is bounded; finishing (recovery) takes the survivors' render time, which a sanitizer build stretches.
         if not recovery:
-            self.check(time.monotonic() - killed < 10, f"{name}: the job took {time.monotonic() - killed:.1f} s to end")
+            self.check(seconds < 10, f"{name}: the job took {seconds:.1f} s to end")
         leftovers = [f for f in os.listdir(self.args.scratch) if f.startswith(os.path.basename(output)) and f != os.path.basename(output)]
         self.check(not leftovers, f"{name}: temporary files left: {leftovers}")
         self.check(not any(rank_process(job.pid, r) for r in range(3)), f"{name}: a rank is still running")

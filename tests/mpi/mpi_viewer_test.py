@@ -10,6 +10,9 @@ import signal
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import mpi_test  # noqa: E402  (the render test's preparation, beside this file)
+
 SKIP = 77
 
 
@@ -24,11 +27,7 @@ def main():
         if shutil.which(tool) is None:
             print(f"{tool} not found: skipped")
             return SKIP
-    shutil.rmtree(args.scratch, ignore_errors=True)
-    os.makedirs(args.scratch)
-    os.environ.update(OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1", OMPI_MCA_rmaps_base_oversubscribe="1")
-    if os.environ.get("ASAN_OPTIONS") is not None:  # see mpi_test.py: OpenMPI's leaks cannot be suppressed by name
-        os.environ["ASAN_OPTIONS"] += ":detect_leaks=0"
+    mpi_test.prepare(args.scratch)
     failures = []
     bunny = os.path.join(args.shared, "conformance", "ceng477", "bunny.xml")
     textured = os.path.join(args.source, "scenes", "textured_2025.xml")
