@@ -72,8 +72,10 @@ glm::dvec3 dvec(const aiVector3D& v) { return glm::dvec3(v.x, v.y, v.z); }
 
 // The nearest floats, when they are within 1e-5 model radii: the written scene then has at most 9 significant
 // digits per number, as the handout's peers read them (a model far from the origin keeps its doubles).
-// Through a volatile float: GCC 12's SLP vectorizer (-O2 and up) drops a double -> float -> double round trip of
-// three components as if it were the identity.
+// Through a volatile float: GCC 12.2's SLP vectorizer (-O2 and up) drops a double -> float -> double round trip of
+// three components as if it were the identity (reproduced: a dvec3 built from three such casts keeps x and y as
+// doubles and rounds only z; -fno-tree-slp-vectorize or -O1 round all three). model_cli_test.py's 9-digit check
+// fails without it.
 double asFloat(double v) {
   volatile float narrowed = static_cast<float>(v);
   return narrowed;
