@@ -278,17 +278,11 @@ class Loader {
   template <class F>
   void forEachChild(const XMLElement* parent, const std::string& where, F&& onElement) {
     int seen[static_cast<int>(Tag::Count)] = {};
-    for (const XMLNode* node = parent->FirstChild(); node; node = node->NextSibling()) {
-      if (const tinyxml2::XMLText* text = node->ToText()) {
-        strayText(text);
-        continue;
-      }
-      const XMLElement* child = node->ToElement();
-      if (!child) continue;  // comments, declarations
+    forEachElement(parent, [&](const XMLElement* child) {
       const Tag tag = identify(child);
       if (tag == Tag::Unknown) {
         unknownElement(child, where);
-        continue;
+        return;
       }
       const bool repeatable = tag == Tag::Light || tag == Tag::Material ||
                               tag == Tag::Mesh || tag == Tag::Lights || tag == Tag::Materials || tag == Tag::Objects;
@@ -298,6 +292,18 @@ class Loader {
                                       std::to_string(first) + ")");
       if (first == 0) first = child->GetLineNum();
       if (!onElement(child, tag)) unknownElement(child, where);
+    });
+  }
+
+  // The walk both dialects share: every child element in order, stray text warned about, comments skipped.
+  template <typename F>
+  void forEachElement(const XMLElement* parent, F&& onElement) {
+    for (const XMLNode* node = parent->FirstChild(); node; node = node->NextSibling()) {
+      if (const tinyxml2::XMLText* text = node->ToText()) {
+        strayText(text);
+        continue;
+      }
+      if (const XMLElement* child = node->ToElement()) onElement(child);  // else comments, declarations
     }
   }
 
@@ -336,13 +342,7 @@ class Loader {
   template <class F>
   void forEachCeng477Child(const XMLElement* parent, std::initializer_list<std::string_view> once, F&& onElement) {
     std::vector<std::pair<std::string, int>> seen;
-    for (const XMLNode* node = parent->FirstChild(); node; node = node->NextSibling()) {
-      if (const tinyxml2::XMLText* text = node->ToText()) {
-        strayText(text);
-        continue;
-      }
-      const XMLElement* child = node->ToElement();
-      if (!child) continue;  // comments, declarations
+    forEachElement(parent, [&](const XMLElement* child) {
       const std::string name = toLower(child->Name());
       if (std::find(once.begin(), once.end(), name) != once.end()) {
         for (const auto& [earlier, line] : seen)
@@ -352,7 +352,7 @@ class Loader {
         seen.emplace_back(name, child->GetLineNum());
       }
       if (!onElement(child, std::string_view(name))) unknownElement(child, "inside " + elementName(parent));
-    }
+    });
   }
 
   void readCeng477Scene(const XMLElement* root);
