@@ -7,6 +7,7 @@
 
 #include "cluster_job.h"
 #include "exit_codes.h"
+#include "mpi_link.h"
 #include "frame_scene.h"
 #include "frame_units.h"
 #include "rayview/thread_pool.h"
@@ -24,11 +25,11 @@ std::vector<ClusterFrame> broadcastFrames(int rank, const std::vector<ClusterFra
     for (const ClusterFrame& f : frames)
       text += f.scenePath + '\n' + std::to_string(f.frame) + '\n' + std::to_string(f.frames) + '\n' + f.output.string() + '\n';
   std::int64_t header[2] = {code, static_cast<std::int64_t>(text.size())};
-  MPI_Bcast(header, 2, MPI_INT64_T, 0, MPI_COMM_WORLD);
+  broadcastGently(header, 2, MPI_INT64_T);
   code = static_cast<int>(header[0]);
   if (code != kExitOk) return {};
   text.resize(static_cast<std::size_t>(header[1]));
-  MPI_Bcast(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, MPI_COMM_WORLD);
+  broadcastGently(text.data(), static_cast<int>(text.size()), MPI_CHAR);
   std::vector<ClusterFrame> all;
   std::size_t at = 0;
   auto line = [&] {

@@ -3,6 +3,7 @@
 
 #include <mpi.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -65,6 +66,30 @@ inline bool receiveWithin(void* buffer, int bytes, const MPI_Status& probed, std
     if (std::chrono::steady_clock::now() > deadline) return false;
     std::this_thread::sleep_for(kProbePause);
   }
+}
+
+// Waits for `request` without spinning a core: OpenMPI's blocking calls poll without yielding, which on a node
+// with more ranks than cores takes the CPU from the rank whose work is being waited for (rank 0's parse).
+inline void waitGently(MPI_Request& request) {
+  auto pause = std::chrono::duration_cast<std::chrono::microseconds>(kProbePause);
+  for (int done = 0;;) {
+    MPI_Test(&request, &done, MPI_STATUS_IGNORE);
+    if (done) return;
+    std::this_thread::sleep_for(pause);
+    pause = std::min<std::chrono::microseconds>(pause * 2, kLongestProbePause);
+  }
+}
+
+// MPI_Bcast from rank 0 and MPI_Gather at rank 0, waited for gently.
+inline void broadcastGently(void* buffer, int count, MPI_Datatype type) {
+  MPI_Request request;
+  MPI_Ibcast(buffer, count, type, 0, MPI_COMM_WORLD, &request);
+  waitGently(request);
+}
+inline void gatherGently(const void* send, int bytes, void* receive) {
+  MPI_Request request;
+  MPI_Igather(send, bytes, MPI_BYTE, receive, bytes, MPI_BYTE, 0, MPI_COMM_WORLD, &request);
+  waitGently(request);
 }
 
 // A buffer MPI may still write or read (a receive or send given up on): kept until the process ends.

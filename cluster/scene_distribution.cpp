@@ -25,7 +25,7 @@ constexpr std::size_t kPiece = std::size_t{1} << 30;
 void broadcastBytes(void* data, std::size_t bytes) {
   auto* p = static_cast<char*>(data);
   for (std::size_t at = 0; at < bytes; at += kPiece)
-    MPI_Bcast(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE, 0, MPI_COMM_WORLD);
+    broadcastGently(p + at, static_cast<int>(std::min(kPiece, bytes - at)), MPI_BYTE);
 }
 
 // Every other rank: the scene from rank 0's bytes ("" on success, else why not).
@@ -120,7 +120,7 @@ int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene
       header[2] = static_cast<std::int64_t>(parameters.size());
     }
   }
-  MPI_Bcast(header, 3, MPI_INT64_T, 0, MPI_COMM_WORLD);
+  broadcastGently(header, 3, MPI_INT64_T);
   if (header[0] != kExitOk) return static_cast<int>(header[0]);
   geometry.resize(static_cast<std::size_t>(header[1]));
   parameters.resize(static_cast<std::size_t>(header[2]));
@@ -132,13 +132,13 @@ int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene
 
   RankCheck own{error.empty() ? sceneHash(loaded.scene) : 0, error.empty() ? 1 : 0, 0};
   std::vector<RankCheck> checks(rank == 0 ? static_cast<std::size_t>(ranks) : 0);
-  MPI_Gather(&own, sizeof own, MPI_BYTE, checks.data(), sizeof own, MPI_BYTE, 0, MPI_COMM_WORLD);
+  gatherGently(&own, sizeof own, checks.data());
   // Short enough to go eagerly: a send rank 0 does not receive (not the first failure) never blocks.
   if (rank != 0 && !error.empty())
     MPI_Send(error.data(), static_cast<int>(std::min<std::size_t>(error.size(), 2000)), MPI_CHAR, 0, kTagLoadError,
              MPI_COMM_WORLD);
   int verdict = rank == 0 ? verdictOnRankZero(checks, error) : kExitOk;
-  MPI_Bcast(&verdict, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  broadcastGently(&verdict, 1, MPI_INT);
   if (verdict != kExitOk) return verdict;
 
   if (rank == 0 && !job.quiet)
