@@ -296,7 +296,7 @@ TEST(ImportModel, BadFilesAreRefusedByName) {
   std::string outOfRange = boxPly();
   const std::int32_t far = 99;
   std::memcpy(outOfRange.data() + outOfRange.size() - 4, &far, 4);
-  EXPECT_NE(errorOf(writeFile("range.ply", outOfRange)).find("names vertex 99"), std::string::npos);
+  EXPECT_NE(errorOf(writeFile("range.ply", outOfRange)).find("uses vertex 99"), std::string::npos);
   EXPECT_NE(errorOf(writeFile("inf.obj", "v 0 0 0\nv 1 0 0\nv inf 1 0\nf 1 2 3\n")).find("finite"), std::string::npos);
   EXPECT_NE(errorOf(writeFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")), "");
   EXPECT_NE(errorOf(writeFile("garbage.gltf", "{ not json")), "");
