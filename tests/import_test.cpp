@@ -320,13 +320,16 @@ TEST(ImportModel, NormalsAndTextureCoordinatesAreKept) {
   const Scene ply = loadModelScene(writeFile("normals.ply",
                                              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                              "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                                             "property float u\nproperty float v\n"
                                              "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                                             "0 0 0 0 0 2\n1 0 0 0 0 2\n0 1 0 0 0 2\n3 0 1 2\n"),
+                                             "0 0 0 0 0 2 0 0\n1 0 0 0 0 2 1 0\n0 1 0 0 0 2 0 0.5\n3 0 1 2\n"),
                                    small())
                        .scene;
   ASSERT_EQ(ply.normals.size(), 3u);
   EXPECT_EQ(ply.normals[0], glm::vec3(0, 0, 1));
   EXPECT_TRUE(ply.attributesOf(0).hasNormals());
+  ASSERT_TRUE(ply.attributesOf(0).hasTexCoords());
+  EXPECT_EQ(ply.texCoords[ply.attributesOf(0).texCoord[2]], glm::vec2(0, 0.5f));
   const Scene obj = loadModelScene(writeFile("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"),
                                    small())
                        .scene;
