@@ -1,5 +1,6 @@
 #pragma once
-// The whole of a model file in memory, read by rayview's own PLY and STL readers: binary fields and ASCII tokens.
+// The whole of a model file in memory, read by rayview's own STL reader (and handed whole to the
+// renderer's PLY reader): binary fields and ASCII tokens.
 
 #include <bit>
 #include <charconv>

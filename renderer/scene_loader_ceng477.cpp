@@ -313,7 +313,8 @@ void Loader::readPlyFaces(PendingMesh& mesh, const std::string& plyFile) {
   mesh.firstTriangle = static_cast<std::uint32_t>(triangles.size());
   mesh.triangleCount = static_cast<std::uint32_t>(ply.triangles.size());
   triangles.reserve(triangles.size() + ply.triangles.size());
-  for (const auto& f : ply.triangles) result_.scene.addFace(Triangle{{f[0] + base, f[1] + base, f[2] + base}});
+  for (const Triangle& f : ply.triangles)
+    result_.scene.addFace(Triangle{{f.vertex[0] + base, f.vertex[1] + base, f.vertex[2] + base}});
 }
 
 void Loader::finishCeng477() {

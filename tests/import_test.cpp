@@ -296,7 +296,7 @@ TEST(ImportModel, BadFilesAreRefusedByName) {
   std::string outOfRange = boxPly();
   const std::int32_t far = 99;
   std::memcpy(outOfRange.data() + outOfRange.size() - 4, &far, 4);
-  EXPECT_NE(errorOf(writeFile("range.ply", outOfRange)).find("names vertex 99"), std::string::npos);
+  EXPECT_NE(errorOf(writeFile("range.ply", outOfRange)).find("uses vertex 99"), std::string::npos);
   EXPECT_NE(errorOf(writeFile("inf.obj", "v 0 0 0\nv 1 0 0\nv inf 1 0\nf 1 2 3\n")).find("finite"), std::string::npos);
   EXPECT_NE(errorOf(writeFile("range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n")), "");
   EXPECT_NE(errorOf(writeFile("garbage.gltf", "{ not json")), "");
@@ -320,13 +320,16 @@ TEST(ImportModel, NormalsAndTextureCoordinatesAreKept) {
   const Scene ply = loadModelScene(writeFile("normals.ply",
                                              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                              "property float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
+                                             "property float u\nproperty float v\n"
                                              "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
-                                             "0 0 0 0 0 2\n1 0 0 0 0 2\n0 1 0 0 0 2\n3 0 1 2\n"),
+                                             "0 0 0 0 0 2 0 0\n1 0 0 0 0 2 1 0\n0 1 0 0 0 2 0 0.5\n3 0 1 2\n"),
                                    small())
                        .scene;
   ASSERT_EQ(ply.normals.size(), 3u);
   EXPECT_EQ(ply.normals[0], glm::vec3(0, 0, 1));
   EXPECT_TRUE(ply.attributesOf(0).hasNormals());
+  ASSERT_TRUE(ply.attributesOf(0).hasTexCoords());
+  EXPECT_EQ(ply.texCoords[ply.attributesOf(0).texCoord[2]], glm::vec2(0, 0.5f));
   const Scene obj = loadModelScene(writeFile("uv.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n"),
                                    small())
                        .scene;

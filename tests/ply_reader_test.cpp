@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <limits>
 #include <cstring>
@@ -78,6 +79,8 @@ std::string errorOf(const std::string& bytes) {
   return "";
 }
 
+std::array<std::uint32_t, 3> corners(const Triangle& t) { return {t.vertex[0], t.vertex[1], t.vertex[2]}; }
+
 class PlyFormats : public ::testing::TestWithParam<Format> {};
 
 TEST_P(PlyFormats, ReadsVerticesAndFansOfEveryFace) {
@@ -86,10 +89,38 @@ TEST_P(PlyFormats, ReadsVerticesAndFansOfEveryFace) {
   for (int i = 0; i < 4; ++i)
     EXPECT_EQ(mesh.vertices[i], glm::dvec3(kVertices[i][0], kVertices[i][1], kVertices[i][2])) << i;
   ASSERT_EQ(mesh.triangles.size(), 3u);  // the quad as two, then the triangle
-  EXPECT_EQ(mesh.triangles[0], (std::array<std::uint32_t, 3>{0, 1, 2}));
-  EXPECT_EQ(mesh.triangles[1], (std::array<std::uint32_t, 3>{0, 2, 3}));
-  EXPECT_EQ(mesh.triangles[2], (std::array<std::uint32_t, 3>{3, 2, 1}));
+  EXPECT_EQ(corners(mesh.triangles[0]), (std::array<std::uint32_t, 3>{0, 1, 2}));
+  EXPECT_EQ(corners(mesh.triangles[1]), (std::array<std::uint32_t, 3>{0, 2, 3}));
+  EXPECT_EQ(corners(mesh.triangles[2]), (std::array<std::uint32_t, 3>{3, 2, 1}));
   EXPECT_EQ(mesh.skippedFaces, 1u);
+  EXPECT_TRUE(mesh.normals.empty());  // nx alone is no normal
+  EXPECT_TRUE(mesh.texCoords.empty());
+}
+
+// Normals and texture coordinates (named s and t here) come one per vertex, as the file gives them.
+TEST_P(PlyFormats, ReadsNormalsAndTextureCoordinates) {
+  const char* name = GetParam() == Format::Ascii ? "ascii" : GetParam() == Format::Little ? "binary_little_endian" : "binary_big_endian";
+  PlyWriter w{GetParam(), "ply\nformat " + std::string(name) + " 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                          "property float z\nproperty float s\nproperty double nx\nproperty float ny\nproperty float nz\n"
+                          "property float t\nelement face 1\nproperty list uchar uint vertex_indices\nend_header\n"};
+  for (int i = 0; i < 3; ++i) {
+    for (float c : kVertices[i]) w.put(c);
+    w.put(0.25f * static_cast<float>(i));
+    w.put(0.0);
+    w.put(0.0f);
+    w.put(2.0f);
+    w.put(0.5f);
+    w.endRecord();
+  }
+  w.put(static_cast<unsigned char>(3));
+  for (std::uint32_t i : {2u, 1u, 0u}) w.put(i);
+  const PlyMesh mesh = parsePly(w.out);
+  ASSERT_EQ(mesh.normals.size(), 3u);
+  ASSERT_EQ(mesh.texCoords.size(), 3u);
+  EXPECT_EQ(mesh.normals[1], glm::vec3(0, 0, 2));  // not normalized: the caller decides
+  EXPECT_EQ(mesh.texCoords[2], glm::vec2(0.5f, 0.5f));
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_EQ(corners(mesh.triangles[0]), (std::array<std::uint32_t, 3>{2, 1, 0}));
 }
 
 TEST_P(PlyFormats, RefusesATruncatedFile) {
@@ -121,6 +152,12 @@ TEST(Ply, AcceptsCrlfLinesAndDoubleCoordinates) {
                                 "end_header\r\n0 0 0\r\n1 0 0\r\n0 1 0.125\r\n3 0 1 2\r\n");
   ASSERT_EQ(mesh.triangles.size(), 1u);
   EXPECT_EQ(mesh.vertices[2], glm::dvec3(0, 1, 0.125));
+}
+
+TEST(Ply, AcceptsBlankLinesBeforeTheMagicWord) {
+  const PlyMesh mesh = parsePly("\n \r\n" + kAsciiHead + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_NE(errorOf("\n" + kAsciiHead + "0 0 0\n1 0 0\nx 1 0\n3 0 1 2\n").find("line 13: expected a number"), std::string::npos);
 }
 
 TEST(Ply, RefusesWhatIsNotAReadableMesh) {
