@@ -3,7 +3,8 @@
 
   libmpi     what linking libmpi into rayview would cost every render: a small scene's wall time, plain and with
              libmpi preloaded (the reason rayview-mpi is a program of its own);
-  one rank   `mpirun -n 1 rayview render` against `rayview render`, on a render of over a second;
+  one rank   `mpirun -n 1 rayview render` against `rayview render`, on a render of over a second (monkey at 49
+             samples, 1.4 s at 2 threads);
   two ranks  2 ranks x 1 thread against 1 process x 2 threads, the same render;
   balance    the summary's mean/max busy time on a deliberately imbalanced frame (a small bright object,
              everything else background), 2 and 4 ranks;
@@ -99,7 +100,7 @@ def main():
         rows.append(("libmpi loaded into a small render: CPU", f"{plain_cpu:.1f} ms", f"{loaded_cpu:.1f} ms",
                      f"{loaded_cpu / plain_cpu:.3f}x"))
 
-    heavy = [monkey, "-o", out, "--samples", "25"]
+    heavy = [monkey, "-o", out, "--samples", "49"]
     single2 = best(args.repeat, [rayview, "render", *heavy, "--threads", "2"])
     one_rank = best(args.repeat, mpirun(1) + [rayview, "render", *heavy, "--threads", "2"])
     rows.append(("1 rank x 2 threads vs no MPI, render", f"{single2[1]:.0f} ms", f"{one_rank[1]:.0f} ms",
@@ -117,6 +118,17 @@ def main():
                  f"{two_ranks[1]:.0f} ms", f"{single2[1] / two_ranks[1] * 100:.1f} %"))
     rows.append(("2 ranks x 1 thread vs 1 process x 2 threads, wall", f"{single2[0]:.0f} ms",
                  f"{two_ranks[0]:.0f} ms", f"{single2[0] / two_ranks[0] * 100:.1f} %"))
+    # OpenMPI's default transport (UCX) costs a multi-rank job ~0.2 s more to start here than its on-node one: a
+    # choice for whoever runs mpirun (on a cluster UCX is the right one), measured so the fixed cost is visible.
+    on_node = ["--mca", "pml", "ob1", "--mca", "btl", "self,vader"]
+    two_on_node = best(args.repeat, ["mpirun", "--bind-to", "none", *on_node, "-n", "2", rayview, "render", *heavy, "--threads", "1"])
+    rows.append(("2 ranks x 1 thread vs 1 process x 2 threads, wall, `--mca pml ob1 --mca btl self,vader`",
+                 f"{single2[0]:.0f} ms", f"{two_on_node[0]:.0f} ms", f"{single2[0] / two_on_node[0] * 100:.1f} %"))
+    init_only = os.path.join(args.build, "bench", "mpi_init_only")
+    if os.path.exists(init_only):
+        rows.append(("MPI_Init + MPI_Finalize alone, 2 ranks: wall (default; on-node transport)", "",
+                     f"{best(args.repeat, mpirun(2) + [init_only])[0]:.0f} ms",
+                     f"{best(args.repeat, ['mpirun', '--bind-to', 'none', *on_node, '-n', '2', init_only])[0]:.0f} ms"))
     cpu_two = CPU[tuple(mpirun(2) + [rayview, "render", *heavy, "--threads", "1"])]
     rows.append(("2 ranks x 1 thread vs 1 process x 2 threads, CPU time less mpirun's launch", f"{cpu_single:.0f} ms",
                  f"{cpu_two - launch_cpu:.0f} ms", f"{cpu_single / (cpu_two - launch_cpu) * 100:.1f} %"))
