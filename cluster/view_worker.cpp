@@ -19,6 +19,7 @@
 #include "mpi_link.h"
 #include "mpi_outbox.h"
 #include "rayview/grid_render.h"
+#include "rayview/pass_farm.h"
 #include "rayview/pixel_source.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/thread_pool.h"
@@ -127,16 +128,7 @@ class ViewWorker {
     const auto start = Clock::now();
     gridTilePixels({request.x0, request.y0, request.x1, request.y1}, request.stride, request.skipStride, pixels_);
     RayCounts rays;
-    const TracedImage& image = *image_;
-    const int sample = request.sample;
-    whileAlive([&] {
-      traceColors(
-          [&](const PixelXY* p, int n, Color* out, RayCounts& c) {
-            if (sample < 0) image.pixels(p, n, out, c);
-            else image.samples(p, n, sample, out, c);
-          },
-          pixels_, pool_, colors_, rays);
-    });
+    whileAlive([&] { traceColors(farmTrace(*image_, request.sample), pixels_, pool_, colors_, rays); });
     ViewTileResultHeader header{request.pass, request.tile, static_cast<std::int32_t>(pixels_.size()),
                                 std::chrono::duration<double, std::milli>(Clock::now() - start).count(),
                                 rays.camera, rays.shadow, rays.reflection};

@@ -38,12 +38,6 @@ std::vector<std::uint8_t> bytesOf(const T& value) {
   return bytes;
 }
 
-PixelBatchFunction traceFunction(const PixelSource& source, int sample) {
-  if (sample < 0)
-    return [&source](const PixelXY* p, int n, Color* out, RayCounts& c) { source.pixels(p, n, out, c); };
-  return [&source, sample](const PixelXY* p, int n, Color* out, RayCounts& c) { source.samples(p, n, sample, out, c); };
-}
-
 }  // namespace
 
 // One pass: its tiles dealt to the workers and to rank 0's own thread, their pixels handed to the sink as they come.
@@ -98,7 +92,7 @@ class ViewerFarm::Pass {
       LocalTile done{*tile, {}, {}, {}, 0};
       gridTilePixels(tiles_[*tile], pass_.stride, pass_.skipStride, done.pixels);
       const auto start = Clock::now();
-      traceColors(traceFunction(source_, pass_.sample), done.pixels, farm_.pool_, done.colors, done.rays);
+      traceColors(farmTrace(source_, pass_.sample), done.pixels, farm_.pool_, done.colors, done.rays);
       done.busyMicroseconds =
           static_cast<std::uint64_t>(std::chrono::duration<double, std::micro>(Clock::now() - start).count());
       std::lock_guard lock(localMutex_);

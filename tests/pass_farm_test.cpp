@@ -39,12 +39,7 @@ class ReversedFarm final : public PassFarm {
     for (const Tile& tile : tiles) {
       if (stopped()) return false;
       gridTilePixels(tile, pass.stride, pass.skipStride, pixels);
-      traceColors(
-          [&](const PixelXY* p, int n, Color* out, RayCounts& c) {
-            if (pass.sample < 0) source.pixels(p, n, out, c);
-            else source.samples(p, n, pass.sample, out, c);
-          },
-          pixels, pool_, colors, rays);
+      traceColors(farmTrace(source, pass.sample), pixels, pool_, colors, rays);
       sink(pixels.data(), colors.data(), static_cast<int>(pixels.size()));
       std::this_thread::sleep_for(pause_);
     }

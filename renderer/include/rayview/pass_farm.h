@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rayview/color.h"
+#include "rayview/grid_render.h"
 #include "rayview/pixel_source.h"
 #include "rayview/tracer.h"
 
@@ -19,6 +20,14 @@ struct FarmPass {
   int skipStride = 0;  // except those on this grid (the pass before computed them); 0: none
   int sample = -1;     // -1: whole pixels (PixelSource::pixels); k >= 0: anti-aliasing sample k (samples)
 };
+
+// What tracing a pass's pixels means for `source`: whole pixels (sample -1) or anti-aliasing sample k, as
+// FarmPass::sample says. Every farm traces through this, so its radiance is the local pass's.
+inline PixelBatchFunction farmTrace(const PixelSource& source, int sample) {
+  if (sample < 0)
+    return [&source](const PixelXY* p, int n, Color* out, RayCounts& c) { source.pixels(p, n, out, c); };
+  return [&source, sample](const PixelXY* p, int n, Color* out, RayCounts& c) { source.samples(p, n, sample, out, c); };
+}
 
 // Radiance of `count` pixels of the pass (colors[n] for pixels[n]), not yet quantized.
 using FarmSink = std::function<void(const PixelXY* pixels, const Color* colors, int count)>;
