@@ -75,6 +75,10 @@ def toasts(args, work):
     with open(script, "w") as f:
         f.write(f"wait-final\nprint-state\nsleep {STEP_SECONDS}\nscreenshot {shots['none']}\nsleep {STEP_SECONDS}\n"
                 f"screenshot {shots['ok']}\nsleep {STEP_SECONDS}\nscreenshot {shots['fail']}\nquit\n")
+    # Every numbered name but the first taken before the window opens: the first Ctrl+S takes toast_001.png, the next
+    # one fails. Made here, not between the two saves, where the script's sleep would race 9998 file creations.
+    for n in range(2, 10000):
+        open(os.path.join(work, f"toast_{n:03d}.png"), "w").close()
     viewer = Viewer(args.rayview, [scene, "--threads", "2", "--script", script], work)
     try:
         viewer.wait_for("state ")
@@ -85,9 +89,6 @@ def toasts(args, work):
         key(window, "ctrl+s")
         viewer.wait_for("saved ", accept=is_frame_save)
         viewer.wait_for(f"screenshot {shots['ok']}")
-        # Every numbered name taken: the next Ctrl+S fails.
-        for n in range(2, 10000):
-            open(os.path.join(work, f"toast_{n:03d}.png"), "w").close()
         key(window, "ctrl+s")
         deadline = time.monotonic() + 10
         while not any("not saved" in line for line in viewer.stderr):
