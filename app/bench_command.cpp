@@ -11,7 +11,7 @@
 
 #include "rayview/plot.h"
 #include "rayview/tradeoff.h"
-#include "rayview/scene_source.h"
+#include "rayview/scene_open.h"
 
 namespace rayview {
 namespace {
@@ -63,10 +63,10 @@ void printTable(const TradeoffReport& report) {
 int runBenchCommand(const CommandLine& command) {
   // Every scene is read before anything is measured or written: a bad scene costs nothing.
   std::vector<std::shared_ptr<const Scene>> scenes;
-  for (const std::string& path : command.scenePaths) {
+  for (const std::string& path : command.job.scenes) {
     try {
-      LoadedScene loaded = loadSceneOrDefault(path, LoadOptions{command.strict, true});
-      if (!command.quiet)
+      LoadedScene loaded = openScene(path, command.job.open);
+      if (!command.job.quiet)
         for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
       if (const std::string problem = scaledImageProblem(loaded.scene.camera, command.resolutionScale); !problem.empty()) {
         std::fprintf(stderr, "%s: error: %s\n", path.empty() ? "default scene" : path.c_str(), problem.c_str());
@@ -87,12 +87,12 @@ int runBenchCommand(const CommandLine& command) {
     return kExitIoFailure;
   }
 
-  ThreadPool pool(command.threads);
+  ThreadPool pool(command.job.threads);
   TradeoffOptions options;
   options.resolutionScale = command.resolutionScale;
-  options.baseline = renderSettingsOf(command);
-  const bool showProgress = !command.quiet && isatty(fileno(stderr));
-  const std::vector<std::string> names = uniqueNames(command.scenePaths);
+  options.baseline = renderSettingsOf(command.job);
+  const bool showProgress = !command.job.quiet && isatty(fileno(stderr));
+  const std::vector<std::string> names = uniqueNames(command.job.scenes);
   std::string csv = tradeoffCsvHeader();
   for (std::size_t i = 0; i < scenes.size(); ++i) {
     const TradeoffProgressFn progress = [&](const TradeoffProgress& p) {
@@ -113,12 +113,12 @@ int runBenchCommand(const CommandLine& command) {
       std::fprintf(stderr, "rayview: error: %s\n", e.what());
       return kExitIoFailure;
     }
-    if (!command.quiet) {
+    if (!command.job.quiet) {
       printTable(report);
       std::printf("  wrote %s\n\n", std::filesystem::absolute(plotPath).c_str());
     }
   }
-  if (!command.quiet) std::printf("wrote %s\n", std::filesystem::absolute(directory / "tradeoff.csv").c_str());
+  if (!command.job.quiet) std::printf("wrote %s\n", std::filesystem::absolute(directory / "tradeoff.csv").c_str());
   return kExitOk;
 }
 

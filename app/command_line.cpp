@@ -20,7 +20,9 @@ enum Applies : unsigned {
   kAll = kBoth | kBench,
   kCompare = 8u,
   kImport = 16u,
-  kExport = 32u
+  kExport = 32u,
+  // Every command that opens a scene: they all take the options of how to open it (rayview/scene_open.h).
+  kOpen = kAll | kImport | kExport
 };
 
 struct Subcommand {
@@ -114,7 +116,7 @@ std::string whereTag(unsigned applies) {
   if ((applies & kAll) == kAll) return "";
   std::string tag;
   for (auto [bit, name] : {std::pair{kRender, "render"}, std::pair{kView, "viewer"}, std::pair{kBench, "bench"},
-                          std::pair{kImport, "import"}})
+                          std::pair{kImport, "import"}, std::pair{kExport, "export"}})
     if (applies & bit) tag += (tag.empty() ? "" : ", ") + std::string(name);
   return " [" + tag + "]";
 }
@@ -127,8 +129,8 @@ OptionSpec knobOption(const Knob& knob) {
           [&knob, option](CommandLine& c, const std::string& v) {
             const std::optional<int> value = knob.parse(v);
             if (!value) throw UsageError(option + " expects " + knob.expectation() + ", not '" + v + "'");
-            std::erase_if(c.knobs, [&](const KnobAssignment& a) { return a.knob == &knob; });
-            c.knobs.push_back({&knob, *value});
+            std::erase_if(c.job.knobs, [&](const KnobAssignment& a) { return a.knob == &knob; });
+            c.job.knobs.push_back({&knob, *value});
           }};
 }
 
@@ -136,40 +138,42 @@ std::vector<OptionSpec> makeOptionTable() {
   std::vector<OptionSpec> table = {
       {"-o", "OUT.png|OUT.ppm", kRender | kImport | kExport,
        "image to write (written whole: a temporary file renamed into place); import: SCENE.xml; export: the model",
-       [](CommandLine& c, const std::string& v) { c.outputPath = v; }},
-      {"--up", "y|z", kRender | kImport, "a model's up axis, for the camera made up for it (z for CAD and scans)",
+       [](CommandLine& c, const std::string& v) { c.job.output = v; }},
+      {"--up", "y|z", kOpen, "a model's up axis, for the camera made up for it (z for CAD and scans)",
        [](CommandLine& c, const std::string& v) {
-         if (!parseModelUpAxis(v, c.model.up)) throw UsageError("--up expects y or z, not '" + v + "'");
+         if (!parseModelUpAxis(v, c.job.open.model.up)) throw UsageError("--up expects y or z, not '" + v + "'");
        }},
-      {"--resolution", "WxH", kRender | kImport, "a model's image size (default 1280x720)",
+      {"--resolution", "WxH", kOpen, "a model's image size (default 1280x720)",
        [](CommandLine& c, const std::string& v) {
-         if (!parseResolution(v, c.model.width, c.model.height))
+         if (!parseResolution(v, c.job.open.model.width, c.job.open.model.height))
            throw UsageError("--resolution expects WIDTHxHEIGHT up to 32768x32768, not '" + v + "'");
        }},
       {"--threads", "N", kAll, "render threads (default: one per hardware thread)",
-       [](CommandLine& c, const std::string& v) { c.threads = parseInt("--threads", v, 1, 1024); }},
+       [](CommandLine& c, const std::string& v) { c.job.threads = parseInt("--threads", v, 1, 1024); }},
   };
   for (const Knob& knob : knobTable()) table.push_back(knobOption(knob));
   const std::vector<OptionSpec> rest = {
-      {"--strict", "", kAll, "treat every repaired typo and unknown element as an error",
-       [](CommandLine& c, const std::string&) { c.strict = true; }},
+      {"--strict", "", kOpen, "treat every repaired typo and unknown element as an error",
+       [](CommandLine& c, const std::string&) { c.job.open.strict = true; }},
       {"--memory", "auto|fast|lean", kRender,
        "fast: Embree and the whole image; lean: less memory, slower (the packet BVH with bigger leaves, the image "
        "deflated while the scene is held); auto: lean only when the fast layout's estimated peak would not fit in "
        "the available memory (default: auto)",
        [](CommandLine& c, const std::string& v) {
-         if (!parseMemoryUse(v, c.memory)) throw UsageError("--memory expects 'auto', 'fast' or 'lean', not '" + v + "'");
+         if (!parseMemoryUse(v, c.job.open.memory)) throw UsageError("--memory expects 'auto', 'fast' or 'lean', not '" + v + "'");
        }},
-      {"--camera", "N", kRender, "which camera of a CENG477 scene's <Cameras> to render (1 is the first, the default)",
-       [](CommandLine& c, const std::string& v) { c.camera = parseInt("--camera", v, 1, 1000000); }},
+      {"--camera", "N", kOpen,
+       "which camera of a CENG477 scene's <Cameras> to open (1 is the first, the default; render -o DIR/ writes "
+       "every camera to its <ImageName> unless one is chosen)",
+       [](CommandLine& c, const std::string& v) { c.job.open.camera = parseInt("--camera", v, 1, 1000000); }},
       {"--turntable", "N", kRender,
        "render N frames orbiting the camera around the scene's centre (the viewer's orbit pivot); -o names them "
        "with a printf number, e.g. -o frames/spin_%04d.png",
-       [](CommandLine& c, const std::string& v) { c.turntableFrames = parseInt("--turntable", v, 1, 100000); }},
+       [](CommandLine& c, const std::string& v) { c.job.turntableFrames = parseInt("--turntable", v, 1, 100000); }},
       {"--overwrite", "", kRender, "with several frames or scenes: render them all, not only those whose file is missing or incomplete",
-       [](CommandLine& c, const std::string&) { c.overwrite = true; }},
+       [](CommandLine& c, const std::string&) { c.job.overwrite = true; }},
       {"--quiet", "", kRender | kBench, "print only errors",
-       [](CommandLine& c, const std::string&) { c.quiet = true; }},
+       [](CommandLine& c, const std::string&) { c.job.quiet = true; }},
       {"--script", "FILE", kView, "run viewer commands from FILE (automation; see docs/viewer.md)",
        [](CommandLine& c, const std::string& v) { c.scriptPath = v; }},
       {"--compare", "REF.png|REF.ppm", kView,
@@ -194,16 +198,6 @@ const std::vector<OptionSpec>& optionTable() {
   static const std::vector<OptionSpec> table = makeOptionTable();
   return table;
 }
-
-}  // namespace
-
-RenderSettings renderSettingsOf(const CommandLine& command) {
-  RenderSettings settings;
-  applyKnobs(command.knobs, {nullptr, &settings});
-  return settings;
-}
-
-namespace {
 
 // The option at arguments[i] (and its value, which may be the next argument: i moves past it) applied to `command`.
 void applyOption(const std::vector<std::string>& arguments, std::size_t& i, unsigned mode, CommandLine& command) {
@@ -235,19 +229,20 @@ void applyOption(const std::vector<std::string>& arguments, std::size_t& i, unsi
 // What each command cannot do without.
 void checkRequiredArguments(const CommandLine& command) {
   if (command.kind == CommandKind::Render) {
-    if (command.outputPath.empty()) throw UsageError("'rayview render' needs -o OUT.png or -o OUT.ppm");
+    if (command.job.output.empty()) throw UsageError("'rayview render' needs -o OUT.png or -o OUT.ppm");
   }
-  if (command.kind == CommandKind::Import && (command.scenePath.empty() || command.outputPath.empty()))
+  const bool noInput = command.job.scenes.empty(), noOutput = command.job.output.empty();
+  if (command.kind == CommandKind::Import && (noInput || noOutput))
     throw UsageError("'rayview import' needs MODEL -o SCENE.xml");
-  if (command.kind == CommandKind::Export && (command.scenePath.empty() || command.outputPath.empty()))
-    throw UsageError("'rayview export' needs SCENE.xml -o MODEL.obj|.ply|.stl|.gltf|.glb");
+  if (command.kind == CommandKind::Export && (noInput || noOutput))
+    throw UsageError("'rayview export' needs SCENE -o MODEL.obj|.ply|.stl|.gltf|.glb");
   if (command.kind == CommandKind::Bench) {
-    if (command.scenePaths.empty()) throw UsageError("'rayview bench tradeoff' needs at least one SCENE");
+    if (noInput) throw UsageError("'rayview bench tradeoff' needs at least one SCENE");
     if (command.outputDirectory.empty()) throw UsageError("'rayview bench tradeoff' needs --out DIR");
   }
-  if (command.kind == CommandKind::Compare && command.scenePaths.size() != 2)
+  if (command.kind == CommandKind::Compare && command.images.size() != 2)
     throw UsageError("'rayview compare' needs two images: IMAGE REFERENCE (" +
-                     std::to_string(command.scenePaths.size()) + " given)");
+                     std::to_string(command.images.size()) + " given)");
 }
 
 }  // namespace
@@ -287,14 +282,15 @@ CommandLine parseCommandLine(const std::vector<std::string>& arguments) {
       applyOption(arguments, i, mode, command);
       continue;
     }
-    if (command.kind == CommandKind::Bench || command.kind == CommandKind::Compare) {
-      command.scenePaths.push_back(arg);  // compare: the image, then the reference
+    if (command.kind == CommandKind::Compare) {
+      command.images.push_back(arg);  // the image, then the reference
       continue;
     }
-    if (command.kind == CommandKind::Render) command.scenePaths.push_back(arg);  // several: a batch to a directory
-    else if (!command.scenePath.empty())
-      throw UsageError("more than one scene given: '" + command.scenePath + "' and '" + arg + "'");
-    if (command.scenePath.empty()) command.scenePath = arg;
+    // render and bench take several (render: a batch into a directory); the others one.
+    std::vector<std::string>& scenes = command.job.scenes;
+    if (!scenes.empty() && command.kind != CommandKind::Render && command.kind != CommandKind::Bench)
+      throw UsageError("more than one scene given: '" + scenes.front() + "' and '" + arg + "'");
+    scenes.push_back(arg);
   }
   checkRequiredArguments(command);
   return command;
@@ -316,10 +312,6 @@ std::string optionLines(unsigned mode) {
 }
 
 }  // namespace
-
-std::string counted(std::size_t count, const std::string& singular) {
-  return std::to_string(count) + " " + singular + (count == 1 ? "" : "s");
-}
 
 std::string helpText(CommandKind kind) {
   switch (kind) {

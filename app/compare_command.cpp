@@ -12,8 +12,8 @@ namespace rayview {
 int runCompareCommand(const CommandLine& command) {
   Image image, reference;
   try {
-    image = readImageFile(command.scenePaths[0], "the image compared");
-    reference = readImageFile(command.scenePaths[1], "the reference image");
+    image = readImageFile(command.images[0], "the image compared");
+    reference = readImageFile(command.images[1], "the reference image");
   } catch (const ImageIoError& error) {
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
     return kExitBadInput;
@@ -25,7 +25,7 @@ int runCompareCommand(const CommandLine& command) {
   }
   if (image.width != reference.width || image.height != reference.height) {
     std::fprintf(stderr, "rayview: error: %s is %dx%d but %s is %dx%d: images of different sizes cannot be compared\n",
-                 command.scenePaths[0].c_str(), image.width, image.height, command.scenePaths[1].c_str(),
+                 command.images[0].c_str(), image.width, image.height, command.images[1].c_str(),
                  reference.width, reference.height);
     return kExitBadInput;
   }

@@ -7,6 +7,7 @@
 #include "model_commands.h"
 #include "rayview/image.h"
 #include "rayview/model_client.h"
+#include "rayview/scene_open.h"
 #include "rayview/scene_writer.h"
 
 namespace rayview {
@@ -48,9 +49,9 @@ bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, f
 }  // namespace
 
 int runImportCommand(const CommandLine& command) {
-  const fs::path model = command.scenePath, output = command.outputPath;
+  const fs::path model = command.job.scene(), output = command.job.output;
   if (!endsInXml(output)) {
-    std::fprintf(stderr, "rayview: error: the output must end in .xml: %s\n", command.outputPath.c_str());
+    std::fprintf(stderr, "rayview: error: the output must end in .xml: %s\n", output.c_str());
     return kExitBadInput;
   }
   if (sameFile(output, model)) {
@@ -59,7 +60,7 @@ int runImportCommand(const CommandLine& command) {
   }
   ImportedModel imported;
   try {
-    imported = importModel(model, command.model);
+    imported.loaded = openScene(model.string(), command.job.open, &imported.summary);
   } catch (const SceneError& error) {
     std::fprintf(stderr, "%s\n", error.what());
     return kExitBadInput;

@@ -8,13 +8,11 @@
 #include "bench_command.h"
 #include "command_line.h"
 #include "compare_command.h"
-#include "frame_plan.h"
-#include "frames_command.h"
 #include "mpi_handoff.h"
 #include "model_commands.h"
-#include "process_start.h"
+#include "rayview/process_start.h"
 #include "rayview/image.h"
-#include "render_command.h"
+#include "rayview/render_job.h"
 
 #ifdef RAYVIEW_HAVE_VIEWER
 #include "rayview/viewer.h"
@@ -28,7 +26,7 @@ int runViewCommand(const rayview::CommandLine& command, char** argv) {
   using namespace rayview;
 #ifdef RAYVIEW_HAVE_VIEWER
   static_cast<void>(argv);
-  switch (runViewer(ViewerOptions{command.scenePath, command.strict, command.threads, command.knobs,
+  switch (runViewer(ViewerOptions{command.job.scene(), command.job.open, command.job.threads, command.job.knobs,
                                   command.scriptPath, command.comparePath, nullptr})) {
     case ViewerExit::Ok: return kExitOk;
     case ViewerExit::BadInput: return kExitBadInput;
@@ -39,7 +37,7 @@ int runViewCommand(const rayview::CommandLine& command, char** argv) {
   static_cast<void>(command);
   const std::string why = startViewerProgram(argv);
   std::fprintf(stderr, "rayview: error: the viewer cannot start: %s; to render without a window: rayview render %s -o out.png\n",
-               why.c_str(), command.scenePath.empty() ? "SCENE" : command.scenePath.c_str());
+               why.c_str(), command.job.scene().empty() ? "SCENE" : command.job.scene().c_str());
   return kExitIoFailure;
 #endif
 }
@@ -69,8 +67,7 @@ int main(int argc, char** argv) try {
       return kExitOk;
     case CommandKind::Render:
       if (const int code = handOffToMpi(argv); code >= 0) return code;
-      if (isFrameCommand(command)) return runFramesCommand(command);
-      return runRenderCommand(command);
+      return runRenderJob(command.job);
     case CommandKind::Bench:
       return runBenchCommand(command);
     case CommandKind::Compare:

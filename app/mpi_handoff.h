@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "exit_codes.h"
+#include "rayview/exit_codes.h"
 #include "libexec_start.h"
 
 namespace rayview {

@@ -5,10 +5,10 @@
 #include <memory>
 #include <string>
 
-#include "cluster_job.h"
-#include "exit_codes.h"
+#include "cluster_runs.h"
+#include "rayview/exit_codes.h"
 #include "mpi_link.h"
-#include "frame_scene.h"
+#include "rayview/frame_scene.h"
 #include "frame_units.h"
 #include "rayview/thread_pool.h"
 #include "scene_batch.h"
@@ -18,19 +18,19 @@
 namespace rayview::cluster {
 namespace {
 
-// Rank 0's frames to every rank, as text: scene, frame, frames, output, one field a line.
-std::vector<ClusterFrame> broadcastFrames(int rank, const std::vector<ClusterFrame>& frames, int& code) {
+// Rank 0's frames to every rank, as text: scene, camera, frame, frames, output, one field a line.
+std::vector<FrameJob> broadcastFrames(int rank, const std::vector<FrameJob>& frames, int& code) {
   std::string text;
   if (rank == 0)
-    for (const ClusterFrame& f : frames)
-      text += f.scenePath + '\n' + std::to_string(f.frame) + '\n' + std::to_string(f.frames) + '\n' + f.output.string() + '\n';
+    for (const FrameJob& f : frames)
+      text += f.scenePath + '\n' + std::to_string(f.camera) + '\n' + std::to_string(f.frame) + '\n' + std::to_string(f.frames) + '\n' + f.output.string() + '\n';
   std::int64_t header[2] = {code, static_cast<std::int64_t>(text.size())};
   broadcastGently(header, 2, MPI_INT64_T);
   code = static_cast<int>(header[0]);
   if (code != kExitOk) return {};
   text.resize(static_cast<std::size_t>(header[1]));
   broadcastGently(text.data(), static_cast<int>(text.size()), MPI_CHAR);
-  std::vector<ClusterFrame> all;
+  std::vector<FrameJob> all;
   std::size_t at = 0;
   auto line = [&] {
     const std::size_t end = text.find('\n', at);
@@ -39,8 +39,9 @@ std::vector<ClusterFrame> broadcastFrames(int rank, const std::vector<ClusterFra
     return field;
   };
   while (at < text.size()) {
-    ClusterFrame f;
+    FrameJob f;
     f.scenePath = line();
+    f.camera = std::stoi(line());
     f.frame = std::stoi(line());
     f.frames = std::stoi(line());
     f.output = line();
@@ -61,11 +62,11 @@ struct FrameTotals {
 // on a rank (rank 0's render thread, a worker's tile thread) is its only caller.
 class RunTracers {
  public:
-  RunTracers(const FrameScene& scene, const std::vector<ClusterFrame>& frames, std::size_t first)
+  RunTracers(const FrameScene& scene, const std::vector<FrameJob>& frames, std::size_t first)
       : scene_(scene), frames_(frames), first_(first) {}
   const Tracer& operator()(int frame) {
     if (!current_ || frame != frame_) {
-      const ClusterFrame& f = frames_[first_ + static_cast<std::size_t>(frame)];
+      const FrameJob& f = frames_[first_ + static_cast<std::size_t>(frame)];
       current_ = scene_.frame(f.frame, f.frames);
       frame_ = frame;
     }
@@ -74,7 +75,7 @@ class RunTracers {
 
  private:
   const FrameScene& scene_;
-  const std::vector<ClusterFrame>& frames_;
+  const std::vector<FrameJob>& frames_;
   std::size_t first_;
   std::unique_ptr<FrameTracer> current_;
   int frame_ = -1;
@@ -82,11 +83,9 @@ class RunTracers {
 
 // The frames [first, end) of one scene on every rank: the scene loaded once, its frames dealt as units
 // (frame_units.h); rank 0 writes each frame as its last unit comes in. Returns this rank's exit code.
-int renderRun(const ClusterJob& job, const std::vector<ClusterFrame>& frames, std::size_t first, std::size_t end,
+int renderRun(const RenderJob& job, const std::vector<FrameJob>& frames, std::size_t first, std::size_t end,
               int rank, int ranks, ThreadPool& pool, std::vector<bool>& lost, FrameTotals& totals) {
-  ClusterJob sceneJob = job;
-  sceneJob.scenePath = frames[first].scenePath;
-  sceneJob.output = frames[first].output;
+  const RenderJob sceneJob = jobForFrame(job, frames[first]);
   DistributedScene distributed;
   if (const int failed = distributeScene(sceneJob, rank, ranks, distributed); failed != kExitOk) return failed;
   const FrameScene scene(distributed.scene, distributed.settings);
@@ -99,7 +98,7 @@ int renderRun(const ClusterJob& job, const std::vector<ClusterFrame>& frames, st
   if (rank != 0) return workOnUnits(units, tracerFor, rank, pool, round);
   int code = kExitOk;
   FrameAssembly assembly(units, [&](int frame, Image&& image) {
-    const ClusterFrame& f = frames[first + static_cast<std::size_t>(frame)];
+    const FrameJob& f = frames[first + static_cast<std::size_t>(frame)];
     code = writeFrameFile(f.output, std::move(image));
     if (code != kExitOk) return false;
     totals.progress.frameWritten(f.output, job.quiet);
@@ -129,13 +128,13 @@ void printFrameSummary(const FrameTotals& totals, bool byScene) {
 
 }  // namespace
 
-int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& planned, int planCode) {
+int runClusterFrames(const RenderJob& job, const std::vector<FrameJob>& planned, int planCode) {
   int rank = 0, ranks = 1;
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
   MPI_Comm_size(MPI_COMM_WORLD, &ranks);
   int code = planCode;
-  const std::vector<ClusterFrame> frames = broadcastFrames(rank, planned, code);
+  const std::vector<FrameJob> frames = broadcastFrames(rank, planned, code);
   if (code != kExitOk) return code;
   ThreadPool pool(job.threads);
   std::vector<bool> lost(static_cast<std::size_t>(ranks), false);
@@ -153,7 +152,7 @@ int runClusterFrames(const ClusterJob& job, const std::vector<ClusterFrame>& pla
   }
   for (std::size_t first = 0; first < frames.size();) {
     std::size_t end = first;
-    while (end < frames.size() && frames[end].scenePath == frames[first].scenePath) ++end;
+    while (end < frames.size() && sameSceneAndCamera(frames[end], frames[first])) ++end;
     if (const int failed = renderRun(job, frames, first, end, rank, ranks, pool, lost, totals); failed != kExitOk)
       return failed;
     first = end;

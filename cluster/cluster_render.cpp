@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <string>
 
-#include "cluster_job.h"
-#include "exit_codes.h"
+#include "cluster_runs.h"
+#include "rayview/exit_codes.h"
 #include "rayview/image.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/thread_pool.h"
@@ -74,7 +74,7 @@ std::string countedText(std::size_t count, const char* singular) {
   return std::to_string(count) + " " + singular + (count == 1 ? "" : "s");
 }
 
-void printSummary(const ClusterJob& job, const Scene& scene, const PreparedGeometry& geometry, int threads,
+void printSummary(const RenderJob& job, const Scene& scene, const PreparedGeometry& geometry, int threads,
                   const ExchangeResult& result, double loadMs, double renderMs, double writeMs, std::size_t tiles) {
   RayCounts rays;
   double maxBusy = 0.0, sumBusy = 0.0;
@@ -84,7 +84,7 @@ void printSummary(const ClusterJob& job, const Scene& scene, const PreparedGeome
     sumBusy += rank.busyMs;
   }
   const std::size_t ranks = result.ranks.size();
-  std::printf("scene      %s: %s, %dx%d\n", job.scenePath.empty() ? "default (embedded)" : job.scenePath.c_str(),
+  std::printf("scene      %s: %s, %dx%d\n", job.scene().empty() ? "default (embedded)" : job.scene().c_str(),
               countedText(scene.triangles.size(), "triangle").c_str(), scene.camera.width, scene.camera.height);
   std::printf("cluster    %s x %s, %s of %dx%d, accel %s\n", countedText(ranks, "rank").c_str(),
               countedText(static_cast<std::size_t>(threads), "thread").c_str(), countedText(tiles, "tile").c_str(),
@@ -105,7 +105,7 @@ void printSummary(const ClusterJob& job, const Scene& scene, const PreparedGeome
 
 }  // namespace
 
-int runClusterRender(const ClusterJob& job) {
+int runClusterRender(const RenderJob& job) {
   int rank = 0, ranks = 1;
   MPI_Comm_set_errhandler(MPI_COMM_WORLD, MPI_ERRORS_RETURN);
   MPI_Comm_rank(MPI_COMM_WORLD, &rank);
@@ -121,7 +121,7 @@ int runClusterRender(const ClusterJob& job) {
   if (!geometry->accelFallback.empty()) {
     if (rank == 0)
       std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n",
-                   job.scenePath.empty() ? "default scene" : job.scenePath.c_str(), geometry->accelFallback.c_str());
+                   job.scene().empty() ? "default scene" : job.scene().c_str(), geometry->accelFallback.c_str());
     settings.accel = AccelKind::Reference;
   }
   ThreadPool pool(job.threads);

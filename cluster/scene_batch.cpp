@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "exit_codes.h"
+#include "rayview/exit_codes.h"
 #include "mpi_link.h"
 #include "mpi_outbox.h"
 #include "scene_distribution.h"
@@ -48,7 +48,7 @@ struct SceneLoad {
 };
 
 // A scene of the batch loaded as the single process loads it (its warnings printed), the knobs applied.
-SceneLoad loadScene(const ClusterJob& job) {
+SceneLoad loadScene(const RenderJob& job) {
   SceneLoad load;
   LoadedScene loaded;
   load.code = loadSceneOnRankZero(job, loaded, load.message);
@@ -62,7 +62,7 @@ SceneLoad loadScene(const ClusterJob& job) {
 
 class SceneCoordinator {
  public:
-  SceneCoordinator(const ClusterJob& job, const std::vector<ClusterFrame>& frames, const std::vector<SceneRun>& runs,
+  SceneCoordinator(const RenderJob& job, const std::vector<FrameJob>& frames, const std::vector<SceneRun>& runs,
                    ThreadPool& pool, FrameProgress& progress, std::vector<RankTally>& tally)
       : job_(job), frames_(frames), runs_(runs), progress_(progress), tally_(tally), pile_(runs.size()),
         scenes_(runs.size()), held_(tally.size(), kNobody), heldLeft_(tally.size(), 0),
@@ -96,7 +96,7 @@ class SceneCoordinator {
  private:
   int ranks() const { return static_cast<int>(tally_.size()); }
   std::size_t framesOf(std::size_t run) const { return runs_[run].end - runs_[run].first; }
-  const ClusterFrame& frameOf(std::size_t run, std::size_t k) const { return frames_[runs_[run].first + k]; }
+  const FrameJob& frameOf(std::size_t run, std::size_t k) const { return frames_[runs_[run].first + k]; }
 
   bool nothingHeld() const {
     return std::all_of(held_.begin(), held_.end(), [](int run) { return run == kNobody; });
@@ -139,9 +139,7 @@ class SceneCoordinator {
     SceneInFlight& scene = scenes_[run];
     if (scene.scene) return true;
     if (!loading_.valid()) {
-      ClusterJob sceneJob = job_;
-      sceneJob.scenePath = frameOf(run, 0).scenePath;
-      sceneJob.output = frameOf(run, 0).output;
+      const RenderJob sceneJob = jobForFrame(job_, frameOf(run, 0));
       loadingRun_ = run;
       loading_ = std::async(std::launch::async, [sceneJob] { return loadScene(sceneJob); });
       return false;
@@ -258,7 +256,7 @@ class SceneCoordinator {
     if (bytes != image.rgb.size())
       return stop(kExitIoFailure, "rayview: error: rank " + std::to_string(rank) + " sent a frame of the wrong size");
     std::memcpy(image.rgb.data(), rgb, bytes);
-    const ClusterFrame& frame = frameOf(run, k);
+    const FrameJob& frame = frameOf(run, k);
     if (const int code = writeFrameFile(frame.output, std::move(image)); code != kExitOk) return stop(code, {});
     scene.written[k] = true;
     progress_.frameWritten(frame.output, job_.quiet);
@@ -292,8 +290,8 @@ class SceneCoordinator {
                  frameOf(static_cast<std::size_t>(run), 0).scenePath.c_str());
   }
 
-  const ClusterJob& job_;
-  const std::vector<ClusterFrame>& frames_;
+  const RenderJob& job_;
+  const std::vector<FrameJob>& frames_;
   const std::vector<SceneRun>& runs_;
   FrameProgress& progress_;
   std::vector<RankTally>& tally_;
@@ -314,7 +312,7 @@ class SceneCoordinator {
 
 }  // namespace
 
-int dealScenes(const ClusterJob& job, const std::vector<ClusterFrame>& frames, const std::vector<SceneRun>& runs,
+int dealScenes(const RenderJob& job, const std::vector<FrameJob>& frames, const std::vector<SceneRun>& runs,
                ThreadPool& pool, FrameProgress& progress, std::vector<RankTally>& tally) {
   SceneCoordinator coordinator(job, frames, runs, pool, progress, tally);
   return coordinator.run();

@@ -6,8 +6,8 @@
 
 #include <vector>
 
-#include "cluster_job.h"
-#include "frame_scene.h"
+#include "rayview/frame_plan.h"
+#include "rayview/frame_scene.h"
 #include "rayview/thread_pool.h"
 #include "scene_orders.h"
 #include "tile_exchange.h"
@@ -18,7 +18,7 @@ namespace rayview::cluster {
 // load (the scenes before it are finished, then the located message is printed once) or a frame cannot be written.
 // A rank silent for kLostAfter while holding a scene is lost and its scene goes back to the pile. Adds each rank's
 // busy time, scenes and frames to `tally`. Returns the exit code, which it sends every worker too.
-int dealScenes(const ClusterJob& job, const std::vector<ClusterFrame>& frames, const std::vector<SceneRun>& runs,
+int dealScenes(const RenderJob& job, const std::vector<FrameJob>& frames, const std::vector<SceneRun>& runs,
                ThreadPool& pool, FrameProgress& progress, std::vector<RankTally>& tally);
 
 // Every other rank: renders the scenes rank 0 sends until it says the batch is over. Returns the exit code rank 0

@@ -7,7 +7,7 @@
 #include <string>
 #include <thread>
 
-#include "exit_codes.h"
+#include "rayview/exit_codes.h"
 #include "mpi_link.h"
 #include "mpi_outbox.h"
 #include "scene_batch.h"

@@ -10,8 +10,9 @@
 #include <vector>
 
 #include "mpi_link.h"
-#include "exit_codes.h"
+#include "rayview/exit_codes.h"
 #include "rayview/image.h"
+#include "rayview/scene_open.h"
 #include "rayview/scene_source.h"
 #include "scene_hash.h"
 #include "view_codec.h"
@@ -29,7 +30,7 @@ void broadcastBytes(void* data, std::size_t bytes) {
 }
 
 // Every other rank: the scene from rank 0's bytes ("" on success, else why not).
-std::string decodeOnRank(const ClusterJob& job, const Bytes& geometry, const Bytes& parameters, Scene& scene,
+std::string decodeOnRank(const RenderJob& job, const Bytes& geometry, const Bytes& parameters, Scene& scene,
                          RenderSettings& settings) {
   try {
     ShippedGeometry shipped = decodeGeometry(geometry.data(), geometry.size());
@@ -37,11 +38,11 @@ std::string decodeOnRank(const ClusterJob& job, const Bytes& geometry, const Byt
     Snapshot snapshot = decodeSnapshot(parameters.data(), parameters.size());
     scene.parameters() = std::move(snapshot.parameters);
     settings = snapshot.settings;
-    scene.sourcePath = job.scenePath;
+    scene.sourcePath = job.scene();
   } catch (const CodecError& error) {
     return std::string("rayview: error: the scene from rank 0 is malformed: ") + error.what();
   } catch (const std::bad_alloc&) {
-    return "rayview: error: out of memory receiving " + job.scenePath;
+    return "rayview: error: out of memory receiving " + job.scene();
   }
   return {};
 }
@@ -80,26 +81,24 @@ int verdictOnRankZero(const std::vector<RankCheck>& checks, const std::string& o
 
 }  // namespace
 
-int loadSceneOnRankZero(const ClusterJob& job, LoadedScene& loaded, std::string& message) {
-  if (const std::string problem = renderOutputProblem(job.output, job.scenePath); !problem.empty()) {
+int loadSceneOnRankZero(const RenderJob& job, LoadedScene& loaded, std::string& message) {
+  if (const std::string problem = renderOutputProblem(job.output, job.scene()); !problem.empty()) {
     message = "rayview: error: " + problem;
     return kExitBadInput;
   }
-  LoadOptions options;
-  options.strict = job.strict;
   try {
-    loaded = loadSceneOrDefault(job.scenePath, options);
+    loaded = openScene(job.scene(), job.open);
   } catch (const SceneError& error) {
     message = error.what();
     return kExitBadInput;
   } catch (const std::bad_alloc&) {
-    message = "rayview: error: out of memory loading " + job.scenePath;
+    message = "rayview: error: out of memory loading " + job.scene();
     return kExitOutOfMemory;
   }
   return kExitOk;
 }
 
-int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene& out) {
+int distributeScene(const RenderJob& job, int rank, int ranks, DistributedScene& out) {
   const auto start = std::chrono::steady_clock::now();
   // Rank 0 alone reads and parses; the others receive the loaded arrays and the parameters with the knobs applied
   // (cluster/view_codec.h, 36 bytes a triangle instead of ~53 of text), so they parse nothing.

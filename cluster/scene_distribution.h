@@ -6,7 +6,7 @@
 #include <memory>
 #include <string>
 
-#include "cluster_job.h"
+#include "rayview/frame_plan.h"
 #include "rayview/render_settings.h"
 #include "rayview/scene.h"
 #include "rayview/scene_source.h"
@@ -21,10 +21,10 @@ struct DistributedScene {
 
 // Rank 0: the output checks and the scene, loaded from its file exactly as a single process loads it. Returns
 // kExitOk, or the exit code with the message to print (the located load error) in `message`.
-int loadSceneOnRankZero(const ClusterJob& job, LoadedScene& loaded, std::string& message);
+int loadSceneOnRankZero(const RenderJob& job, LoadedScene& loaded, std::string& message);
 
 // Collective. Returns kExitOk with `out` filled, or the exit code every rank ends with; rank 0 has then printed
 // the one message (a located load error, from whichever rank failed first, or a scene that differs).
-int distributeScene(const ClusterJob& job, int rank, int ranks, DistributedScene& out);
+int distributeScene(const RenderJob& job, int rank, int ranks, DistributedScene& out);
 
 }  // namespace rayview::cluster

@@ -52,11 +52,11 @@ void putBlock(Bytes& out, const void* data, std::size_t count, std::size_t unit)
 
 }  // namespace
 
-std::vector<SceneRun> sceneRuns(const std::vector<ClusterFrame>& frames) {
+std::vector<SceneRun> sceneRuns(const std::vector<FrameJob>& frames) {
   std::vector<SceneRun> runs;
   for (std::size_t first = 0; first < frames.size();) {
     std::size_t end = first;
-    while (end < frames.size() && frames[end].scenePath == frames[first].scenePath) ++end;
+    while (end < frames.size() && sameSceneAndCamera(frames[end], frames[first])) ++end;
     runs.push_back({first, end});
     first = end;
   }

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "cluster_job.h"
+#include "rayview/frame_plan.h"
 #include "view_codec.h"
 
 namespace rayview::cluster {
@@ -16,7 +16,7 @@ namespace rayview::cluster {
 struct SceneRun {
   std::size_t first = 0, end = 0;
 };
-std::vector<SceneRun> sceneRuns(const std::vector<ClusterFrame>& frames);
+std::vector<SceneRun> sceneRuns(const std::vector<FrameJob>& frames);
 
 // One scene for one rank: the run it is (its index in the batch), its frames (turntable frame, frames), and the
 // scene as loaded on rank 0 with the knobs applied (view_codec.h: geometry, then parameters and settings).

@@ -3,7 +3,7 @@
 #include <exception>
 #include <new>
 
-#include "frame_scene.h"
+#include "rayview/frame_scene.h"
 #include "rayview/frame_renderer.h"
 #include "scene_hash.h"
 

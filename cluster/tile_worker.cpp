@@ -11,7 +11,7 @@
 
 #include "mpi_link.h"
 #include "mpi_outbox.h"
-#include "exit_codes.h"
+#include "rayview/exit_codes.h"
 #include "tile_exchange.h"
 #include "tile_render.h"
 

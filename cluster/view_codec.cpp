@@ -9,233 +9,72 @@ namespace rayview::cluster {
 namespace {
 
 // Bumped with any change of the layout: a rank of another build is refused rather than misread.
-constexpr std::uint32_t kGeometryMagic = 0x52564731;  // "RVG1"
-constexpr std::uint32_t kSnapshotMagic = 0x52565331;  // "RVS1"
+constexpr std::uint32_t kGeometryMagic = 0x52564732;  // "RVG2"
+constexpr std::uint32_t kSnapshotMagic = 0x52565332;  // "RVS2"
 
-class Writer {
- public:
-  explicit Writer(Bytes& out) : out_(out) {}
-  template <class T>
-  void pod(const T& value) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    raw(&value, sizeof value);
-  }
-  void text(const std::string& value) {
-    pod(static_cast<std::uint64_t>(value.size()));
-    raw(value.data(), value.size());
-  }
-  template <class T>
-  void array(const std::vector<T>& values) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    pod(static_cast<std::uint64_t>(values.size()));
-    raw(values.data(), values.size() * sizeof(T));
-  }
-
- private:
-  void raw(const void* data, std::size_t bytes) {
-    if (bytes == 0) return;
-    const std::size_t at = out_.size();
-    out_.resize(at + bytes);
-    std::memcpy(out_.data() + at, data, bytes);
-  }
-  Bytes& out_;
-};
-
-class Reader {
- public:
-  Reader(const std::uint8_t* data, std::size_t size) : data_(data), size_(size) {}
-  template <class T>
-  T pod() {
-    static_assert(std::is_trivially_copyable_v<T>);
-    T value;
-    raw(&value, sizeof value);
-    return value;
-  }
-  std::string text() {
-    std::string value(count(1), '\0');
-    raw(value.data(), value.size());
-    return value;
-  }
-  template <class T>
-  std::vector<T> array() {
-    std::vector<T> values(count(sizeof(T)));
-    raw(values.data(), values.size() * sizeof(T));
-    return values;
-  }
-  // How many items follow, each at least `minBytes` long.
-  std::size_t items(std::size_t minBytes) { return count(minBytes); }
-  void end() const {
-    if (at_ != size_) throw CodecError("trailing bytes");
-  }
-
- private:
-  // A count that the remaining bytes can hold: a corrupt count never allocates.
-  std::size_t count(std::size_t elementBytes) {
-    const auto n = pod<std::uint64_t>();
-    if (n > (size_ - at_) / elementBytes) throw CodecError("truncated");
-    return static_cast<std::size_t>(n);
-  }
-  void raw(void* out, std::size_t bytes) {
-    if (bytes > size_ - at_) throw CodecError("truncated");
-    if (bytes != 0) std::memcpy(out, data_ + at_, bytes);
-    at_ += bytes;
-  }
-  const std::uint8_t* data_;
-  std::size_t size_;
-  std::size_t at_ = 0;
-};
-
-void writeLights(Writer& w, const SceneLights& lights) {
-  lights.forEachType([&](const auto& list) {
-    w.pod(static_cast<std::uint64_t>(list.size()));
-    for (const auto& light : list) {
-      w.text(light.id);
-      for (const auto& field : std::remove_cvref_t<decltype(light)>::fields()) {
-        if (field.point) w.pod(light.*field.point);
-        if (field.intensity) w.pod(light.*field.intensity);
-      }
-    }
-  });
+template <class T>
+void put(Bytes& out, const T& value) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  const auto* p = reinterpret_cast<const std::uint8_t*>(&value);
+  out.insert(out.end(), p, p + sizeof value);
 }
 
-void readLights(Reader& r, SceneLights& lights) {
-  lights.forEachType([&](auto& list) {
-    using Light = LightOf<decltype(list)>;
-    list.resize(r.items(sizeof(std::uint64_t)));
-    for (Light& light : list) {
-      light.id = r.text();
-      for (const auto& field : Light::fields()) {
-        if (field.point) light.*field.point = r.pod<glm::dvec3>();
-        if (field.intensity) light.*field.intensity = r.pod<Color>();
-      }
-    }
-  });
+template <class T>
+T take(const std::uint8_t* data, std::size_t size, std::size_t& at) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  if (sizeof(T) > size - at) throw CodecError("truncated");
+  T value;
+  std::memcpy(&value, data + at, sizeof value);
+  at += sizeof value;
+  return value;
 }
 
-void writeMaterial(Writer& w, const Material& m) {
-  w.text(m.id);
-  w.pod(m.ambient);
-  w.pod(m.diffuse);
-  w.pod(m.specular);
-  w.pod(m.phongExponent);
-  w.pod(m.mirror);
-  w.pod(m.textureFactor);
-}
-
-Material readMaterial(Reader& r) {
-  Material m;
-  m.id = r.text();
-  m.ambient = r.pod<Color>();
-  m.diffuse = r.pod<Color>();
-  m.specular = r.pod<Color>();
-  m.phongExponent = r.pod<float>();
-  m.mirror = r.pod<Color>();
-  m.textureFactor = r.pod<float>();
-  return m;
+void checkEnd(std::size_t at, std::size_t size) {
+  if (at != size) throw CodecError("trailing bytes");
 }
 
 }  // namespace
 
 Bytes encodeGeometry(const SceneGeometry& g, const glm::dvec3& origin, AccelKind accel) {
   Bytes out;
-  Writer w(out);
-  w.pod(kGeometryMagic);
-  w.pod(origin);
-  w.pod(accel);
-  w.array(g.vertices);
-  w.array(g.texCoords);
-  w.array(g.normals);
-  w.array(g.triangles);
-  w.array(g.faceAttributes);
-  w.pod(static_cast<std::uint64_t>(g.meshes.size()));
-  for (const Mesh& mesh : g.meshes) {
-    w.text(mesh.id);
-    w.pod(mesh.material);
-    w.pod(mesh.firstTriangle);
-    w.pod(mesh.triangleCount);
-  }
-  w.text(g.textureImage);
-  w.pod(static_cast<std::uint8_t>(g.texture.has_value()));
-  if (g.texture) {
-    w.pod(g.texture->width);
-    w.pod(g.texture->height);
-    w.array(g.texture->rgb);
-  }
+  put(out, kGeometryMagic);
+  put(out, origin);
+  put(out, static_cast<std::uint8_t>(accel));
+  rayview::encodeGeometry(g, out);
   return out;
 }
 
 ShippedGeometry decodeGeometry(const std::uint8_t* data, std::size_t size) {
-  Reader r(data, size);
-  if (r.pod<std::uint32_t>() != kGeometryMagic) throw CodecError("not a rayview geometry message");
+  std::size_t at = 0;
+  if (take<std::uint32_t>(data, size, at) != kGeometryMagic) throw CodecError("not a rayview geometry message");
   ShippedGeometry shipped;
-  shipped.origin = r.pod<glm::dvec3>();
-  shipped.accel = r.pod<AccelKind>();
-  auto g = std::make_shared<SceneGeometry>();
-  g->vertices = r.array<glm::dvec3>();
-  g->texCoords = r.array<glm::vec2>();
-  g->normals = r.array<glm::vec3>();
-  g->triangles = r.array<Triangle>();
-  g->faceAttributes = r.array<FaceAttributes>();
-  g->meshes.resize(r.items(sizeof(std::uint64_t)));
-  for (Mesh& mesh : g->meshes) {
-    mesh.id = r.text();
-    mesh.material = r.pod<std::uint32_t>();
-    mesh.firstTriangle = r.pod<std::uint32_t>();
-    mesh.triangleCount = r.pod<std::uint32_t>();
-  }
-  g->textureImage = r.text();
-  if (r.pod<std::uint8_t>() != 0) {
-    Texture texture;
-    texture.width = r.pod<int>();
-    texture.height = r.pod<int>();
-    texture.rgb = r.array<std::uint8_t>();
-    if (texture.width < 0 || texture.height < 0 ||
-        texture.rgb.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 3)
-      throw CodecError("texture size does not match its pixels");
-    g->texture = std::move(texture);
-  }
-  r.end();
-  shipped.geometry = std::move(g);
+  shipped.origin = take<glm::dvec3>(data, size, at);
+  const auto accel = take<std::uint8_t>(data, size, at);
+  if (accel >= kAccelKindCount) throw CodecError("unknown traversal");
+  shipped.accel = static_cast<AccelKind>(accel);
+  shipped.geometry = std::make_shared<SceneGeometry>(rayview::decodeGeometry(data, size, at));
+  checkEnd(at, size);
   return shipped;
 }
 
 Bytes encodeSnapshot(const SceneParameters& p, const RenderSettings& settings) {
   Bytes out;
-  Writer w(out);
-  w.pod(kSnapshotMagic);
-  w.pod(parametersHash(p));
-  w.pod(settings);
-  w.pod(p.maxRayDepth);
-  w.pod(p.background);
-  w.pod(static_cast<std::uint8_t>(p.shadowRayEpsilon.has_value()));
-  w.pod(p.shadowRayEpsilon.value_or(0.0));
-  w.pod(p.camera);
-  w.pod(p.ambientLight);
-  writeLights(w, p.lights);
-  w.pod(static_cast<std::uint64_t>(p.materials.size()));
-  for (const Material& m : p.materials) writeMaterial(w, m);
+  put(out, kSnapshotMagic);
+  put(out, parametersHash(p));
+  put(out, settings);
+  encodeParameters(p, out);
   return out;
 }
 
 Snapshot decodeSnapshot(const std::uint8_t* data, std::size_t size) {
-  Reader r(data, size);
-  if (r.pod<std::uint32_t>() != kSnapshotMagic) throw CodecError("not a rayview snapshot message");
-  const auto hash = r.pod<std::uint64_t>();
+  std::size_t at = 0;
+  if (take<std::uint32_t>(data, size, at) != kSnapshotMagic) throw CodecError("not a rayview snapshot message");
+  const auto hash = take<std::uint64_t>(data, size, at);
   Snapshot s;
-  s.settings = r.pod<RenderSettings>();
-  SceneParameters& p = s.parameters;
-  p.maxRayDepth = r.pod<int>();
-  p.background = r.pod<Color>();
-  const bool hasEpsilon = r.pod<std::uint8_t>() != 0;
-  const auto epsilon = r.pod<double>();
-  if (hasEpsilon) p.shadowRayEpsilon = epsilon;
-  p.camera = r.pod<Camera>();
-  p.ambientLight = r.pod<Color>();
-  readLights(r, p.lights);
-  p.materials.resize(r.items(sizeof(std::uint64_t)));
-  for (Material& m : p.materials) m = readMaterial(r);
-  r.end();
-  if (parametersHash(p) != hash) throw CodecError("the parameters differ from rank 0's after decoding");
+  s.settings = take<RenderSettings>(data, size, at);
+  s.parameters = decodeParameters(data, size, at);
+  checkEnd(at, size);
+  if (parametersHash(s.parameters) != hash) throw CodecError("the parameters differ from rank 0's after decoding");
   return s;
 }
 

@@ -12,16 +12,12 @@
 
 #include "rayview/render_settings.h"
 #include "rayview/scene.h"
+#include "rayview/scene_codec.h"
 
 namespace rayview::cluster {
 
-using Bytes = std::vector<std::uint8_t>;
-
-// Malformed bytes (a rank of another build, a truncated message).
-class CodecError : public std::runtime_error {
- public:
-  using std::runtime_error::runtime_error;
-};
+using rayview::Bytes;
+using rayview::CodecError;
 
 struct ShippedGeometry {
   std::shared_ptr<SceneGeometry> geometry;

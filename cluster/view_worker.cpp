@@ -14,8 +14,8 @@
 #include <thread>
 #include <vector>
 
-#include "cluster_job.h"
-#include "exit_codes.h"
+#include "rayview/cluster.h"
+#include "rayview/exit_codes.h"
 #include "mpi_link.h"
 #include "mpi_outbox.h"
 #include "rayview/grid_render.h"

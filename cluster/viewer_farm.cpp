@@ -312,4 +312,8 @@ void ViewerFarm::shutdown() {
   std::fflush(stdout);
 }
 
+std::shared_ptr<ViewerPassFarm> makeViewerFarm(int ranks, int threads) {
+  return std::make_shared<ViewerFarm>(ranks, threads);
+}
+
 }  // namespace rayview::cluster

@@ -12,13 +12,14 @@
 #include <vector>
 
 #include "mpi_outbox.h"
+#include "rayview/cluster.h"
 #include "rayview/pass_farm.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/thread_pool.h"
 
 namespace rayview::cluster {
 
-class ViewerFarm final : public PassFarm {
+class ViewerFarm final : public ViewerPassFarm {
  public:
   ViewerFarm(int ranks, int threads);
   ~ViewerFarm() override;
@@ -29,7 +30,7 @@ class ViewerFarm final : public PassFarm {
 
   // Tells every worker to end and waits (a few seconds at most) until each has said goodbye. Call once the
   // viewer, and with it the renderer's controller thread, is gone.
-  void shutdown();
+  void shutdown() override;
 
   std::string describe() const override;
   int ranks() const { return ranks_; }

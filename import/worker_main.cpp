@@ -2,8 +2,9 @@
 // answers on its standard output in the form of wire_format.h. Not a user command: rayview starts it.
 //
 //   rayview-import read MODEL [--up y|z] [--resolution WxH]
-//   rayview-import export SCENE.xml OUTPUT
+//   rayview-import export SCENE.wire OUTPUT     (the scene as rayview's client wrote it: wire_format.h)
 
+#include <fcntl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -41,7 +42,7 @@ void limitResources(const char* file) {
 }
 
 int usage() {
-  wire::writeError(stdout, "0\nusage: rayview-import read MODEL [--up y|z] [--resolution WxH] | export SCENE OUTPUT");
+  wire::writeError(stdout, "0\nusage: rayview-import read MODEL [--up y|z] [--resolution WxH] | export SCENE.wire OUTPUT");
   return 2;
 }
 
@@ -63,8 +64,21 @@ int readCommand(int argc, char** argv) {
   return wire::writeScene(stdout, message) ? 0 : 1;
 }
 
+// The scene rayview opened, as its client handed it over: parameters as the handout's XML (checked again by the
+// loader), geometry in the scene codec.
 int exportCommand(char** argv) {
-  LoadedScene loaded = loadSceneFile(argv[2]);
+  const int fd = ::open(argv[2], O_RDONLY | O_CLOEXEC);
+  wire::Kind kind = wire::Kind::Error;
+  wire::SceneMessage message;
+  std::string error;
+  const std::string problem = fd < 0 ? "cannot be opened" : wire::readMessage(fd, kind, message, error);
+  if (fd >= 0) ::close(fd);
+  if (!problem.empty() || kind != wire::Kind::Scene)
+    throwSceneError({argv[2], 0}, "the scene handed to the exporter is unusable (" + problem + ")");
+  LoadOptions options;
+  options.loadTexture = false;
+  LoadedScene loaded = loadSceneText(message.parametersXml, argv[2], {}, options);
+  static_cast<SceneGeometry&>(loaded.scene) = std::move(message.geometry);
   exportScene(loaded.scene, argv[3]);
   return wire::writeDone(stdout, "") ? 0 : 1;
 }

@@ -92,6 +92,14 @@ void Loader::readCeng477Cameras(const XMLElement* cameras) {
     return true;
   });
   if (list.empty()) fail(cameras->GetLineNum(), "<Cameras> has no <Camera>");
+  // Every camera's output name, whichever is read: a render into a directory writes each to its own, as the course's
+  // renderer does.
+  for (const XMLElement* camera : list) {
+    std::string name;
+    for (const XMLElement* c = camera->FirstChildElement(); c; c = c->NextSiblingElement())
+      if (isName(c, "imagename")) name = trimmedText(c);
+    result_.cameraImageNames.push_back(std::move(name));
+  }
   const std::size_t wanted = options_.camera > 0 ? static_cast<std::size_t>(options_.camera) : 1;
   if (wanted > list.size())
     fail(cameras->GetLineNum(), "camera " + std::to_string(wanted) + " was asked for, but <Cameras> has " +

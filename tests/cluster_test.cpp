@@ -158,14 +158,16 @@ TEST(SceneHash, SeesAnyChange) {
 }
 
 TEST(SceneRuns, ConsecutiveFramesOfOneSceneAreOneRun) {
-  const std::vector<ClusterFrame> frames = {{"a.xml", 0, 0, "a.png"}, {"b.xml", 0, 3, "b0.png"},
-                                            {"b.xml", 1, 3, "b1.png"}, {"c.xml", 0, 0, "c.png"}};
+  const std::vector<FrameJob> frames = {{"a.xml", 0, 0, 0, "a.png"}, {"b.xml", 0, 0, 3, "b0.png"},
+                                        {"b.xml", 0, 1, 3, "b1.png"}, {"c.xml", 0, 0, 0, "c.png"},
+                                        {"c.xml", 2, 0, 0, "c2.png"}};
   const std::vector<SceneRun> runs = sceneRuns(frames);
-  ASSERT_EQ(runs.size(), 3u);
+  ASSERT_EQ(runs.size(), 4u) << "a file's other camera is a run of its own: it is opened with that camera";
   EXPECT_EQ(runs[0].first, 0u);
   EXPECT_EQ(runs[1].first, 1u);
   EXPECT_EQ(runs[1].end, 3u);
   EXPECT_EQ(runs[2].end, 4u);
+  EXPECT_EQ(runs[3].end, 5u);
   EXPECT_TRUE(sceneRuns({}).empty());
 }
 

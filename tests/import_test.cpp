@@ -260,7 +260,7 @@ TEST(ImportModel, ObjRoundTripGivesTheSameTrianglesBitForBitInFloat) {
   scene.meshes.push_back(Mesh{"second", 1, 50, 50});
   const fs::path xml = modelDirectory() / "roundtrip.xml", obj = modelDirectory() / "roundtrip.obj";
   writeSceneFile(xml, scene);
-  exportSceneFile(xml, obj);
+  exportOpenedScene(loadSceneFile(xml).scene, obj);
   const Scene back = loadModelScene(obj, small()).scene;
   ASSERT_EQ(back.triangles.size(), scene.triangles.size());
   for (std::size_t t = 0; t < scene.triangles.size(); ++t)

@@ -24,7 +24,7 @@ void LoadController::request(const std::string& path, bool isReload) {
   LoadRequest request;
   request.path = path;
   requestedPath_ = path;
-  request.options = LoadOptions{options_.strict, true};
+  request.options = options_.open;
   request.accel = session_ ? session_->settings().accel : initialSettings().accel;
   loadError_.clear();  // the error panel shows the outcome of the newest attempt
   awaitedLoad_ = loader_.request(std::move(request));

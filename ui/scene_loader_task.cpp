@@ -4,7 +4,7 @@
 #include <new>
 
 #include "rayview/camera_rays.h"
-#include "rayview/model_client.h"
+#include "rayview/scene_open.h"
 #include "rayview/scene_source.h"
 
 namespace rayview {
@@ -42,8 +42,7 @@ LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request, c
     if (!scene) {
       const auto readStart = std::chrono::steady_clock::now();
       // A model (OBJ, PLY, glTF...) is read by the import worker, a child process: its crash is an error here.
-      LoadedScene loaded = isModelFile(request.path) ? loadModelScene(request.path)
-                                                     : loadSceneOrDefault(request.path, request.options);
+      LoadedScene loaded = openScene(request.path, request.options);
       outcome.readMs = msSince(readStart);
       outcome.warnings = std::move(loaded.warnings);
       if (const std::string problem = cameraProblem(loaded.scene.camera); !problem.empty()) {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "rayview/scene_loader.h"
+#include "rayview/scene_open.h"
 #include "request_worker.h"
 #include "scene_session.h"
 
@@ -21,7 +21,7 @@ namespace rayview {
 
 struct LoadRequest {
   std::string path;  // "" = the embedded default scene
-  LoadOptions options;
+  SceneOpenOptions options;
   AccelKind accel = AccelKind::Embree;
   // When set, nothing is read: only the geometry of this scene is prepared again (another back-end).
   std::shared_ptr<const Scene> rebuildOf;

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rayview/diagnostics.h"
+#include "rayview/scene_writer.h"
 #include "wire_format.h"
 
 extern char** environ;
@@ -153,9 +154,54 @@ LoadedScene loadModelScene(const fs::path& path, const ModelImportOptions& optio
   return importModel(path, options).loaded;
 }
 
-void exportSceneFile(const fs::path& scenePath, const fs::path& outputPath) {
-  WorkerAnswer answer = runWorker(scenePath, {"export", scenePath.string(), outputPath.string()});
-  if (answer.kind != wire::Kind::Done) fail(scenePath, "the exporter's answer is unusable (not done)");
+namespace {
+
+// A file in the temporary directory that holds the scene for the worker, removed however the export ends.
+class SceneHandoff {
+ public:
+  explicit SceneHandoff(const fs::path& about) : about_(about) {
+    const char* dir = std::getenv("TMPDIR");
+    path_ = (dir && *dir ? std::string(dir) : std::string("/tmp")) + "/rayview-export-XXXXXX";
+    const int fd = ::mkstemp(path_.data());
+    if (fd < 0) fail(about_, std::string("cannot hand the scene to the exporter: ") + std::strerror(errno));
+    file_ = ::fdopen(fd, "wb");
+    if (!file_) {
+      ::close(fd);
+      fail(about_, std::string("cannot hand the scene to the exporter: ") + std::strerror(errno));
+    }
+  }
+  ~SceneHandoff() {
+    if (file_) std::fclose(file_);
+    ::unlink(path_.c_str());
+  }
+  SceneHandoff(const SceneHandoff&) = delete;
+  SceneHandoff& operator=(const SceneHandoff&) = delete;
+
+  void write(const Scene& scene) {
+    wire::SceneMessage message;
+    message.parametersXml = sceneToXml(scene.parameters(), SceneGeometry{}, scene.textureImage);
+    message.geometry = scene.geometry();
+    const bool written = wire::writeScene(file_, message);
+    const bool closed = std::fclose(file_) == 0;
+    file_ = nullptr;
+    if (!written || !closed) fail(about_, "cannot hand the scene to the exporter (is the temporary directory full?)");
+  }
+  const std::string& path() const { return path_; }
+
+ private:
+  fs::path about_;
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
+
+}  // namespace
+
+void exportOpenedScene(const Scene& scene, const fs::path& outputPath) {
+  const fs::path about = scene.sourcePath.empty() ? fs::path("default scene") : scene.sourcePath;
+  SceneHandoff handoff(about);
+  handoff.write(scene);
+  WorkerAnswer answer = runWorker(about, {"export", handoff.path(), outputPath.string()});
+  if (answer.kind != wire::Kind::Done) fail(about, "the exporter's answer is unusable (not done)");
 }
 
 }  // namespace rayview

@@ -7,6 +7,8 @@
 #include <limits>
 #include <type_traits>
 
+#include "rayview/scene_codec.h"
+
 namespace rayview::wire {
 namespace {
 
@@ -46,10 +48,6 @@ void header(Writer& w, Kind kind) {
   w.u32(static_cast<std::uint32_t>(kind));
 }
 
-struct MeshRecord {
-  std::uint32_t material, firstTriangle, triangleCount, idBytes;
-};
-
 class Reader {
  public:
   explicit Reader(int fd) : fd_(fd) {}
@@ -83,34 +81,17 @@ class Reader {
   int fd_;
 };
 
-bool readMeshes(Reader& r, std::vector<Mesh>& meshes) {
-  std::uint64_t count = 0;
-  if (!r.raw(&count, sizeof count) || count > std::numeric_limits<std::uint32_t>::max()) return false;
-  for (std::uint64_t i = 0; i < count; ++i) {
-    MeshRecord record{};
-    if (!r.raw(&record, sizeof record) || record.idBytes > 4096) return false;
-    Mesh mesh;
-    mesh.material = record.material;
-    mesh.firstTriangle = record.firstTriangle;
-    mesh.triangleCount = record.triangleCount;
-    mesh.id.resize(record.idBytes);
-    if (!r.raw(mesh.id.data(), mesh.id.size())) return false;
-    meshes.push_back(std::move(mesh));
+// The geometry as the one scene codec writes it (rayview/scene_codec.h), as a blob.
+bool readGeometry(Reader& r, SceneGeometry& geometry) {
+  std::vector<std::uint8_t> bytes;
+  if (!r.array(bytes)) return false;
+  try {
+    std::size_t at = 0;
+    geometry = decodeGeometry(bytes.data(), bytes.size(), at);
+    return at == bytes.size();
+  } catch (const CodecError&) {
+    return false;
   }
-  return true;
-}
-
-bool readTexture(Reader& r, std::optional<Texture>& texture) {
-  std::int32_t size[2] = {0, 0};
-  if (!r.raw(size, sizeof size)) return false;
-  Texture t;
-  if (!r.array(t.rgb)) return false;
-  if (size[0] == 0 && size[1] == 0 && t.rgb.empty()) return true;
-  if (size[0] <= 0 || size[1] <= 0 || t.rgb.size() != static_cast<std::size_t>(size[0]) * size[1] * 3) return false;
-  t.width = size[0];
-  t.height = size[1];
-  texture = std::move(t);
-  return true;
 }
 
 }  // namespace
@@ -123,24 +104,9 @@ bool writeScene(std::FILE* out, const SceneMessage& m) {
   std::string warnings;
   for (const std::string& warning : m.warnings) warnings.append(warning).push_back('\n');
   w.text(warnings);
-  const SceneGeometry& g = m.geometry;
-  w.array(g.vertices);
-  w.array(g.texCoords);
-  w.array(g.normals);
-  const std::uint64_t meshes = g.meshes.size();
-  w.raw(&meshes, sizeof meshes);
-  for (const Mesh& mesh : g.meshes) {
-    const MeshRecord record{mesh.material, mesh.firstTriangle, mesh.triangleCount,
-                            static_cast<std::uint32_t>(std::min<std::size_t>(mesh.id.size(), 4096))};
-    w.raw(&record, sizeof record);
-    w.raw(mesh.id.data(), record.idBytes);
-  }
-  w.array(g.triangles);
-  w.array(g.faceAttributes);
-  const std::int32_t size[2] = {g.texture ? g.texture->width : 0, g.texture ? g.texture->height : 0};
-  w.raw(size, sizeof size);
-  w.array(g.texture ? g.texture->rgb : std::vector<std::uint8_t>{});
-  w.text(g.textureImage);
+  std::vector<std::uint8_t> geometry;
+  encodeGeometry(m.geometry, geometry);
+  w.array(geometry);
   return w.finish();
 }
 
@@ -172,10 +138,7 @@ std::string readMessage(int fd, Kind& kind, SceneMessage& m, std::string& error)
     if (!r.text(m.summary)) return "truncated answer";
   } else if (kind == Kind::Scene) {
     std::string warnings;
-    SceneGeometry& g = m.geometry;
-    if (!r.text(m.parametersXml) || !r.text(m.summary) || !r.text(warnings) || !r.array(g.vertices) ||
-        !r.array(g.texCoords) || !r.array(g.normals) || !readMeshes(r, g.meshes) || !r.array(g.triangles) ||
-        !r.array(g.faceAttributes) || !readTexture(r, g.texture) || !r.text(g.textureImage))
+    if (!r.text(m.parametersXml) || !r.text(m.summary) || !r.text(warnings) || !readGeometry(r, m.geometry))
       return "truncated or malformed answer";
     for (std::size_t at = 0; at < warnings.size();) {
       const std::size_t end = warnings.find('\n', at);

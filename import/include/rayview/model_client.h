@@ -20,9 +20,10 @@ struct ImportedModel {
 ImportedModel importModel(const std::filesystem::path& path, const ModelImportOptions& options);
 LoadedScene loadModelScene(const std::filesystem::path& path, const ModelImportOptions& options = {});
 
-// Writes the geometry and materials of the scene file `scenePath` as `outputPath` (.obj, .ply, .stl, .gltf, .glb),
-// whole or not at all. Throws SceneError for a bad scene or a failed export.
-void exportSceneFile(const std::filesystem::path& scenePath, const std::filesystem::path& outputPath);
+// Writes the geometry and materials of an opened scene (rayview/scene_open.h: any input) as `outputPath` (.obj, .ply,
+// .stl, .gltf, .glb), whole or not at all, through the worker, which holds the exporters: the scene reaches it in the
+// one scene codec. Throws SceneError naming the scene's file for a failed export.
+void exportOpenedScene(const Scene& scene, const std::filesystem::path& outputPath);
 
 // The worker's path: $RAYVIEW_IMPORT_WORKER, else libexec/rayview-import beside the running executable, else the
 // build tree's (for tests).

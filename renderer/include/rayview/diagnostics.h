@@ -1,6 +1,7 @@
 #pragma once
 // Located messages about a scene file: warnings for what was repaired or ignored, errors for what cannot be.
 
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -34,5 +35,10 @@ class SceneError : public std::runtime_error {
 };
 
 [[noreturn]] void throwSceneError(const SourceLocation& where, const std::string& message);
+
+// "1 camera", "2 cameras": a count and its noun, as messages and summaries print them.
+inline std::string counted(std::size_t count, const std::string& singular) {
+  return std::to_string(count) + " " + singular + (count == 1 ? "" : "s");
+}
 
 }  // namespace rayview

@@ -27,6 +27,9 @@ struct LoadOptions {
 struct LoadedScene {
   Scene scene;
   std::vector<Diagnostic> warnings;
+  // A CENG477 file's cameras' <ImageName>s, one per camera in order ("" where a camera has none); empty for a file
+  // of the handout's format, which has one camera and no output name.
+  std::vector<std::string> cameraImageNames;
 };
 
 // Throws SceneError (with file:line) for anything that cannot be read as a whole scene.

@@ -7,12 +7,13 @@
 
 #include "rayview/knobs.h"
 #include "rayview/pass_farm.h"
+#include "rayview/scene_open.h"
 
 namespace rayview {
 
 struct ViewerOptions {
   std::string scenePath;               // empty: the embedded default scene
-  bool strict = false;                 // every repaired typo and unknown element is an error
+  SceneOpenOptions open;               // how every scene is opened (--strict, --camera, --up, ...)
   int threads = 0;                     // render threads; 0: one per hardware thread
   std::vector<KnobAssignment> knobs;   // written into the settings, and into the first scene's parameters
   std::string scriptPath;              // automation (docs/viewer.md); empty: none

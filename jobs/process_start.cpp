@@ -1,4 +1,4 @@
-#include "process_start.h"
+#include "rayview/process_start.h"
 
 #include <chrono>
 

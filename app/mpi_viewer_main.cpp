@@ -11,11 +11,9 @@
 #include <vector>
 
 #include "command_line.h"
-#include "exit_codes.h"
-#include "process_start.h"
+#include "rayview/cluster.h"
+#include "rayview/process_start.h"
 #include "rayview/viewer.h"
-#include "tile_exchange.h"
-#include "viewer_farm.h"
 
 int main(int argc, char** argv) {
   using namespace rayview;
@@ -38,12 +36,12 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
     code = kExitBadInput;
   }
-  const auto farm = std::make_shared<cluster::ViewerFarm>(ranks, command.threads);
+  const auto farm = cluster::makeViewerFarm(ranks, command.job.threads);
   if (code == kExitOk) {
     std::printf("rendering on %d ranks: this window's and %d more\n", ranks, ranks - 1);
     std::fflush(stdout);
-    ViewerOptions options{command.scenePath, command.strict, command.threads, command.knobs, command.scriptPath,
-                          command.comparePath, farm};
+    ViewerOptions options{command.job.scene(), command.job.open, command.job.threads, command.job.knobs,
+                          command.scriptPath, command.comparePath, farm};
     switch (runViewer(options)) {
       case ViewerExit::Ok: code = kExitOk; break;
       case ViewerExit::BadInput: code = kExitBadInput; break;

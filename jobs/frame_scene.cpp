@@ -1,9 +1,10 @@
-#include "frame_scene.h"
+#include "rayview/frame_scene.h"
 
 #include <cstdio>
 #include <system_error>
 
-#include "exit_codes.h"
+#include "rayview/exit_codes.h"
+#include "rayview/scene_source.h"
 #include "rayview/scene_bounds.h"
 
 namespace rayview {
@@ -19,6 +20,18 @@ std::unique_ptr<FrameTracer> FrameScene::frame(int frame, int frames) const {
   SceneParameters parameters = scene_->parameters();
   parameters.camera = turntableCamera(scene_->camera, pivot_, frame, frames);
   return std::make_unique<FrameTracer>(std::move(parameters), *geometry_, settings_);
+}
+
+int openFrameScene(const RenderJob& job, const FrameJob& frame, LoadedScene& loaded) {
+  try {
+    loaded = openScene(frame.scenePath, jobForFrame(job, frame).open);
+  } catch (const SceneError& error) {
+    std::fprintf(stderr, "%s\n", error.what());
+    return kExitBadInput;
+  }
+  if (!job.quiet)
+    for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
+  return kExitOk;
 }
 
 int writeFrameFile(const std::filesystem::path& path, Image image) {

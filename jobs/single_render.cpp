@@ -1,4 +1,4 @@
-#include "render_command.h"
+#include "single_render.h"
 
 #include <algorithm>
 #include <chrono>
@@ -7,14 +7,15 @@
 #include <optional>
 #include <utility>
 
-#include "process_start.h"
+#include "rayview/exit_codes.h"
+#include "rayview/process_start.h"
 #include "rayview/accel.h"
 #include "rayview/deflated_image.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/lean_memory.h"
-#include "rayview/model_client.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/process_memory.h"
+#include "rayview/scene_open.h"
 #include "rayview/scene_source.h"
 #include "render_summary.h"
 
@@ -30,8 +31,8 @@ double msSince(Clock::time_point start) {
 // One `rayview render`, as the stages it runs in order; a stage that ends the command returns its exit status.
 class RenderRun {
  public:
-  explicit RenderRun(const CommandLine& command) : command_(command), output_(command.outputPath) {
-    summary_.outputPath = command.outputPath;
+  explicit RenderRun(const RenderJob& job) : job_(job), output_(job.output), settings_(renderSettingsOf(job)) {
+    summary_.outputPath = job.output.string();
   }
 
   std::optional<int> checkOutput();
@@ -39,19 +40,19 @@ class RenderRun {
   std::optional<int> render();
   std::optional<int> write();
   void report() const {
-    if (!command_.quiet) printRenderSummary(summary_);
+    if (!job_.quiet) printRenderSummary(summary_);
   }
 
  private:
-  std::uint64_t peakNow() const { return command_.quiet ? 0 : processMemory().peak; }
+  std::uint64_t peakNow() const { return job_.quiet ? 0 : processMemory().peak; }
   std::optional<int> fail(int status, const std::string& message) const {
     std::fprintf(stderr, "%s\n", message.c_str());
     return status;
   }
-  std::string sceneName() const { return command_.scenePath.empty() ? "default scene" : command_.scenePath; }
+  std::string sceneName() const { return job_.scene().empty() ? "default scene" : job_.scene(); }
   void trace(const Scene& scene, const PreparedGeometry& geometry);
 
-  const CommandLine& command_;
+  const RenderJob& job_;
   const std::filesystem::path output_;
   LoadedScene loaded_;
   RenderSettings settings_;
@@ -62,7 +63,7 @@ class RenderRun {
 };
 
 std::optional<int> RenderRun::checkOutput() {
-  if (const std::string problem = renderOutputProblem(output_, command_.scenePath); !problem.empty())
+  if (const std::string problem = renderOutputProblem(output_, job_.scene()); !problem.empty())
     return fail(kExitBadInput, "rayview: error: " + problem);
   return std::nullopt;
 }
@@ -70,24 +71,20 @@ std::optional<int> RenderRun::checkOutput() {
 std::optional<int> RenderRun::load() {
   const auto start = Clock::now();
   try {
-    LoadOptions options;
-    options.strict = command_.strict;
-    options.camera = command_.camera;
-    loaded_ = isModelFile(command_.scenePath) ? loadModelScene(command_.scenePath, command_.model)
-                                              : loadSceneOrDefault(command_.scenePath, options);
+    loaded_ = openScene(job_.scene(), job_.open);
   } catch (const SceneError& error) {
     return fail(kExitBadInput, error.what());
   }
   summary_.loadMs = msSince(start);
   summary_.peaks.load = peakNow();
-  if (const std::string problem = outputOverwritesInput(output_, command_.scenePath, &loaded_.scene); !problem.empty())
+  if (const std::string problem = outputOverwritesInput(output_, job_.scene(), &loaded_.scene); !problem.empty())
     return fail(kExitBadInput, "rayview: error: " + problem);
-  if (!command_.quiet)
+  if (!job_.quiet)
     for (const Diagnostic& warning : loaded_.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
   // The knobs given on the command line, written once into their homes: the settings and the scene's parameters.
-  applyKnobs(command_.knobs, {&loaded_.scene.parameters(), &settings_});
+  applyKnobs(job_.knobs, {&loaded_.scene.parameters(), &settings_});
   const Camera& camera = loaded_.scene.camera;
-  memory_ = planMemory(command_.memory, loaded_.scene.triangles.size(),
+  memory_ = planMemory(job_.open.memory, loaded_.scene.triangles.size(),
                        static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height),
                        availableMemoryBytes());
   return std::nullopt;
@@ -113,7 +110,7 @@ std::optional<int> RenderRun::render() {
 }
 
 void RenderRun::trace(const Scene& scene, const PreparedGeometry& geometry) {
-  ThreadPool pool(command_.threads);
+  ThreadPool pool(job_.threads);
   const Tracer tracer(scene.parameters(), geometry, settings_);
   summary_.startupMs = msSinceProcessStart() - summary_.loadMs - summary_.buildMs;
   FrameStats stats;
@@ -125,7 +122,7 @@ void RenderRun::trace(const Scene& scene, const PreparedGeometry& geometry) {
   summary_.rays = stats.rays;
   summary_.megaRaysPerSecond = stats.megaRaysPerSecond();
   summary_.triangles = scene.triangles.size();
-  summary_.sceneLine = describeScene(command_.scenePath, scene);
+  summary_.sceneLine = describeScene(job_.scene(), scene);
   SceneParameters parameters = scene.parameters();
   parameters.maxRayDepth = tracer.maxDepth();
   // The traversal as built: Embree asked for a small scene builds the packet BVH.
@@ -156,8 +153,8 @@ std::optional<int> RenderRun::write() {
 
 }  // namespace
 
-int runRenderCommand(const CommandLine& command) {
-  RenderRun run(command);
+int runSingleRender(const RenderJob& job) {
+  RenderRun run(job);
   for (auto stage : {&RenderRun::checkOutput, &RenderRun::load, &RenderRun::render, &RenderRun::write})
     if (const std::optional<int> status = (run.*stage)()) return *status;
   run.report();

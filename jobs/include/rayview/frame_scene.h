@@ -1,5 +1,5 @@
 #pragma once
-// One scene's run of frames, the same in one process (frames_command.cpp) and under MPI (cluster/cluster_frames.cpp):
+// One scene's run of frames, the same in one process (jobs/frames_render.cpp) and under MPI (cluster/cluster_frames.cpp):
 // the geometry built once, each turntable frame's tracer, the frame's file written whole, the progress line.
 
 #include <chrono>
@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <memory>
 
+#include "rayview/frame_plan.h"
 #include "rayview/image.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/render_settings.h"
@@ -43,6 +44,10 @@ class FrameScene {
   std::shared_ptr<const PreparedGeometry> geometry_;
   glm::dvec3 pivot_{0.0};
 };
+
+// Opens the scene of `frame` (its camera) as `job` says, printing its warnings unless quiet. Returns kExitOk, or the
+// exit code with the message printed.
+int openFrameScene(const RenderJob& job, const FrameJob& frame, LoadedScene& loaded);
 
 // Writes a frame whole, its directory made first. Returns kExitOk, or kExitIoFailure with the message printed.
 int writeFrameFile(const std::filesystem::path& path, Image image);

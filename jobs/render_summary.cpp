@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 
-#include "command_line.h"
+#include "rayview/diagnostics.h"
 
 namespace rayview {
 
