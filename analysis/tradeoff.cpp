@@ -295,7 +295,7 @@ bool TradeoffRun::buildGeometry() {
     if (built) continue;
     if (cancelled()) return false;
     tell("building the " + std::string(toString(r.settings.accel)) + " BVH");
-    built = prepareGeometry(sceneGeometry_, parameters_.camera.position, r.settings.accel,
+    built = prepareGeometry(sceneGeometry_, parameters_.camera.position, r.settings.accel, BvhBuild::Interactive,
                             cancel_ ? buildCancelled : nullptr, const_cast<std::atomic<bool>*>(cancel_));
     if (!built || cancelled()) return false;
     report_.buildMs[static_cast<int>(r.settings.accel)] = built->buildMs;

@@ -359,7 +359,7 @@ SceneResult measure(const std::filesystem::path& path, ThreadPool& pool, int rep
   result.height = scene.camera.height;
 
   // rayview, as `rayview render` sets it up.
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, AccelKind::Embree);
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   result.rayviewBuildMs = geometry->buildMs;
   const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
 

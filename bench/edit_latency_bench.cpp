@@ -43,7 +43,7 @@ double median(std::vector<double> v) {
 }
 
 void measureEditLatency(benchmark::State& state, std::shared_ptr<const Scene> original) {
-  auto geometry = prepareGeometry(original, AccelKind::Embree);
+  auto geometry = prepareGeometry(original, AccelKind::Embree, BvhBuild::Interactive);
   ProgressiveRenderer renderer(2);
   SceneParameters edited = original->parameters();  // as the viewer edits: never the meshes
   // Warm up: lets the renderer pick its first stride for this scene, as it would after the first edit.
@@ -125,7 +125,7 @@ ProgressiveFrame takeFirstPass(const ProgressiveRenderer& renderer, PublishSigna
 }
 
 void measureDrag(benchmark::State& state, std::shared_ptr<const Scene> original, std::string name) {
-  auto geometry = prepareGeometry(original, AccelKind::Embree);
+  auto geometry = prepareGeometry(original, AccelKind::Embree, BvhBuild::Interactive);
   PublishSignal signal;  // outlives the renderer, which calls it
   ProgressiveRenderer renderer(2);
   renderer.setFrameListener([&signal] { signal.notify(); });

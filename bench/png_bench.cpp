@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
   int status = 0;
   for (const auto& path : scenes) {
     const Scene scene = loadSceneFile(path).scene;
-    auto geometry = prepareGeometry(scene, AccelKind::Embree);
+    auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
     const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
     Image image;
     FrameStats stats;

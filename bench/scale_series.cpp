@@ -99,7 +99,7 @@ int breakdown(const std::string& path, int threads) {
 
   resetPeak();
   // The fast layout, which `rayview render` builds whenever it fits in the memory available.
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, AccelKind::Embree, BvhLayout::Fast);
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(shared, AccelKind::Embree, BvhBuild::OneImage);
   const Memory afterBuild = memoryNow();
   row("prepareGeometry (the BVH `rayview render` builds, shading geometry)", afterLoad, afterBuild);
 

@@ -88,7 +88,8 @@ int renderRun(const RenderJob& job, const std::vector<FrameJob>& frames, std::si
   const RenderJob sceneJob = jobForFrame(job, frames[first]);
   DistributedScene distributed;
   if (const int failed = distributeScene(sceneJob, rank, ranks, distributed); failed != kExitOk) return failed;
-  const FrameScene scene(distributed.scene, distributed.settings);
+  const BvhBuild build = memoryPlanFor(job, *distributed.scene).lean ? BvhBuild::Lean : BvhBuild::OneImage;
+  const FrameScene scene(distributed.scene, distributed.settings, build);
   const Camera& camera = scene.scene().camera;  // every frame of a turntable keeps the lens: the same size
   const std::vector<WorkUnit> units = frameUnits(static_cast<int>(end - first), camera.width, camera.height, ranks);
   RunTracers tracers(scene, frames, first);

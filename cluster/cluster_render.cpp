@@ -9,6 +9,7 @@
 
 #include "cluster_runs.h"
 #include "rayview/exit_codes.h"
+#include "rayview/frame_scene.h"
 #include "rayview/image.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/thread_pool.h"
@@ -117,7 +118,8 @@ int runClusterRender(const RenderJob& job) {
   RenderSettings settings = distributed.settings;
   const Scene& scene = *distributed.scene;
   // Built for memory, as a single process's `rayview render` builds it: the same back-end, the same image.
-  auto geometry = prepareGeometry(distributed.scene, settings.accel, BvhLayout::Fast);
+  const BvhBuild build = memoryPlanFor(job, scene).lean ? BvhBuild::Lean : BvhBuild::OneImage;
+  auto geometry = prepareGeometry(distributed.scene, settings.accel, build);
   if (!geometry->accelFallback.empty()) {
     if (rank == 0)
       std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n",

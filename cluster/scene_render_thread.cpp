@@ -66,7 +66,7 @@ void SceneRenderThread::render(const SceneJob& job) {
   try {
     SceneToRender obtained = job.obtain();
     if (job.hash) hash = sceneHash(*obtained.scene);
-    scene = std::make_unique<FrameScene>(std::move(obtained.scene), obtained.settings);
+    scene = std::make_unique<FrameScene>(std::move(obtained.scene), obtained.settings, BvhBuild::OneImage);
   } catch (const std::exception& error) {
     post({job.run, 0, Image(), 0.0, RayCounts(), 0, error.what()});
     return;

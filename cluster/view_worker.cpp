@@ -98,7 +98,7 @@ class ViewWorker {
     std::exception_ptr failure;
     whileAlive([&] {
       try {
-        prepared = prepareGeometry(geometry, shipped.origin, shipped.accel);
+        prepared = prepareGeometry(geometry, shipped.origin, shipped.accel, BvhBuild::Interactive);
       } catch (...) {
         failure = std::current_exception();  // rethrown here, where a std::bad_alloc is reported to rank 0
       }

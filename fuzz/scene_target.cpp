@@ -120,7 +120,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   std::vector<glm::vec3> packetPixels;
   for (const AccelKind kind : {AccelKind::Embree, AccelKind::Reference}) {
     settings.accel = availableAccel(kind);
-    const auto geometry = prepareGeometry(scene, settings.accel);
+    const auto geometry = prepareGeometry(scene, settings.accel, BvhBuild::Interactive);
     if (!geometry) fuzz::fail("prepareGeometry returned nothing without being cancelled");
     std::vector<glm::vec3> pixels = render(*geometry->accel, geometry->shading);
     if (geometry->accel->kind() == AccelKind::Packet) packetPixels = std::move(pixels);

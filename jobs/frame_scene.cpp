@@ -9,9 +9,9 @@
 
 namespace rayview {
 
-FrameScene::FrameScene(std::shared_ptr<const Scene> scene, RenderSettings settings)
+FrameScene::FrameScene(std::shared_ptr<const Scene> scene, RenderSettings settings, BvhBuild build)
     : scene_(std::move(scene)), settings_(settings) {
-  geometry_ = prepareGeometry(scene_, settings_.accel, BvhLayout::Fast);
+  geometry_ = prepareGeometry(scene_, settings_.accel, build);
   if (!geometry_->accelFallback.empty()) settings_.accel = AccelKind::Reference;
   pivot_ = orbitPivot(scene_->camera, sceneBounds(*scene_));
 }
@@ -20,6 +20,12 @@ std::unique_ptr<FrameTracer> FrameScene::frame(int frame, int frames) const {
   SceneParameters parameters = scene_->parameters();
   parameters.camera = turntableCamera(scene_->camera, pivot_, frame, frames);
   return std::make_unique<FrameTracer>(std::move(parameters), *geometry_, settings_);
+}
+
+MemoryPlan memoryPlanFor(const RenderJob& job, const Scene& scene) {
+  const std::size_t pixels = static_cast<std::size_t>(std::max(scene.camera.width, 0)) *
+                             static_cast<std::size_t>(std::max(scene.camera.height, 0));
+  return planMemory(job.open.memory, scene.triangles.size(), pixels, availableMemoryBytes());
 }
 
 int openFrameScene(const RenderJob& job, const FrameJob& frame, LoadedScene& loaded) {

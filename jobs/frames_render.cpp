@@ -21,7 +21,8 @@ int renderSceneFrames(const RenderJob& job, const std::vector<FrameJob>& pending
   if (const int code = openFrameScene(job, first, loaded); code != kExitOk) return code;
   RenderSettings settings = renderSettingsOf(job);
   applyKnobs(job.knobs, {&loaded.scene.parameters(), &settings});
-  const FrameScene scene(std::make_shared<const Scene>(std::move(loaded.scene)), settings);
+  const BvhBuild build = memoryPlanFor(job, loaded.scene).lean ? BvhBuild::Lean : BvhBuild::OneImage;
+  const FrameScene scene(std::make_shared<const Scene>(std::move(loaded.scene)), settings, build);
   // What the opening read (a texture, a model's files) is known only now: no frame of the scene is written over it.
   for (std::size_t k = next; k < pending.size() && sameSceneAndCamera(pending[k], first); ++k)
     if (const std::string problem = outputOverwritesInput(pending[k].output, first.scenePath, &scene.scene());

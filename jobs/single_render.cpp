@@ -12,6 +12,7 @@
 #include "rayview/accel.h"
 #include "rayview/deflated_image.h"
 #include "rayview/frame_renderer.h"
+#include "rayview/frame_scene.h"
 #include "rayview/lean_memory.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/process_memory.h"
@@ -83,10 +84,7 @@ std::optional<int> RenderRun::load() {
     for (const Diagnostic& warning : loaded_.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
   // The knobs given on the command line, written once into their homes: the settings and the scene's parameters.
   applyKnobs(job_.knobs, {&loaded_.scene.parameters(), &settings_});
-  const Camera& camera = loaded_.scene.camera;
-  memory_ = planMemory(job_.open.memory, loaded_.scene.triangles.size(),
-                       static_cast<std::size_t>(camera.width) * static_cast<std::size_t>(camera.height),
-                       availableMemoryBytes());
+  memory_ = memoryPlanFor(job_, loaded_.scene);
   return std::nullopt;
 }
 
@@ -96,7 +94,7 @@ std::optional<int> RenderRun::render() {
   // Shared, not copied: the geometry is the largest thing a big scene holds.
   const auto shared = std::make_shared<const Scene>(std::move(loaded_.scene));
   const std::shared_ptr<const PreparedGeometry> geometry =
-      prepareGeometry(shared, settings_.accel, memory_.lean ? BvhLayout::Lean : BvhLayout::Fast);
+      prepareGeometry(shared, settings_.accel, memory_.lean ? BvhBuild::Lean : BvhBuild::OneImage);
   if (!geometry->accelFallback.empty()) {
     std::fprintf(stderr, "%s: warning: %s; rendering with the reference BVH instead\n", sceneName().c_str(),
                  geometry->accelFallback.c_str());

@@ -315,7 +315,7 @@ std::string quadPly() {
 }
 
 Image renderOf(const Scene& scene) {
-  auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
   ThreadPool pool(1);
   Image image;

@@ -63,7 +63,7 @@ TEST(ClusterTiles, TilesPutTogetherAreTheWholeFrameBitForBit) {
   auto scene = std::make_shared<const Scene>(std::move(small));
   RenderSettings settings;
   settings.pixelSamples = 2;
-  const auto geometry = prepareGeometry(scene, settings.accel);
+  const auto geometry = prepareGeometry(scene, settings.accel, BvhBuild::Interactive);
   const Tracer tracer(scene->parameters(), *geometry, settings);
   ThreadPool pool(2);
   const int w = scene->camera.width, h = scene->camera.height;

@@ -63,7 +63,7 @@ void expectMatchesTheCourseImage(const ConformanceScene& c, Source source) {
   const LoadedScene loaded = loadSceneFile(dir / file, options);
   const Image expected = readImageFile(dir / (std::string(c.name) + ".png"));
 
-  auto geometry = prepareGeometry(loaded.scene, AccelKind::Embree);
+  auto geometry = prepareGeometry(loaded.scene, AccelKind::Embree, BvhBuild::Interactive);
   RenderSettings settings;
   settings.secondaryRayStart = c.rayStart;
   // The vintage's quantisation (manifest.tsv): the 2017-2020 references truncated.

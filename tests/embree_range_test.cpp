@@ -87,7 +87,7 @@ TEST(EmbreeRange, LargeShadowRayEpsilonWithinTheLimitFallsBack) {
   EXPECT_NE(embreeRangeProblem(scene, scene, scene.camera.position).find("<shadowrayepsilon>"), std::string::npos);
   // The parameters (the epsilon) decide it: preparing the scene for Embree builds the reference BVH, and says why
   // (`rayview render` prints it, the viewer lists it with the scene's warnings).
-  const auto prepared = prepareGeometry(scene, availableAccel(AccelKind::Embree));
+  const auto prepared = prepareGeometry(scene, availableAccel(AccelKind::Embree), BvhBuild::Interactive);
   EXPECT_EQ(prepared->accel->kind(), AccelKind::Reference);
   if (haveEmbree()) {
     EXPECT_NE(prepared->accelFallback.find("<shadowrayepsilon>"), std::string::npos);
@@ -96,15 +96,15 @@ TEST(EmbreeRange, LargeShadowRayEpsilonWithinTheLimitFallsBack) {
 
 TEST(EmbreeRange, PreparingAFarSceneSaysWhyItIsNotOnEmbree) {
   if (!haveEmbree()) GTEST_SKIP() << "built without Embree";
-  const auto far = prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Embree);
+  const auto far = prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Embree, BvhBuild::Interactive);
   EXPECT_EQ(far->accel->kind(), AccelKind::Reference);
   EXPECT_NE(far->accelFallback.find("a vertex is 1e+19 from the camera"), std::string::npos) << far->accelFallback;
   // Within range: the fast traversal (for a scene this small, the packet BVH: the next test).
-  const auto near = prepareGeometry(std::make_shared<const Scene>(quadAt(1e17, -1e17)), AccelKind::Embree);
+  const auto near = prepareGeometry(std::make_shared<const Scene>(quadAt(1e17, -1e17)), AccelKind::Embree, BvhBuild::Interactive);
   EXPECT_EQ(near->accel->kind(), AccelKind::Packet);
   EXPECT_EQ(near->accelFallback, "");
   // The reference BVH asked for is no fallback.
-  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Reference)->accelFallback, "");
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Reference, BvhBuild::Interactive)->accelFallback, "");
 }
 
 // Asked for Embree, prepareGeometry builds rayview's packet BVH up to kPacketBvhTriangles triangles (Embree's
@@ -115,10 +115,10 @@ TEST(EmbreeRange, PreparingASmallSceneBuildsThePacketBvhAndALargerOneEmbree) {
   Scene scene = quadAt(1.0, -2.0);
   while (scene.triangles.size() < kPacketBvhTriangles) testing::addQuadFacingZ(scene, -1, -1, 1, 1, -3.0, 0);
   ASSERT_EQ(scene.triangles.size(), kPacketBvhTriangles);
-  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(scene), AccelKind::Embree)->accel->kind(), AccelKind::Packet);
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(scene), AccelKind::Embree, BvhBuild::Interactive)->accel->kind(), AccelKind::Packet);
   testing::addQuadFacingZ(scene, -1, -1, 1, 1, -3.0, 0);
-  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(scene), AccelKind::Embree)->accel->kind(), AccelKind::Embree);
-  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Packet)->accel->kind(),
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(scene), AccelKind::Embree, BvhBuild::Interactive)->accel->kind(), AccelKind::Embree);
+  EXPECT_EQ(prepareGeometry(std::make_shared<const Scene>(quadAt(1e19, -1e19)), AccelKind::Packet, BvhBuild::Interactive)->accel->kind(),
             AccelKind::Reference);
 }
 

@@ -56,7 +56,7 @@ ModelImportOptions small() {
 }
 
 Image render(const Scene& scene) {
-  auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   const Tracer tracer(scene, *geometry, RenderSettings{});
   Image image(scene.camera.width, scene.camera.height);
   RayCounts counts;

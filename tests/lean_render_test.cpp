@@ -45,7 +45,7 @@ TEST(LeanRender, DeflatedBandsHoldTheImageRenderFrameMakes) {
   Scene scene = loadSceneOrDefault("", {}).scene;
   scene.camera.width = 211;
   scene.camera.height = 301;
-  const auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  const auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   const Tracer tracer(scene.parameters(), *geometry, RenderSettings{});
   for (int threads : {1, 3}) {
     SCOPED_TRACE(std::to_string(threads) + " threads");
@@ -107,12 +107,12 @@ Scene planeOfQuads(int n) {
 TEST(LeanRender, OnlyALeanBuildGetsTheLeanPacketBvh) {
   if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
   const auto scene = std::make_shared<const Scene>(planeOfQuads(224));  // 100 352 triangles
-  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree, BvhLayout::Lean)->accel->kind(), AccelKind::Packet);
-  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree, BvhLayout::Fast)->accel->kind(), AccelKind::Embree);
-  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree)->accel->kind(), AccelKind::Embree) << "the viewer's call";
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree, BvhBuild::Lean)->accel->kind(), AccelKind::Packet);
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree, BvhBuild::OneImage)->accel->kind(), AccelKind::Embree);
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive)->accel->kind(), AccelKind::Embree) << "the viewer's call";
   const auto small = std::make_shared<const Scene>(planeOfQuads(20));  // 800
-  EXPECT_EQ(prepareGeometry(small, AccelKind::Embree, BvhLayout::Lean)->accel->kind(), AccelKind::Packet);
-  EXPECT_EQ(prepareGeometry(scene, AccelKind::Reference, BvhLayout::Lean)->accel->kind(), AccelKind::Reference);
+  EXPECT_EQ(prepareGeometry(small, AccelKind::Embree, BvhBuild::Lean)->accel->kind(), AccelKind::Packet);
+  EXPECT_EQ(prepareGeometry(scene, AccelKind::Reference, BvhBuild::Lean)->accel->kind(), AccelKind::Reference);
 }
 
 }  // namespace

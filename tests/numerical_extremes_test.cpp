@@ -130,7 +130,7 @@ TEST_P(ShadowAcne, GrazingLightDownToATenthOfADegreeAtScales1eMinus4To1e4) {
   for (double scale : {1e-4, 1e-2, 1.0, 1e2, 1e4})
     for (double elevation : {30.0, 5.0, 1.0, 0.3, 0.1}) {
       const testing::GrazingLightScene s = testing::grazingLightScene(scale, elevation, kPixels);
-      const auto prepared = prepareGeometry(s.scene, GetParam());
+      const auto prepared = prepareGeometry(s.scene, GetParam(), BvhBuild::Interactive);
       const Tracer tracer(s.scene, *prepared, RenderSettings{});
       long here = 0;
       for (int j = 0; j < kPixels; ++j)
@@ -180,7 +180,7 @@ class DegenerateInput : public EveryBackEnd {
   // image of the right size.
   testing::CheckedRender check(const Scene& scene, const char* what) const {
     static ThreadPool pool(2);
-    const auto prepared = prepareGeometry(scene, GetParam());
+    const auto prepared = prepareGeometry(scene, GetParam(), BvhBuild::Interactive);
     Image frame;
     FrameStats stats;
     EXPECT_TRUE(renderFrame(Tracer(scene, *prepared, RenderSettings{}), scene.camera.width, scene.camera.height,

@@ -23,7 +23,7 @@ TEST_P(OwnScene, LoadsStrictlyWithoutWarningsAndRenders) {
   if (!scene.textureImage.empty()) {
     EXPECT_TRUE(scene.texture.has_value()) << scene.textureImage;
   }
-  auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   const Tracer tracer(scene, *geometry, RenderSettings{});
   RayCounts counts;
   for (int y = 0; y < scene.camera.height; y += 7)

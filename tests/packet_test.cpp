@@ -160,7 +160,7 @@ TEST_P(Packets, PacketBvhWithLeanLeavesAnswersEveryRayAsEmbreeDoes) {
 // gets the single pixels' ray counts.
 void expectBlocksTraceAsSinglePixels(const Scene& scene, int pixelSamples, RayCounts& single,
                                      SecondaryRayStart start = SecondaryRayStart::Offset) {
-  const auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  const auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   RenderSettings settings;
   settings.pixelSamples = pixelSamples;
   settings.secondaryRayStart = start;

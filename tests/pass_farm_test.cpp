@@ -67,7 +67,7 @@ Fixture makeFixture(int pixelSamples) {
   f.settings.pixelSamples = pixelSamples;
   f.settings.lightSamples = 2;
   f.scene = std::make_shared<const Scene>(std::move(loaded.scene));
-  f.geometry = prepareGeometry(f.scene, f.settings.accel);
+  f.geometry = prepareGeometry(f.scene, f.settings.accel, BvhBuild::Interactive);
   const Tracer tracer(*f.scene, *f.geometry->accel, f.geometry->shading, f.settings);
   ThreadPool pool(2);
   FrameStats stats;

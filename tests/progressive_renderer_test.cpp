@@ -321,7 +321,7 @@ TEST(ProgressiveRenderer, AntiAliasingSamplesAccumulatePassByPassAndTheLastEqual
   settings.pixelSamples = 5;
   settings.lightSamples = 3;  // the light samples vary per camera ray: they must accumulate in order too
   auto shared = std::make_shared<const Scene>(scene);
-  auto geometry = prepareGeometry(shared, settings.accel);
+  auto geometry = prepareGeometry(shared, settings.accel, BvhBuild::Interactive);
   const Tracer tracer(*shared, *geometry->accel, geometry->shading, settings);
   ThreadPool pool(2);
   Image headless;

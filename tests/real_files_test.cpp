@@ -225,7 +225,7 @@ TEST_P(RealFile, HasItsExpectedOutcome) {
   const double shrink = std::min(1.0, 48.0 / std::max(s.camera.width, s.camera.height));
   small.camera.width = std::max(1, static_cast<int>(s.camera.width * shrink));
   small.camera.height = std::max(1, static_cast<int>(s.camera.height * shrink));
-  auto geometry = prepareGeometry(small, AccelKind::Embree);
+  auto geometry = prepareGeometry(small, AccelKind::Embree, BvhBuild::Interactive);
   ASSERT_TRUE(geometry);
   const Tracer tracer(small, *geometry, RenderSettings{});
   RayCounts counts;

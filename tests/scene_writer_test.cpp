@@ -151,7 +151,7 @@ TEST(SceneWriter, WrittenSceneRendersTheSameImage) {
 
   ThreadPool pool(2);
   auto render = [&](const Scene& scene) {
-    auto geometry = prepareGeometry(scene, AccelKind::Reference);
+    auto geometry = prepareGeometry(scene, AccelKind::Reference, BvhBuild::Interactive);
     const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
     Image image;
     FrameStats stats;

@@ -25,7 +25,7 @@ using testing::plainMaterial;
 
 // Radiance of the centre pixel of a 3x3 image: its ray goes exactly down -z.
 Color centrePixel(const Scene& scene, const RenderSettings& settings = {}, RayCounts* countsOut = nullptr) {
-  auto geometry = prepareGeometry(scene, settings.accel);
+  auto geometry = prepareGeometry(scene, settings.accel, BvhBuild::Interactive);
   Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
   RayCounts counts;
   const Color c = tracer.tracePixel(1, 1, counts);
@@ -140,7 +140,7 @@ TEST(Shading, ShadowRayStartsOnTheLightsSideWhenTheShadingNormalTurnsToALightBeh
   ASSERT_GT(lit, 1.0);  // ... in front of the shading normal
   EXPECT_NEAR(centrePixel(scene).x, lit, 1e-3 * lit);
 
-  auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
   PixelXY block[9];
   for (int n = 0; n < 9; ++n) block[n] = {n % 3, n / 3};
@@ -294,7 +294,7 @@ TEST(Threads, ImageIsBitIdenticalForAnyThreadCount) {
   const Scene scene = busyScene();
   RenderSettings settings;
   settings.lightSamples = 9;
-  auto geometry = prepareGeometry(scene, settings.accel);
+  auto geometry = prepareGeometry(scene, settings.accel, BvhBuild::Interactive);
   const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
   Image reference;
   for (int threads : {1, 2, 3, 8}) {
@@ -356,7 +356,7 @@ TEST(Threads, APacketBvhBuiltOnSeveralThreadsAnswersAsOneBuiltOnOne) {
 
 TEST(Threads, AStopRaisedBeforeTheRenderCancelsIt) {
   const Scene scene = busyScene();
-  auto geometry = prepareGeometry(scene, AccelKind::Embree);
+  auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
   const Tracer tracer(scene, *geometry->accel, geometry->shading, {});
   ThreadPool pool(2);
   Image image;
@@ -387,7 +387,7 @@ Scene halfCoveredScene() {
 }
 
 Image renderWith(const Scene& scene, const RenderSettings& settings, int threads, RayCounts* rays = nullptr) {
-  auto geometry = prepareGeometry(scene, settings.accel);
+  auto geometry = prepareGeometry(scene, settings.accel, BvhBuild::Interactive);
   const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
   ThreadPool pool(threads);
   Image image;

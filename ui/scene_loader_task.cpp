@@ -65,7 +65,7 @@ LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request, c
       return !c.cancel.load();
     };
     // The shared overload: the geometry keeps this scene (the tracer reads its meshes) without a copy.
-    std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, accel, onProgress, &context);
+    std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, accel, BvhBuild::Interactive, onProgress, &context);
     if (!geometry) return outcome;  // cancelled: a newer request took over
     if (!geometry->accelFallback.empty()) {
       Diagnostic fallback;

@@ -52,7 +52,7 @@ CheckedRender renderWith(const Scene& scene, const Accel& accel, const ShadingGe
 }  // namespace
 
 CheckedRender renderChecked(const Scene& scene, AccelKind accel, const RenderSettings& settings) {
-  const auto prepared = prepareGeometry(scene, accel);
+  const auto prepared = prepareGeometry(scene, accel, BvhBuild::Interactive);
   return renderWith(scene, *prepared->accel, prepared->shading, settings);
 }
 

@@ -21,7 +21,7 @@ LoadedSceneParts loadScene(AccelKind accel = AccelKind::Reference) {
   LoadedScene loaded = loadSceneFile(kScene);
   LoadedSceneParts parts;
   parts.scene = std::make_shared<const Scene>(std::move(loaded.scene));
-  parts.geometry = prepareGeometry(parts.scene, accel);
+  parts.geometry = prepareGeometry(parts.scene, accel, BvhBuild::Interactive);
   parts.bounds = sceneBounds(*parts.scene);
   parts.accel = accel;
   return parts;

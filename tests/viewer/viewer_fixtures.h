@@ -33,7 +33,7 @@ inline LoadedSceneParts loadParts() {
   LoadedScene loaded = loadSceneFile(kViewerScene);
   LoadedSceneParts parts;
   parts.scene = std::make_shared<const Scene>(std::move(loaded.scene));
-  parts.geometry = prepareGeometry(parts.scene, AccelKind::Reference);
+  parts.geometry = prepareGeometry(parts.scene, AccelKind::Reference, BvhBuild::Interactive);
   parts.bounds = sceneBounds(*parts.scene);
   parts.accel = AccelKind::Reference;
   return parts;

@@ -9,6 +9,7 @@
 
 #include "rayview/frame_plan.h"
 #include "rayview/image.h"
+#include "rayview/lean_memory.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/render_settings.h"
 #include "rayview/scene.h"
@@ -32,7 +33,7 @@ class FrameScene {
  public:
   // `settings` carry the command line's knobs; a back-end that cannot be built falls back to the reference BVH,
   // as for `rayview render`.
-  FrameScene(std::shared_ptr<const Scene> scene, RenderSettings settings);
+  FrameScene(std::shared_ptr<const Scene> scene, RenderSettings settings, BvhBuild build);
 
   const Scene& scene() const { return *scene_; }
   // Frame `frame` of a turntable of `frames` (frames 0: the scene's own camera).
@@ -44,6 +45,10 @@ class FrameScene {
   std::shared_ptr<const PreparedGeometry> geometry_;
   glm::dvec3 pivot_{0.0};
 };
+
+// The memory layout of the job's images of `scene` (--memory: lean when asked, or when the fast layout's estimated
+// peak would not fit), as every driver builds them: the same images either way.
+MemoryPlan memoryPlanFor(const RenderJob& job, const Scene& scene);
 
 // Opens the scene of `frame` (its camera) as `job` says, printing its warnings unless quiet. Returns kExitOk, or the
 // exit code with the message printed.

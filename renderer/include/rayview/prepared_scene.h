@@ -23,25 +23,33 @@ struct PreparedGeometry {
   std::string accelFallback;
 };
 
+// What a BVH is built for. Every caller names it: it chooses the build.
+enum class BvhBuild {
+  // Many renders from any camera (the viewer, the trade-off measurement, tests): Embree's full build (the packet BVH
+  // for small scenes).
+  Interactive,
+  // One image of the scene's own camera (`rayview render`, a frame of a turntable or batch): as Interactive, except
+  // that Embree builds at its quick quality when that image casts few camera rays a triangle (embreeLayoutFor): the
+  // same answers sooner. Needs the scene's camera: with bare geometry it builds as Interactive.
+  OneImage,
+  // Less memory (rayview/lean_memory.h): rayview's packet BVH with leaves of up to kLeanLeafTriangles, the same
+  // answers, slower rays.
+  Lean,
+};
+
 // Builds the accelerator relative to `origin` (the camera's position: coordinates relative to the camera,
 // taken in double before anything becomes float, SPEC section 6). Returns nullptr when `progress` cancels.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const SceneGeometry> geometry,
-                                                        const glm::dvec3& origin, AccelKind kind,
+                                                        const glm::dvec3& origin, AccelKind kind, BvhBuild build,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
 // The same for a loaded scene, relative to its camera; shares `scene` (no copy of its meshes). Embree is
 // used only when every ray of the scene stays in its range (embreeRangeProblem), else the reference BVH and
 // `accelFallback` says why.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
-                                                        BuildProgress progress = nullptr, void* progressUser = nullptr);
-// Which BVH a fast back-end builds. Fast: Embree (the packet BVH for small scenes). Lean (rayview/lean_memory.h):
-// rayview's packet BVH with leaves of up to kLeanLeafTriangles, the same answers in less memory, slower rays.
-// This overload is for one render of the scene's camera: Embree builds at its quick quality when that render casts
-// few camera rays a triangle (embreeLayoutFor), the same answers sooner.
-enum class BvhLayout { Fast, Lean };
-std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,
-                                                        BvhLayout layout);
+                                                        BvhBuild build, BuildProgress progress = nullptr,
+                                                        void* progressUser = nullptr);
 // Same, on a copy of the scene's geometry.
-std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind,
+std::shared_ptr<const PreparedGeometry> prepareGeometry(const Scene& scene, AccelKind kind, BvhBuild build,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
 
 }  // namespace rayview
