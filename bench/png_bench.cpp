@@ -17,7 +17,7 @@
 #include <thread>
 #include <vector>
 
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"

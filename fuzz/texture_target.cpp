@@ -12,7 +12,7 @@
 
 #include "fuzz_input.h"
 #include "rayview/image_limits.h"
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   namespace fs = std::filesystem;

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "model_parts.h"
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 namespace rayview::model {
 namespace {

@@ -41,6 +41,9 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
 // rayview's own readers: nullopt-like false when the file is not one they read (Assimp then reads it).
 bool readPlyOrStl(const std::filesystem::path& path, SceneGeometry& geometry, Notes& notes);
 
+// rayview's STL reader (ASCII and binary), for readPlyOrStl: false when `bytes` are not an STL file.
+bool readStl(const std::string& bytes, const std::filesystem::path& path, SceneGeometry& geometry);
+
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& message);
 
 }  // namespace rayview::model

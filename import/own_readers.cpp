@@ -8,7 +8,7 @@
 
 #include "byte_input.h"
 #include "model_parts.h"
-#include "ply_reader.h"
+#include "rayview/ply_reader.h"
 
 namespace rayview::model {
 namespace {
@@ -48,8 +48,6 @@ void readPly(const std::string& bytes, const std::filesystem::path& path, SceneG
 }
 
 }  // namespace
-
-bool readStl(const std::string& bytes, const std::filesystem::path& path, SceneGeometry& g);
 
 bool readPlyOrStl(const std::filesystem::path& path, SceneGeometry& geometry, Notes& notes) {
   std::string extension = path.extension().string();

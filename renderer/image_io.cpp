@@ -15,7 +15,7 @@
 
 #include <zlib.h>
 
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 namespace rayview::png_detail {
 unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, int quality);

@@ -1,7 +1,7 @@
 // The PLY reader (ply_reader.h): the header, then each element's records in order, ASCII or binary, each value
 // read straight into the slot its property fills.
 
-#include "ply_reader.h"
+#include "rayview/ply_reader.h"
 
 #include <algorithm>
 #include <bit>

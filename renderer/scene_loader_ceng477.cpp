@@ -7,7 +7,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "ply_reader.h"
+#include "rayview/ply_reader.h"
 #include "scene_loader_internal.h"
 
 namespace rayview::scene_loading {

@@ -27,7 +27,7 @@
 
 #include "number_list.h"
 #include "rayview/accel.h"
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 #include "xml_repair.h"
 
 namespace rayview::scene_loading {

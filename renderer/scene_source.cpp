@@ -3,7 +3,7 @@
 #include "rayview/file_read.h"
 #include "rayview/image.h"
 #include "rayview/input_files.h"
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 
 namespace rayview {

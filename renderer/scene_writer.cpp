@@ -6,7 +6,7 @@
 
 #include "rayview/image.h"
 #include "rayview/scene_source.h"
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 namespace rayview {
 namespace {

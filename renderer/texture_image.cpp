@@ -1,4 +1,4 @@
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -20,7 +20,7 @@
 #include "rayview/scene_writer.h"
 #include "rayview/thread_pool.h"
 #include "support/image_compare.h"
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 namespace rayview {
 namespace {

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "ply_reader.h"
+#include "rayview/ply_reader.h"
 
 namespace rayview {
 namespace {

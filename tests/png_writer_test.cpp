@@ -9,7 +9,7 @@
 #include <string>
 #include <utility>
 
-#include "texture_image.h"
+#include "rayview/texture_image.h"
 
 #include "rayview/image.h"
 
