@@ -19,6 +19,7 @@
 #include "scene_hash.h"
 #include "scene_render_thread.h"
 #include "tile_dealer.h"
+#include "worker_watch.h"
 
 namespace rayview::cluster {
 namespace {
@@ -27,8 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 // MPI counts are ints: a scene order goes in pieces.
 constexpr std::size_t kPiece = std::size_t{1} << 30;
-// An idle worker hears from rank 0 this often, so that its own watch on rank 0 stays quiet.
-constexpr auto kNudgeEvery = std::chrono::milliseconds(1000);
 constexpr int kNobody = -1;
 
 // A scene between its load on rank 0 and its last frame written.
@@ -66,7 +65,7 @@ class SceneCoordinator {
                    ThreadPool& pool, FrameProgress& progress, std::vector<RankTally>& tally)
       : job_(job), frames_(frames), runs_(runs), progress_(progress), tally_(tally), pile_(runs.size()),
         scenes_(runs.size()), held_(tally.size(), kNobody), heldLeft_(tally.size(), 0),
-        lastHeard_(tally.size(), Clock::now()), lastSent_(tally.size(), Clock::now()), own_(pool) {}
+        watch_(static_cast<int>(tally.size())), own_(pool) {}
 
   int run() {
     auto pause = kProbePause;
@@ -89,6 +88,7 @@ class SceneCoordinator {
                                   reinterpret_cast<const std::uint8_t*>(end) + sizeof end));
     // The end is small and goes eagerly; a lost rank's is not waited for.
     outbox_.drain(std::chrono::seconds(1));
+    for (int w = 1; w < ranks(); ++w) tally_[w].lost = watch_.lost(w);
     if (!message_.empty()) std::fprintf(stderr, "%s\n", message_.c_str());
     return code_;
   }
@@ -115,13 +115,13 @@ class SceneCoordinator {
   void dealToIdleRanks() {
     for (int k = 1; k <= ranks() && !stopped_; ++k) {
       const int r = k % ranks();
-      if (held_[r] != kNobody || tally_[r].lost) continue;
+      if (held_[r] != kNobody || watch_.lost(r)) continue;
       const auto next = pile_.next();
       if (!next || !ready(*next)) return;
       const auto run = pile_.take(r);
       held_[r] = static_cast<int>(*run);
       heldLeft_[r] = framesOf(*run);
-      lastHeard_[r] = Clock::now();  // its silence counts from now
+      watch_.startedHolding(r);
       if (r == 0) renderOwn(*run);
       else sendScene(r, *run);
     }
@@ -187,7 +187,7 @@ class SceneCoordinator {
 
   void send(int worker, int tag, Bytes bytes) {
     outbox_.send(worker, tag, std::move(bytes));
-    lastSent_[worker] = Clock::now();
+    watch_.sent(worker);
   }
 
   bool takeOwnResults() {
@@ -212,7 +212,7 @@ class SceneCoordinator {
       loseWorker(worker);
       return true;
     }
-    lastHeard_[worker] = Clock::now();
+    watch_.heard(worker);
     if (arrival->tag == kTagSceneResult && arrival->bytes >= sizeof(SceneResultHeader)) {
       SceneResultHeader header;
       std::memcpy(&header, inbox_.data(), sizeof header);
@@ -222,7 +222,7 @@ class SceneCoordinator {
     } else if (arrival->tag == kTagLoadError) {
       stop(kExitBadInput, "rayview: rank " + std::to_string(worker) + ": " +
                               std::string(reinterpret_cast<const char*>(inbox_.data()), arrival->bytes));
-      if (!tally_[worker].lost) held_[worker] = kNobody;
+      if (!watch_.lost(worker)) held_[worker] = kNobody;
     }
     return true;
   }
@@ -269,18 +269,12 @@ class SceneCoordinator {
   // Silent workers holding a scene are lost and their scene dealt again; idle ones get a nudge.
   void watchWorkers() {
     outbox_.reap();
-    const auto now = Clock::now();
-    for (int w = 1; w < ranks(); ++w) {
-      if (tally_[w].lost) continue;
-      if (held_[w] != kNobody && now - lastHeard_[w] > kLostAfter) loseWorker(w);
-      else if (held_[w] == kNobody && now - lastSent_[w] > kNudgeEvery) send(w, kTagNudge, {});
-    }
+    watch_.watch([this](int w) { return held_[w] != kNobody; }, [this](int w) { loseWorker(w); },
+                 [this](int w) { send(w, kTagNudge, {}); });
   }
 
   void loseWorker(int worker) {
-    if (tally_[worker].lost) return;
-    tally_[worker].lost = true;
-    notePeerLost();
+    if (!watch_.lose(worker)) return;
     const int run = held_[worker];
     held_[worker] = kNobody;
     pile_.reclaim(worker);
@@ -299,8 +293,8 @@ class SceneCoordinator {
   std::vector<SceneInFlight> scenes_;
   std::vector<int> held_;                 // per rank: the run it renders
   std::vector<std::size_t> heldLeft_;     // per rank: frames of that run not yet sent back
-  std::vector<Clock::time_point> lastHeard_, lastSent_;
-  Outbox outbox_{[this](int rank) { return tally_[static_cast<std::size_t>(rank)].lost; }};
+  WorkerWatch watch_;
+  Outbox outbox_{[this](int rank) { return watch_.lost(rank); }};
   Bytes inbox_;
   std::future<SceneLoad> loading_;  // the scene being loaded, at most one
   std::size_t loadingRun_ = 0;

@@ -13,6 +13,7 @@
 #include "tile_dealer.h"
 #include "tile_exchange.h"
 #include "tile_render.h"
+#include "worker_watch.h"
 
 namespace rayview::cluster {
 namespace {
@@ -29,8 +30,6 @@ std::atomic<std::size_t> gFramesPlanned{0};
 // fills a worker alone: a second one waiting behind it could leave the other ranks idle at the run's end, and a
 // frame's round trip is small next to its render.
 constexpr int kDepth = 2;
-// An idle worker hears from rank 0 this often, so that its own watch on rank 0 stays quiet.
-constexpr auto kNudgeEvery = std::chrono::milliseconds(1000);
 constexpr std::int32_t kStillWorking = -2;
 
 double msBetween(Clock::time_point a, Clock::time_point b) {
@@ -41,12 +40,10 @@ class Coordinator {
  public:
   Coordinator(const std::vector<WorkUnit>& units, int ranks, FrameAssembly& assembly, int round)
       : units_(units), assembly_(assembly), round_(round), dealer_(units.size()),
-        tally_(static_cast<std::size_t>(ranks)),
-        held_(static_cast<std::size_t>(ranks), 0), lastHeard_(static_cast<std::size_t>(ranks), Clock::now()),
-        lastSent_(static_cast<std::size_t>(ranks), Clock::now()) {}
+        tally_(static_cast<std::size_t>(ranks)), held_(static_cast<std::size_t>(ranks), 0), watch_(ranks) {}
 
   ExchangeResult run(const TracerFor& tracerFor, ThreadPool& pool, std::vector<bool>& lost) {
-    for (int w = 1; w < ranks(); ++w) tally_[w].lost = lost[w];
+    watch_ = WorkerWatch(ranks(), lost);
     if (ranks() == 1) {  // nobody to deal to: no coordinator polling beside the render
       renderOwnShare(tracerFor, pool);
       return {tally_, dealer_.allFinished()};
@@ -66,13 +63,14 @@ class Coordinator {
       pause = std::min(pause * 2, kLongestProbePause);
     }
     // A frame not written ends the job here, and the workers, a step behind rank 0, end without MPI_Finalize.
-    if (assembly_.failed()) gPeerLost.store(true);
+    if (assembly_.failed()) notePeerLost();
     // Lost ranks too: one only slow (starved of CPU) then ends cleanly; to a dead one the send never completes.
-    for (int w = 1; w < ranks(); ++w) send(w, gPeerLost.load() ? kNoMoreTilesRankLost : kNoMoreTiles);
+    for (int w = 1; w < ranks(); ++w) send(w, peerLost() ? kNoMoreTilesRankLost : kNoMoreTiles);
     dealer_.stop();  // a frame that could not be written ends the round with units left
     local.join();
     finishSends();
-    for (int w = 1; w < ranks(); ++w) lost[w] = tally_[w].lost;
+    lost = watch_.lostRanks();
+    for (int w = 1; w < ranks(); ++w) tally_[w].lost = lost[w];
     return {tally_, dealer_.allFinished()};
   }
 
@@ -109,7 +107,7 @@ class Coordinator {
   void send(int worker, std::int32_t value) {
     outbox_.push_back({value, MPI_REQUEST_NULL});
     MPI_Isend(&outbox_.back().value, 1, MPI_INT32_T, worker, kTagTile, MPI_COMM_WORLD, &outbox_.back().request);
-    lastSent_[worker] = Clock::now();
+    watch_.sent(worker);
     // Completed sends leave the front; a send to a lost rank may never complete and is left alone.
     while (outbox_.size() > 64) {
       int done = 0;
@@ -120,10 +118,10 @@ class Coordinator {
   }
 
   void deal(int worker) {
-    while (!tally_[worker].lost && held_[worker] < kDepth) {
+    while (!watch_.lost(worker) && held_[worker] < kDepth) {
       const auto tile = dealer_.take(worker);
       if (!tile) return;
-      if (held_[worker] == 0) lastHeard_[worker] = Clock::now();  // its silence counts from now
+      if (held_[worker] == 0) watch_.startedHolding(worker);
       held_[worker] += weight(*tile);
       send(worker, static_cast<std::int32_t>(*tile));
     }
@@ -137,7 +135,7 @@ class Coordinator {
       loseWorker(worker);
       return true;
     }
-    lastHeard_[worker] = Clock::now();
+    watch_.heard(worker);
     if (arrival->tag == kTagResult && arrival->bytes >= sizeof(TileResultHeader)) takeResult(worker);
     return true;
   }
@@ -160,22 +158,13 @@ class Coordinator {
 
   // Silent workers holding tiles are lost and their tiles dealt again; idle ones get work or a nudge.
   void watchWorkers() {
-    const auto now = Clock::now();
-    for (int w = 1; w < ranks(); ++w) {
-      if (tally_[w].lost) continue;
-      if (held_[w] > 0 && now - lastHeard_[w] > kLostAfter) {
-        loseWorker(w);
-        continue;
-      }
-      deal(w);
-      if (held_[w] == 0 && now - lastSent_[w] > kNudgeEvery) send(w, kStillWorking);
-    }
+    for (int w = 1; w < ranks(); ++w) deal(w);
+    watch_.watch([this](int w) { return held_[w] > 0; }, [this](int w) { loseWorker(w); },
+                 [this](int w) { send(w, kStillWorking); });
   }
 
   void loseWorker(int worker) {
-    if (tally_[worker].lost) return;
-    tally_[worker].lost = true;
-    gPeerLost.store(true);
+    if (!watch_.lose(worker)) return;
     held_[worker] = 0;
     const std::vector<std::size_t> back = dealer_.reclaim(worker);
     std::size_t frames = 0;
@@ -211,7 +200,7 @@ class Coordinator {
   TileDealer dealer_;
   std::vector<RankTally> tally_;
   std::vector<int> held_;
-  std::vector<Clock::time_point> lastHeard_, lastSent_;
+  WorkerWatch watch_;
   std::deque<Outgoing> outbox_;  // a deque: each value stays where its send reads it
   std::vector<std::uint8_t> inbox_;
 };
