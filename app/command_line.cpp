@@ -357,9 +357,10 @@ std::string helpText(CommandKind kind) {
              "options:\n" +
              optionLines(kImport) + "\nexit status: 0 success, 1 the output could not be written, 2 bad model or bad arguments\n";
     case CommandKind::Export:
-      return "usage: rayview export SCENE.xml -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
+      return "usage: rayview export SCENE -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
              "\n"
-             "Writes the scene's geometry and materials for other tools.\n"
+             "Writes the geometry and materials of any input (a scene, a CENG477 file's camera, a model) for other\n"
+             "tools.\n"
              "\n"
              "options:\n" +
              optionLines(kExport) + "\nexit status: 0 success, 2 bad scene, bad arguments or the model could not be written\n";
@@ -380,7 +381,8 @@ std::string helpText(CommandKind kind) {
       "  rayview import MODEL -o SCENE.xml       a model (OBJ, PLY, STL, glTF...) as a scene in this format\n"
       "  rayview export SCENE.xml -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
       "                                          the scene's geometry and materials for other tools\n"
-      "  (SCENE may also be a model file: it is opened with a camera and lights made up for it)\n"
+      "  (SCENE may be the handout's XML, a CENG477 file or a model file, in every command: see\n"
+      "   docs/inputs-and-options.md)\n"
       "  rayview COMMAND --help                  a command's own usage and options\n"
       "  rayview --help | --version\n"
       "\n"
