@@ -311,6 +311,31 @@ std::string optionLines(unsigned mode) {
   return text;
 }
 
+// `rayview import` and `rayview export`: between a scene and the formats other tools read.
+std::string modelCommandHelp(CommandKind kind) {
+  switch (kind) {
+    case CommandKind::Import:
+      return "usage: rayview import MODEL -o SCENE.xml [--up y|z] [--resolution WxH]\n"
+             "\n"
+             "Writes MODEL (OBJ, PLY, STL, glTF/GLB and the other formats Assimp reads) as a scene in the handout's\n"
+             "format, with a camera, lights and materials made up for what it lacks and its texture as a PNG beside\n"
+             "it; prints one summary line (see docs/scene-format.md, \"Opening models\").\n"
+             "\n"
+             "options:\n" +
+             optionLines(kImport) + "\nexit status: 0 success, 1 the output could not be written, 2 bad model or bad arguments\n";
+    case CommandKind::Export:
+      return "usage: rayview export SCENE -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
+             "\n"
+             "Writes the geometry and materials of any input (a scene, a CENG477 file's camera, a model) for other\n"
+             "tools.\n"
+             "\n"
+             "options:\n" +
+             optionLines(kExport) + "\nexit status: 0 success, 2 bad scene, bad arguments or the model could not be written\n";
+    default:
+      return {};
+  }
+}
+
 }  // namespace
 
 std::string helpText(CommandKind kind) {
@@ -348,22 +373,8 @@ std::string helpText(CommandKind kind) {
              "\nexit status: 0 within the threshold, 1 not, 2 bad arguments, an unreadable image or different sizes, 3 "
              "out of memory\n";
     case CommandKind::Import:
-      return "usage: rayview import MODEL -o SCENE.xml [--up y|z] [--resolution WxH]\n"
-             "\n"
-             "Writes MODEL (OBJ, PLY, STL, glTF/GLB and the other formats Assimp reads) as a scene in the handout's\n"
-             "format, with a camera, lights and materials made up for what it lacks and its texture as a PNG beside\n"
-             "it; prints one summary line (see docs/scene-format.md, \"Opening models\").\n"
-             "\n"
-             "options:\n" +
-             optionLines(kImport) + "\nexit status: 0 success, 1 the output could not be written, 2 bad model or bad arguments\n";
     case CommandKind::Export:
-      return "usage: rayview export SCENE -o MODEL.obj|.ply|.stl|.gltf|.glb\n"
-             "\n"
-             "Writes the geometry and materials of any input (a scene, a CENG477 file's camera, a model) for other\n"
-             "tools.\n"
-             "\n"
-             "options:\n" +
-             optionLines(kExport) + "\nexit status: 0 success, 2 bad scene, bad arguments or the model could not be written\n";
+      return modelCommandHelp(kind);
     default:
       break;
   }
