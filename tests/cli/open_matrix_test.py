@@ -78,7 +78,10 @@ class Rows:
 
     def __init__(self, args, inputs):
         self.args, self.inputs, self.count = args, inputs, 0
-        self.mpirun = shutil.which("mpirun")
+        libexec = os.path.join(os.path.dirname(args.rayview), "libexec")
+        # A build without MPI or without the viewer has no row to check there.
+        self.mpirun = shutil.which("mpirun") and os.path.exists(os.path.join(libexec, "rayview-mpi"))
+        self.viewer = shutil.which("xvfb-run") and os.path.exists(os.path.join(libexec, "rayview-viewer"))
 
     def fresh(self):
         self.count += 1
@@ -256,7 +259,7 @@ def main():
         if mpi and not rows.mpirun:
             skipped.append(row)
             continue
-        if row == "viewer" and not shutil.which("xvfb-run"):
+        if row == "viewer" and not rows.viewer:
             skipped.append(row)
             continue
         checks, runs = cell_checks(rows, row)
@@ -280,7 +283,8 @@ def main():
             else:
                 singles[(row, column)] = runs[start:]
     for row in skipped:
-        print(f"  skipped: {row} ({'mpirun' if row.startswith('`mpirun') else 'xvfb-run'} not found)")
+        why = "mpirun or rayview's MPI program" if row.startswith("`mpirun") else "xvfb-run or the viewer"
+        print(f"  skipped: {row} ({why} not found in this build)")
     for failure in failures:
         print(f"FAILED: {failure}")
     total = len(table_rows) * len(columns)
