@@ -1,12 +1,15 @@
-// Reading a model: rayview's own PLY/STL readers or Assimp, then materials, texture, camera and lights.
+// Reading a model: rayview's own PLY/STL/OBJ readers or Assimp, then materials, texture, camera and lights.
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cctype>
+#include <memory>
 #include <system_error>
 
 #include "model_parts.h"
+#include "obj_reader.h"
 #include "rayview/model_import.h"
 
 namespace rayview {
@@ -32,6 +35,13 @@ const aiScene* readWithAssimp(Assimp::Importer& importer, const fs::path& path) 
   }
   if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) model::fail(path, "cannot be read as a model (incomplete)");
   return scene;
+}
+
+// OBJ files are read by rayview's own reader (obj_reader.h): exact numbers, shared vertices, checked indices.
+bool isObj(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".obj";
 }
 
 std::string joined(const std::vector<std::string>& items) {
@@ -69,6 +79,10 @@ SceneGeometry readModelGeometry(const fs::path& path, bool viaAssimp) {
   SceneGeometry geometry;
   model::Notes notes;
   if (!viaAssimp && model::readPlyOrStl(path, geometry, notes)) return geometry;
+  if (!viaAssimp && isObj(path)) {
+    model::readObj(path, geometry, notes);
+    return geometry;
+  }
   Assimp::Importer importer;
   model::gatherGeometry(*readWithAssimp(importer, path), path, geometry, notes);
   return geometry;
@@ -83,6 +97,9 @@ ModelScene readModel(const fs::path& path, const ModelImportOptions& options) {
   const aiScene* assimp = nullptr;
   if (model::readPlyOrStl(path, scene, notes)) {
     singleMaterial(scene, notes);
+  } else if (isObj(path)) {
+    const std::unique_ptr<aiScene> materials = model::readObj(path, scene, notes);
+    model::mapMaterials(*materials, path, scene, notes);
   } else {
     assimp = readWithAssimp(importer, path);
     model::gatherGeometry(*assimp, path, scene, notes);
