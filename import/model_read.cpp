@@ -98,8 +98,7 @@ ModelScene readModel(const fs::path& path, const ModelImportOptions& options) {
   if (model::readPlyOrStl(path, scene, notes)) {
     singleMaterial(scene, notes);
   } else if (isObj(path)) {
-    const std::unique_ptr<aiScene> materials = model::readObj(path, scene, notes);
-    model::mapMaterials(*materials, path, scene, notes);
+    model::mapObjMaterials(model::readObj(path, scene, notes), path, scene, notes);
   } else {
     assimp = readWithAssimp(importer, path);
     model::gatherGeometry(*assimp, path, scene, notes);

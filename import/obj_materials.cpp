@@ -5,7 +5,9 @@
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <cmath>
 #include <charconv>
+#include <cstdint>
 #include <optional>
 
 #include "obj_reader.h"
@@ -81,19 +83,14 @@ aiTextureType mapType(std::string_view key) {
   return aiTextureType_NONE;
 }
 
-// A new material with Assimp's OBJ defaults: grey 0.6 diffuse, no ambient or specular, opaque.
+// A new material as Assimp's OBJ reader starts one: grey 0.6 diffuse. Its other defaults (no ambient, specular or
+// emission, opaque, shininess 0) are what mapMaterials assumes when a key is absent, so they are not stored.
 aiMaterial* newMaterial(const std::string& name) {
   auto* m = new aiMaterial;
   const aiString id(name);
   m->AddProperty(&id, AI_MATKEY_NAME);
-  const aiColor3D grey(0.6f, 0.6f, 0.6f), black(0.0f, 0.0f, 0.0f);
+  const aiColor3D grey(0.6f, 0.6f, 0.6f);
   m->AddProperty(&grey, 1, AI_MATKEY_COLOR_DIFFUSE);
-  m->AddProperty(&black, 1, AI_MATKEY_COLOR_AMBIENT);
-  m->AddProperty(&black, 1, AI_MATKEY_COLOR_SPECULAR);
-  m->AddProperty(&black, 1, AI_MATKEY_COLOR_EMISSIVE);
-  const float one = 1.0f, zero = 0.0f;
-  m->AddProperty(&one, 1, AI_MATKEY_OPACITY);
-  m->AddProperty(&zero, 1, AI_MATKEY_SHININESS);
   return m;
 }
 
@@ -121,23 +118,31 @@ void applyStatement(aiMaterial& m, std::string_view key, std::string_view rest) 
 
 }  // namespace
 
-ObjMaterials::~ObjMaterials() {
-  for (aiMaterial* m : list) delete m;
-}
-
-unsigned ObjMaterials::defaultMaterial() {
-  const auto [it, added] = byName.emplace(AI_DEFAULT_MATERIAL_NAME, static_cast<unsigned>(list.size()));
-  if (added) list.push_back(newMaterial(AI_DEFAULT_MATERIAL_NAME));
+unsigned ObjMaterials::named(const std::string& name) {
+  const auto [it, added] = byName.emplace(name, static_cast<unsigned>(list.size()));
+  if (added) list.push_back(ObjMaterial{name, {}});
   return it->second;
 }
 
-std::unique_ptr<aiScene> ObjMaterials::takeInto() {
+unsigned ObjMaterials::defaultMaterial() { return named(AI_DEFAULT_MATERIAL_NAME); }
+
+std::unique_ptr<aiScene> ObjMaterials::toScene(const std::vector<bool>& used) const {
   auto scene = std::make_unique<aiScene>();
   scene->mNumMaterials = static_cast<unsigned>(list.size());
-  scene->mMaterials = new aiMaterial*[list.size() + 1];
-  for (std::size_t i = 0; i < list.size(); ++i) scene->mMaterials[i] = list[i];
-  list.clear();
-  byName.clear();
+  scene->mMaterials = new aiMaterial*[list.size() + 1]();
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    if (i >= used.size() || !used[i]) continue;
+    aiMaterial* m = newMaterial(list[i].name);
+    scene->mMaterials[i] = m;
+    for (const auto& [key, rest] : list[i].statements) {
+      if (const aiTextureType type = mapType(key); type != aiTextureType_NONE) {
+        const aiString file(mapFile(rest));
+        if (file.length > 0) m->AddProperty(&file, AI_MATKEY_TEXTURE(type, 0));
+      } else {
+        applyStatement(*m, key, rest);
+      }
+    }
+  }
   return scene;
 }
 
@@ -146,7 +151,7 @@ std::filesystem::path materialLibraryPath(const std::filesystem::path& modelPath
 }
 
 void parseMaterialLibrary(std::string_view text, ObjMaterials& out) {
-  aiMaterial* current = nullptr;
+  std::size_t current = SIZE_MAX;  // the material being defined, or none
   while (!text.empty()) {
     std::size_t end = text.find('\n');
     if (end == std::string_view::npos) end = text.size();
@@ -157,18 +162,90 @@ void parseMaterialLibrary(std::string_view text, ObjMaterials& out) {
     if (key.empty()) continue;
     if (key == "newmtl") {
       const std::string name(trimmed(line));
-      const auto [it, added] = out.byName.emplace(name, static_cast<unsigned>(out.list.size()));
-      current = added ? newMaterial(name) : nullptr;  // a second definition of a name is ignored
-      if (added) out.list.push_back(current);
+      const std::size_t before = out.list.size();
+      const unsigned index = out.named(name);
+      current = out.list.size() > before ? index : SIZE_MAX;  // a second definition of a name is ignored
       continue;
     }
-    if (!current) continue;
-    if (const aiTextureType type = mapType(key); type != aiTextureType_NONE) {
-      const aiString file(mapFile(line));
-      if (file.length > 0) current->AddProperty(&file, AI_MATKEY_TEXTURE(type, 0));
-      continue;
+    if (current != SIZE_MAX) out.list[current].statements.emplace_back(std::string(key), std::string(trimmed(line)));
+  }
+}
+
+namespace {
+
+// What mapMaterials reads of an OBJ material (model_materials.cpp, phongOf), read from its statements.
+struct PhongInputs {
+  aiColor3D kd{0.6f, 0.6f, 0.6f};
+  std::optional<aiColor3D> ks;
+  std::optional<float> ns, pr, pm;
+  bool textured = false;
+};
+
+PhongInputs inputsOf(const ObjMaterial& m) {
+  PhongInputs in;
+  for (const auto& [key, rest] : m.statements) {
+    std::string_view line = rest;
+    if (mapType(key) == aiTextureType_DIFFUSE) in.textured |= !mapFile(rest).empty();
+    else if (key == "Kd") in.kd = colorOf(line).value_or(in.kd);
+    else if (key == "Ks") in.ks = colorOf(line) ? colorOf(line) : in.ks;
+    else if (key == "Ns") in.ns = number(word(line)) ? number(rest) : in.ns;
+    else if (key == "Pr") in.pr = number(word(line)) ? number(rest) : in.pr;
+    else if (key == "Pm") in.pm = number(word(line)) ? number(rest) : in.pm;
+  }
+  return in;
+}
+
+Color clamp01(const aiColor3D& c) { return glm::clamp(Color(c.r, c.g, c.b), Color(0.0f), Color(1.0f)); }
+
+// phongOf's formulas (model_materials.cpp) for the keys an OBJ material can have.
+Material phongOf(const PhongInputs& in) {
+  Material out;
+  out.diffuse = clamp01(in.kd);
+  if (in.pr || in.pm) {
+    float metallic = in.pm.value_or(0.0f), roughness = in.pr.value_or(1.0f);
+    metallic = std::clamp(std::isfinite(metallic) ? metallic : 0.0f, 0.0f, 1.0f);
+    roughness = std::clamp(std::isfinite(roughness) ? roughness : 1.0f, 0.0f, 1.0f);
+    const Color base = out.diffuse;
+    const float alpha = std::max(roughness * roughness, 0.01f);
+    out.phongExponent = std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f);
+    out.specular = Color(0.04f) + (base - Color(0.04f)) * metallic;
+    out.diffuse = base * (1.0f - metallic);
+    out.mirror = base * (metallic * (1.0f - roughness));
+  } else {
+    if (in.ks) out.specular = clamp01(*in.ks);
+    if (in.ns && std::isfinite(*in.ns) && *in.ns > 0.0f) out.phongExponent = std::clamp(*in.ns, 1.0f, 10000.0f);
+  }
+  out.ambient = out.diffuse;
+  return out;
+}
+
+}  // namespace
+
+void mapObjMaterials(const ObjMaterials& materials, const std::filesystem::path& path, Scene& out, Notes& notes) {
+  std::vector<bool> used(materials.list.size(), false);
+  for (const Mesh& mesh : out.meshes) used[mesh.material] = true;
+  std::vector<PhongInputs> inputs(materials.list.size());
+  bool textured = false;
+  for (std::size_t i = 0; i < inputs.size(); ++i)
+    if (used[i]) textured |= (inputs[i] = inputsOf(materials.list[i])).textured;
+  if (textured) {  // the texture's choice, loading and averaging are mapMaterials' alone
+    mapMaterials(*materials.toScene(used), path, out, notes);
+    return;
+  }
+  // As mapMaterials numbers and names them: in order of first use, repeated names given _2, _3, ...
+  std::vector<std::int64_t> ours(materials.list.size(), -1);
+  std::unordered_map<std::string, int> taken;
+  for (Mesh& mesh : out.meshes) {
+    std::int64_t& our = ours[mesh.material];
+    if (our < 0) {
+      our = static_cast<std::int64_t>(out.materials.size());
+      Material material = phongOf(inputs[mesh.material]);
+      material.id = materials.list[mesh.material].name;
+      if (material.id.empty()) material.id = "material" + std::to_string(mesh.material + 1);
+      if (const int seen = taken[material.id]++; seen > 0) material.id.append(1, '_').append(std::to_string(seen + 1));
+      out.materials.push_back(std::move(material));
     }
-    applyStatement(*current, key, line);
+    mesh.material = static_cast<std::uint32_t>(our);
   }
 }
 

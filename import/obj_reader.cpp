@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <utility>
 
 #include "byte_input.h"
 #include "rayview/diagnostics.h"
@@ -58,7 +59,7 @@ class ObjParser {
     }
   }
 
-  std::unique_ptr<aiScene> finish();
+  ObjMaterials finish();
 
  private:
   [[noreturn]] void failAt(const std::string& message) const {
@@ -241,12 +242,7 @@ void ObjParser::useMaterial(const std::string& material) {
     // As Assimp does: a material no library defines is made, grey, under its name.
     notes_.warnings.push_back("line " + std::to_string(line_) + ": material \"" + material +
                               "\" is not defined in the model's MTL files; it is grey");
-    ObjMaterials one;
-    parseMaterialLibrary("newmtl " + material + "\n", one);
-    index = static_cast<unsigned>(materials_.list.size());
-    materials_.byName.emplace(material, index);
-    materials_.list.push_back(one.list.front());
-    one.list.clear();
+    index = materials_.named(material);
   }
   if (!haveMaterial_ || index != material_) changed_ = true;
   material_ = index;
@@ -284,7 +280,7 @@ bool ObjParser::readLibrary(const fs::path& file) {
   return true;
 }
 
-std::unique_ptr<aiScene> ObjParser::finish() {
+ObjMaterials ObjParser::finish() {
   static const char* const kKinds[3] = {"vertex", "texture coordinate", "normal"};
   const std::size_t counts[3] = {g_.vertices.size(), g_.texCoords.size(), g_.normals.size()};
   for (int k = 0; k < 3; ++k)
@@ -310,12 +306,12 @@ std::unique_ptr<aiScene> ObjParser::finish() {
     notes_.dropped.push_back("the normals of " + std::to_string(facesWithoutNormals) +
                              " triangles (a normal of zero length)");
   if (colors_) notes_.dropped.push_back("vertex colours");
-  return materials_.takeInto();
+  return std::move(materials_);
 }
 
 }  // namespace
 
-std::unique_ptr<aiScene> readObj(const fs::path& path, SceneGeometry& g, Notes& notes) {
+ObjMaterials readObj(const fs::path& path, SceneGeometry& g, Notes& notes) {
   std::string problem;
   const std::string text = readWholeFile(path, problem);
   if (!problem.empty()) fail(path, problem);
