@@ -8,6 +8,7 @@
 #include <memory>
 #include <system_error>
 
+#include "assimp_warnings.h"
 #include "model_parts.h"
 #include "obj_reader.h"
 #include "rayview/model_import.h"
@@ -28,7 +29,10 @@ void checkReadable(const fs::path& path) {
 }
 
 const aiScene* readWithAssimp(Assimp::Importer& importer, const fs::path& path) {
+  const model::AssimpWarnings warnings;
   const aiScene* scene = importer.ReadFile(path.string(), kAssimpSteps);
+  if (const std::string broken = warnings.brokenData(); !broken.empty())
+    model::fail(path, "is broken (" + broken + "); rayview refuses it rather than draw what is left");
   if (!scene) {
     std::string why = importer.GetErrorString();
     model::fail(path, "cannot be read as a model" + (why.empty() ? std::string() : ": " + why));
