@@ -86,7 +86,7 @@ class ObjParser {
   }
 
   // The next number on the line; `required` ones must be there.
-  bool number(std::string_view& rest, double& value, bool required, const char* what) {
+  bool number(std::string_view& rest, double& value, bool required, const char* what, bool finite = true) {
     std::string_view w = word(rest);
     if (w.empty() || w[0] == '#') {
       if (required) failAt(std::string("expected ") + what + ", found the end of the line");
@@ -96,7 +96,7 @@ class ObjParser {
     const auto [end, error] = std::from_chars(w.data(), w.data() + w.size(), value);
     if (error != std::errc() || end != w.data() + w.size() || w.empty())
       failAt(std::string("expected ") + what + ", found '" + std::string(w.substr(0, 32)) + "'");
-    if (!std::isfinite(value)) failAt(std::string(what) + " is not a finite number");
+    if (finite && !std::isfinite(value)) failAt(std::string(what) + " is not a finite number");
     return true;
   }
 
@@ -112,7 +112,7 @@ class ObjParser {
 
   void normal(std::string_view rest) {
     glm::dvec3 n;
-    for (int c = 0; c < 3; ++c) number(rest, n[c], true, "a normal coordinate");
+    for (int c = 0; c < 3; ++c) number(rest, n[c], true, "a normal coordinate", false);  // a bad one is dropped
     const double length = std::sqrt(n.x * n.x + n.y * n.y + n.z * n.z);
     const bool usable = length > 0.0 && std::isfinite(length);
     badNormal_.push_back(!usable);
@@ -304,7 +304,7 @@ ObjMaterials ObjParser::finish() {
   if (pointsAndLines_ > 0) notes_.dropped.push_back(std::to_string(pointsAndLines_) + " points and lines");
   if (facesWithoutNormals > 0)
     notes_.dropped.push_back("the normals of " + std::to_string(facesWithoutNormals) +
-                             " triangles (a normal of zero length)");
+                             " triangles (a normal of zero length or not finite)");
   if (colors_) notes_.dropped.push_back("vertex colours");
   return std::move(materials_);
 }
