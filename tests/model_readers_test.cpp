@@ -169,5 +169,20 @@ TEST(OwnReaders, PlyColoursAreSaidDroppedAndStripsRead) {
   EXPECT_NE(model.summary.find("dropped: vertex colours"), std::string::npos) << model.summary;
 }
 
+// A TGA texture named by map_Kd (with an option before the file name) is read and kept.
+TEST(ObjReader, TgaTextureFromTheMtlIsKept) {
+  std::string tga(18, '\0');
+  tga[2] = 2, tga[12] = 2, tga[14] = 2, tga[16] = 24;
+  tga += std::string(12, '\x40');
+  writeFile("wood.tga", tga);
+  writeFile("textured.mtl", "newmtl wood\nKd 1 1 1\nmap_Kd -s 1 1 1 wood.tga\n");
+  const ModelScene model = read(writeFile("textured.obj", "mtllib textured.mtl\n" + kSquare +
+                                                              "vt 0 0\nvt 1 0\nvt 1 1\nusemtl wood\nf 1/1 2/2 3/3\n"));
+  EXPECT_NE(model.summary.find("texture wood.tga (2x2)"), std::string::npos) << model.summary;
+  ASSERT_TRUE(model.scene.texture);
+  EXPECT_EQ(model.scene.texture->rgb[0], 0x40);
+  EXPECT_EQ(model.scene.materials.at(0).id, "wood");
+}
+
 }  // namespace
 }  // namespace rayview
