@@ -162,9 +162,9 @@ void parseMaterialLibrary(std::string_view text, ObjMaterials& out) {
     if (key.empty()) continue;
     if (key == "newmtl") {
       const std::string name(trimmed(line));
-      const std::size_t before = out.list.size();
       const unsigned index = out.named(name);
-      current = out.list.size() > before ? index : SIZE_MAX;  // a second definition of a name is ignored
+      current = out.list[index].defined ? SIZE_MAX : index;  // a second definition of a name is ignored
+      out.list[index].defined = true;
       continue;
     }
     if (current != SIZE_MAX) out.list[current].statements.emplace_back(std::string(key), std::string(trimmed(line)));

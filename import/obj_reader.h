@@ -23,6 +23,7 @@ namespace rayview::model {
 struct ObjMaterial {
   std::string name;
   std::vector<std::pair<std::string, std::string>> statements;
+  bool defined = false;  // by an MTL's newmtl (not only named by a usemtl before its mtllib line)
 };
 
 // The materials an OBJ file's MTL libraries define, in order, and their index by name.
