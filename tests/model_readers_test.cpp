@@ -100,6 +100,14 @@ TEST(ObjReader, GroupsAndMaterialsAreMeshesAndPolygonsFans) {
   EXPECT_NE(model.warnings[0].find("\"nowhere\""), std::string::npos);
 }
 
+// A usemtl before the mtllib line that defines its material still gets the definition.
+TEST(ObjReader, AMaterialLibraryAfterItsUsemtlStillDefinesIt) {
+  writeFile("late.mtl", "newmtl late\nKd 0.2 0.3 0.4\n");
+  const Scene scene = read(writeFile("late.obj", kSquare + "usemtl late\nf 1 2 3\nmtllib late.mtl\n")).scene;
+  ASSERT_EQ(scene.materials.size(), 1u);
+  EXPECT_FLOAT_EQ(scene.materials[0].diffuse.z, 0.4f);
+}
+
 TEST(ObjReader, EveryOutOfRangeIndexIsRefusedWithItsLine) {
   const std::string uv = "vt 0 0\n", n = "vn 0 0 1\n";
   const struct {
