@@ -21,7 +21,7 @@ bool isIdentity(const aiMatrix4x4& m) { return m.IsIdentity(); }
 
 struct MeshCounts {
   std::size_t pointsAndLines = 0;
-  std::size_t meshesWithBadNormals = 0;
+  std::size_t trianglesWithBadNormals = 0;
 };
 
 class Gatherer {
@@ -64,7 +64,9 @@ class Gatherer {
 
   // A polygon Assimp left whole is cut into a fan; points and lines are counted and left out.
   void face(const aiMesh& m, const aiFace& f, std::size_t base, std::int32_t normalBase, std::int32_t uvBase) {
-    if (f.mNumIndices < 3 || !f.mIndices) {
+    if (f.mNumIndices == 0 || !f.mIndices)  // a face a reader left empty, having found it broken
+      fail(path_, "a face of mesh \"" + std::string(m.mName.C_Str()) + "\" has no vertices (broken in the file)");
+    if (f.mNumIndices < 3) {
       ++counts_.pointsAndLines;
       return;
     }
@@ -77,17 +79,25 @@ class Gatherer {
       const unsigned corner[3] = {f.mIndices[0], f.mIndices[k], f.mIndices[k + 1]};
       Triangle t;
       FaceAttributes a;
+      bool badNormal = false;
       for (int c = 0; c < 3; ++c) {
         t.vertex[c] = static_cast<std::uint32_t>(base + corner[c]);
         if (normalBase >= 0) a.normal[c] = normalBase + static_cast<std::int32_t>(corner[c]);
         if (uvBase >= 0) a.texCoord[c] = uvBase + static_cast<std::int32_t>(corner[c]);
+        badNormal |= normalBase >= 0 && badNormal_[corner[c]];
+      }
+      if (badNormal) {  // a normal of no length costs only the triangles that use it their normals
+        for (std::int32_t& n : a.normal) n = kNoIndex;
+        ++counts_.trianglesWithBadNormals;
       }
       g_.addFace(t, a);
     }
   }
 
-  // The mesh's normals in world space (inverse transpose); -1 when it has none or any is not finite.
+  // The mesh's normals in world space (inverse transpose); -1 when it has none. One of no length or not finite is
+  // marked in badNormal_ (and stored as +z, never used).
   std::int32_t normals(const aiMesh& m, const aiMatrix4x4& world) {
+    badNormal_.assign(m.mNumVertices, false);
     if (!m.mNormals) return -1;
     aiMatrix3x3 toWorld(world);
     toWorld.Inverse().Transpose();
@@ -95,12 +105,9 @@ class Gatherer {
     for (unsigned i = 0; i < m.mNumVertices; ++i) {
       aiVector3D n = toWorld * m.mNormals[i];
       const float length = n.Length();
-      if (!(length > 0.0f) || !std::isfinite(length)) {
-        g_.normals.resize(base);
-        ++counts_.meshesWithBadNormals;
-        return -1;
-      }
-      g_.normals.emplace_back(n.x / length, n.y / length, n.z / length);
+      badNormal_[i] = !(length > 0.0f) || !std::isfinite(length);
+      if (badNormal_[i]) g_.normals.emplace_back(0.0f, 0.0f, 1.0f);
+      else g_.normals.emplace_back(n.x / length, n.y / length, n.z / length);
     }
     return static_cast<std::int32_t>(base);
   }
@@ -119,6 +126,7 @@ class Gatherer {
   const fs::path& path_;
   SceneGeometry& g_;
   MeshCounts counts_;
+  std::vector<bool> badNormal_;  // of the mesh being gathered, by vertex
 };
 
 }  // namespace
@@ -155,9 +163,9 @@ void gatherGeometry(const aiScene& scene, const fs::path& path, SceneGeometry& g
   if (geometry.triangles.empty()) fail(path, "the file has no triangles (no faces of 3 or more vertices)");
   if (gatherer.counts().pointsAndLines > 0)
     notes.dropped.push_back(std::to_string(gatherer.counts().pointsAndLines) + " points and lines");
-  if (gatherer.counts().meshesWithBadNormals > 0)
-    notes.dropped.push_back("the normals of " + std::to_string(gatherer.counts().meshesWithBadNormals) +
-                            " meshes (not finite)");
+  if (gatherer.counts().trianglesWithBadNormals > 0)
+    notes.dropped.push_back("the normals of " + std::to_string(gatherer.counts().trianglesWithBadNormals) +
+                            " triangles (a normal of zero length or not finite)");
 }
 
 }  // namespace rayview::model

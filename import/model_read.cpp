@@ -1,12 +1,16 @@
-// Reading a model: rayview's own PLY/STL readers or Assimp, then materials, texture, camera and lights.
+// Reading a model: rayview's own PLY/STL/OBJ readers or Assimp, then materials, texture, camera and lights.
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <cctype>
+#include <memory>
 #include <system_error>
 
+#include "assimp_warnings.h"
 #include "model_parts.h"
+#include "obj_reader.h"
 #include "rayview/model_import.h"
 
 namespace rayview {
@@ -25,13 +29,23 @@ void checkReadable(const fs::path& path) {
 }
 
 const aiScene* readWithAssimp(Assimp::Importer& importer, const fs::path& path) {
+  const model::AssimpWarnings warnings;
   const aiScene* scene = importer.ReadFile(path.string(), kAssimpSteps);
+  if (const std::string broken = warnings.brokenData(); !broken.empty())
+    model::fail(path, "is broken (" + broken + "); rayview refuses it rather than draw what is left");
   if (!scene) {
     std::string why = importer.GetErrorString();
     model::fail(path, "cannot be read as a model" + (why.empty() ? std::string() : ": " + why));
   }
   if (scene->mFlags & AI_SCENE_FLAGS_INCOMPLETE) model::fail(path, "cannot be read as a model (incomplete)");
   return scene;
+}
+
+// OBJ files are read by rayview's own reader (obj_reader.h): exact numbers, shared vertices, checked indices.
+bool isObj(const fs::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".obj";
 }
 
 std::string joined(const std::vector<std::string>& items) {
@@ -69,6 +83,10 @@ SceneGeometry readModelGeometry(const fs::path& path, bool viaAssimp) {
   SceneGeometry geometry;
   model::Notes notes;
   if (!viaAssimp && model::readPlyOrStl(path, geometry, notes)) return geometry;
+  if (!viaAssimp && isObj(path)) {
+    model::readObj(path, geometry, notes);
+    return geometry;
+  }
   Assimp::Importer importer;
   model::gatherGeometry(*readWithAssimp(importer, path), path, geometry, notes);
   return geometry;
@@ -83,6 +101,8 @@ ModelScene readModel(const fs::path& path, const ModelImportOptions& options) {
   const aiScene* assimp = nullptr;
   if (model::readPlyOrStl(path, scene, notes)) {
     singleMaterial(scene, notes);
+  } else if (isObj(path)) {
+    model::mapObjMaterials(model::readObj(path, scene, notes), path, scene, notes);
   } else {
     assimp = readWithAssimp(importer, path);
     model::gatherGeometry(*assimp, path, scene, notes);

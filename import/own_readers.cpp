@@ -30,6 +30,8 @@ void readPly(const std::string& bytes, const std::filesystem::path& path, SceneG
   }
   if (ply.triangles.empty()) fail(path, "the file has no triangles");
   if (ply.skippedFaces > 0) notes.dropped.push_back(std::to_string(ply.skippedFaces) + " faces of fewer than 3 vertices");
+  // The scene has no vertex colours yet: said, not silently lost.
+  if (!ply.colors.empty()) notes.dropped.push_back("vertex colours");
   g.vertices = std::move(ply.vertices);
   g.normals.resize(ply.normals.size());
   std::transform(ply.normals.begin(), ply.normals.end(), g.normals.begin(), unitNormal);

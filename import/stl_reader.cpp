@@ -1,4 +1,4 @@
-// rayview's own STL reader (binary and ASCII): a triangle soup, one mesh, no sharing of vertices (STL has none).
+// rayview's own STL reader (binary and ASCII): a triangle soup, one mesh per ASCII solid, no sharing of vertices (STL has none).
 
 #include <cmath>
 #include <cstdint>
@@ -21,6 +21,7 @@ void addCorner(SceneGeometry& g, const fs::path& path, double x, double y, doubl
 
 void finish(SceneGeometry& g, const fs::path& path) {
   if (g.triangles.empty()) fail(path, "the file has no triangles");
+  if (!g.meshes.empty()) return;  // an ASCII file's solids are its meshes
   g.meshes.push_back(Mesh{path.stem().string(), 0, 0, static_cast<std::uint32_t>(g.triangles.size())});
 }
 
@@ -45,11 +46,16 @@ void expect(Tokens& tokens, std::string_view word, const fs::path& path) {
                    std::string(found.substr(0, 40)) + "\"");
 }
 
-void readAscii(const std::string& text, const fs::path& path, SceneGeometry& g) {
-  Tokens tokens(text);
-  expect(tokens, "solid", path);
+// One solid's facets, from after its "solid" word to its "endsolid"; its name names the mesh.
+void readSolid(Tokens& tokens, const fs::path& path, SceneGeometry& g) {
+  const std::size_t first = g.triangles.size();
+  const std::size_t nameLine = static_cast<std::size_t>(tokens.line());
+  std::string name;
   std::string_view word = tokens.next();
-  while (!word.empty() && word != "facet" && word != "endsolid") word = tokens.next();  // the solid's name
+  while (!word.empty() && word != "facet" && word != "endsolid") {  // the solid's name, on the solid line
+    if (static_cast<std::size_t>(tokens.line()) == nameLine) name.append(name.empty() ? "" : " ").append(word);
+    word = tokens.next();
+  }
   while (word == "facet") {
     expect(tokens, "normal", path);
     double ignored = 0.0;
@@ -67,11 +73,32 @@ void readAscii(const std::string& text, const fs::path& path, SceneGeometry& g) 
     expect(tokens, "endloop", path);
     expect(tokens, "endfacet", path);
     if (g.vertices.size() > 0x7fffffffu) fail(path, "too many triangles");
-    const auto first = static_cast<std::uint32_t>(3 * triangle);
-    g.triangles.push_back(Triangle{{first, first + 1, first + 2}});
+    const auto corner = static_cast<std::uint32_t>(3 * triangle);
+    g.triangles.push_back(Triangle{{corner, corner + 1, corner + 2}});
     word = tokens.next();
   }
   if (word != "endsolid") fail(path, "line " + std::to_string(tokens.line()) + ": expected \"facet\" or \"endsolid\"");
+  if (g.triangles.size() == first) return;
+  if (name.empty()) name = path.stem().string();
+  for (const Mesh& m : g.meshes)  // ids are unique in a scene
+    if (m.id == name) name += "_" + std::to_string(g.meshes.size() + 1);
+  g.meshes.push_back(Mesh{name, 0, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(g.triangles.size() - first)});
+}
+
+// Every solid of the file (CAD tools write one per part), each a mesh.
+void readAscii(const std::string& text, const fs::path& path, SceneGeometry& g) {
+  Tokens tokens(text);
+  expect(tokens, "solid", path);
+  for (;;) {
+    readSolid(tokens, path, g);
+    // "endsolid" may repeat the solid's name on its line; the next word after that is "solid" or the end.
+    const int endLine = tokens.line();
+    std::string_view word = tokens.next();
+    while (!word.empty() && word != "solid" && tokens.line() == endLine) word = tokens.next();
+    if (word.empty()) return;
+    if (word != "solid")
+      fail(path, "line " + std::to_string(tokens.line()) + ": expected \"solid\" or the end of the file after \"endsolid\"");
+  }
 }
 
 }  // namespace

@@ -66,15 +66,17 @@ struct Header {
 };
 
 // The vertex values this reader keeps, in the order of Layout::slot.
-enum Slot { X, Y, Z, NX, NY, NZ, U, V, kSlots };
+enum Slot { X, Y, Z, NX, NY, NZ, U, V, R, G, B, kSlots };
 
 // Which properties fill what: the first vertex and face elements, the vertex slots' property indices (-1: none).
 struct Layout {
   const Element* vertex = nullptr;
-  const Element* face = nullptr;
-  int slot[kSlots] = {-1, -1, -1, -1, -1, -1, -1, -1};
+  const Element* face = nullptr;  // the face element, or else the tristrips one
+  bool strips = false;            // `face` is a tristrips element: -1 ends a strip
+  int slot[kSlots] = {-1, -1, -1, -1, -1, -1, -1, -1, -1, -1, -1};
   std::size_t indexList = 0;  // the face's vertex_indices property
-  bool normals = false, texCoords = false;
+  bool normals = false, texCoords = false, colors = false;
+  double colorScale = 1.0;  // 1/255 for integer colours
 };
 
 [[noreturn]] void fail(const std::string& message) { throw PlyError{message}; }
@@ -134,9 +136,9 @@ bool readHeaderLine(Header& header, const std::vector<std::string_view>& w, int 
     header.elements.push_back(Element{std::string(w[1]), static_cast<std::uint64_t>(count), {}, line});
   } else if (w[0] == "property") {
     addProperty(header, w, line);
-  } else {
-    fail(at(line) + "unknown header keyword '" + std::string(w[0].substr(0, 32)) + "'");
   }
+  // Any other line ("Created by ...", obj_info variants, a writer's own keywords) is passed over, as Assimp's and
+  // VTK's readers do: it says nothing about the records.
   return false;
 }
 
@@ -182,20 +184,29 @@ int propertyNamed(const Element& e, std::initializer_list<std::string_view> name
 // Finds the vertex and face elements and the properties this reader uses.
 Layout layoutOf(const Header& header) {
   Layout layout;
+  const Element* strips = nullptr;
   for (const Element& e : header.elements) {
     if (e.name == "vertex" && !layout.vertex) layout.vertex = &e;
     if (e.name == "face" && !layout.face) layout.face = &e;
+    if (e.name == "tristrips" && !strips) strips = &e;
   }
   if (!layout.vertex) fail("the header declares no vertex element");
-  if (!layout.face) fail("the header declares no face element (a point cloud is not a mesh)");
+  if (!layout.face && strips) {
+    layout.face = strips;
+    layout.strips = true;
+  }
+  if (!layout.face) fail("the header declares no face element, nor tristrips (a point cloud is not a mesh)");
   const Element& v = *layout.vertex;
   const std::initializer_list<std::string_view> names[kSlots] = {
-      {"x"}, {"y"}, {"z"}, {"nx"}, {"ny"}, {"nz"}, {"u", "s", "texture_u", "texture_s"}, {"v", "t", "texture_v", "texture_t"}};
+      {"x"}, {"y"}, {"z"}, {"nx"}, {"ny"}, {"nz"}, {"u", "s", "texture_u", "texture_s"}, {"v", "t", "texture_v", "texture_t"},
+      {"red", "diffuse_red", "r"}, {"green", "diffuse_green", "g"}, {"blue", "diffuse_blue", "b"}};
   for (int s = 0; s < kSlots; ++s) layout.slot[s] = propertyNamed(v, names[s]);
   if (layout.slot[X] < 0 || layout.slot[Y] < 0 || layout.slot[Z] < 0)
     fail(at(v.line) + "the vertex element has no x, y and z properties");
   layout.normals = layout.slot[NX] >= 0 && layout.slot[NY] >= 0 && layout.slot[NZ] >= 0;
   layout.texCoords = layout.slot[U] >= 0 && layout.slot[V] >= 0;
+  layout.colors = layout.slot[R] >= 0 && layout.slot[G] >= 0 && layout.slot[B] >= 0;
+  if (layout.colors && isInteger(v.properties[static_cast<std::size_t>(layout.slot[R])].kind)) layout.colorScale = 1.0 / 255.0;
   const auto& faceProperties = layout.face->properties;
   const auto list = std::find_if(faceProperties.begin(), faceProperties.end(), [](const Property& p) {
     return p.countKind && (p.name == "vertex_indices" || p.name == "vertex_index");
@@ -278,6 +289,16 @@ class Values {
          " values, more than the rest of the file holds (truncated or corrupt)");
   }
 
+  // After an ASCII record: values left on its line are passed over (each record has its own line, as Assimp reads
+  // them), so a writer's extra columns do not shift every record after them.
+  void endRecord() {
+    if (format_ != Format::Ascii) return;
+    while (pos_ < body_.size() && (body_[pos_] == ' ' || body_[pos_] == '\t' || body_[pos_] == '\r')) ++pos_;
+    if (pos_ == body_.size() || body_[pos_] == '\n') return;
+    const std::size_t end = body_.find('\n', pos_);
+    pos_ = end == std::string_view::npos ? body_.size() : end;
+  }
+
   // Where the last value was, for a message.
   std::string where() const {
     return format_ == Format::Ascii ? "line " + std::to_string(line_) : "byte " + std::to_string(pos_);
@@ -344,6 +365,9 @@ void readVertex(Values& values, const Layout& layout, const Record& what, std::v
   if (layout.normals)
     mesh.normals.emplace_back(item[layout.slot[NX]], item[layout.slot[NY]], item[layout.slot[NZ]]);
   if (layout.texCoords) mesh.texCoords.emplace_back(item[layout.slot[U]], item[layout.slot[V]]);
+  if (layout.colors)
+    mesh.colors.push_back(glm::vec3(item[layout.slot[R]], item[layout.slot[G]], item[layout.slot[B]]) *
+                          static_cast<float>(layout.colorScale));
 }
 
 [[noreturn, gnu::noinline, gnu::cold]] void badIndex(const Values& values, const Record& what, double i,
@@ -371,6 +395,29 @@ void readPolygon(Values& values, const Property& list, const Record& what, std::
   for (std::size_t k = 1; k + 1 < corners.size(); ++k) mesh.triangles.push_back(Triangle{{corners[0], corners[k], corners[k + 1]}});
 }
 
+// A triangle strip's index list; -1 ends one strip and starts the next. Every other triangle is flipped so that all
+// keep the strip's winding; triangles with a repeated corner (the strips' joins) are left out.
+void readStrip(Values& values, const Property& list, const Record& what, std::uint64_t vertexCount,
+               std::vector<std::uint32_t>& corners, PlyMesh& mesh) {
+  const double count = values.listLength(list, what);
+  corners.clear();
+  for (double k = 0; k <= count; ++k) {
+    const double i = k < count ? values.next(list.kind, what) : -1.0;
+    if (i == -1.0) {
+      for (std::size_t c = 2; c < corners.size(); ++c) {
+        const std::uint32_t a = corners[c - 2], b = corners[c - 1], d = corners[c];
+        if (a == b || b == d || a == d) continue;
+        if (mesh.triangles.size() >= static_cast<std::size_t>(UINT32_MAX / 2)) fail("too many triangles");
+        mesh.triangles.push_back(c % 2 == 0 ? Triangle{{a, b, d}} : Triangle{{b, a, d}});
+      }
+      corners.clear();
+      continue;
+    }
+    if (!(i >= 0.0) || i >= static_cast<double>(vertexCount) || i != std::floor(i)) badIndex(values, what, i, vertexCount);
+    corners.push_back(static_cast<std::uint32_t>(i));
+  }
+}
+
 void readRecords(const Header& header, const Layout& layout, std::string_view body, PlyMesh& mesh) {
   Values values(body, header.format, header.bodyLine);
   const std::uint64_t vertexCount = layout.vertex->count;
@@ -379,6 +426,7 @@ void readRecords(const Header& header, const Layout& layout, std::string_view bo
   mesh.vertices.reserve(vertexCount);
   if (layout.normals) mesh.normals.reserve(vertexCount);
   if (layout.texCoords) mesh.texCoords.reserve(vertexCount);
+  if (layout.colors) mesh.colors.reserve(vertexCount);
   // No more than the file could hold, whatever the count says.
   mesh.triangles.reserve(std::min<std::uint64_t>(layout.face->count, body.size() / 4));
   for (const Element& e : header.elements) {
@@ -387,14 +435,19 @@ void readRecords(const Header& header, const Layout& layout, std::string_view bo
       const Record what{&e, r};
       if (&e == layout.vertex) {
         readVertex(values, layout, what, item, mesh);
+        values.endRecord();
         continue;
       }
       for (std::size_t k = 0; k < e.properties.size(); ++k) {
         const Property& p = e.properties[k];
-        if (&e == layout.face && k == layout.indexList) readPolygon(values, p, what, vertexCount, corners, mesh);
+        if (&e == layout.face && k == layout.indexList) {
+          if (layout.strips) readStrip(values, p, what, vertexCount, corners, mesh);
+          else readPolygon(values, p, what, vertexCount, corners, mesh);
+        }
         else if (p.countKind) skipList(values, p, what);
         else values.next(p.kind, what);
       }
+      values.endRecord();
     }
   }
 }

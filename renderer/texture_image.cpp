@@ -9,6 +9,7 @@
 #include "jpeg_decode.h"
 #include "png_decode.h"
 #include "pnm_decode.h"
+#include "tga_bmp_decode.h"
 
 namespace rayview::detail {
 
@@ -28,7 +29,7 @@ std::optional<Texture> readTextureImage(const fs::path& path, std::string& reaso
   return decodeImage(file.bytes, reason);
 }
 
-// Images are decoded by libpng, libjpeg-turbo and rayview's own PNM reader, not stb_image: fuzzing found
+// Images are decoded by libpng, libjpeg-turbo and rayview's own PNM, BMP and TGA readers, not stb_image: fuzzing found
 // Debian 12's stb_image writing out of bounds (JPEG Huffman tables, 16-bit PGM), overflowing (PNM headers),
 // passing null pointers to memcpy (PNG) and allocating over 2 GiB for a 391-byte GIF. The reproducers are
 // replayed by ctest (tests/fuzz_regressions/texture/).
@@ -40,7 +41,9 @@ std::optional<Texture> decodeImage(std::string_view data, std::string& reason) {
   if (looksLikePng(data)) return decodePng(data, kMaxTexturePixels, reason);
   if (looksLikeJpeg(data)) return decodeJpeg(data, kMaxTexturePixels, reason);
   if (looksLikePnm(data)) return decodePnm(data, kMaxTexturePixels, reason);
-  reason = "not a readable image (rayview reads PNG, JPEG and binary PPM/PGM)";
+  if (looksLikeBmp(data)) return decodeBmp(data, kMaxTexturePixels, reason);
+  if (looksLikeTga(data)) return decodeTga(data, kMaxTexturePixels, reason);  // last: TGA has no magic number
+  reason = "not a readable image (rayview reads PNG, JPEG, binary PPM/PGM, BMP and TGA)";
   return std::nullopt;
 }
 

@@ -195,5 +195,43 @@ TEST(Ply, RefusesNonFiniteBinaryCoordinates) {
   EXPECT_NE(errorOf(bytes).find("vertex 0 has a coordinate that is not a finite number"), std::string::npos) << errorOf(bytes);
 }
 
+// Header lines other tools write and Assimp and VTK pass over: Blender's "Created by" line, obj_info, comments.
+TEST(Ply, PassesOverHeaderLinesThatSayNothingAboutTheRecords) {
+  const PlyMesh mesh = parsePly("ply\nformat ascii 1.0\nCreated by Blender 2.79\ncomment made here\nobj_info num_cols 3\n" +
+                                kAsciiHead.substr(kAsciiHead.find("element")) + "0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  EXPECT_EQ(mesh.triangles.size(), 1u);
+}
+
+// Each ASCII record is a line: values past the properties (as some writers leave) do not shift the next records.
+TEST(Ply, PassesOverExtraValuesAtTheEndOfAnAsciiRecord) {
+  const PlyMesh mesh = parsePly(kAsciiHead + "0 0 0 9 9\n1 0 0\n0 1 0.5 7\n3 0 1 2 0\n");
+  ASSERT_EQ(mesh.triangles.size(), 1u);
+  EXPECT_EQ(mesh.vertices[2], glm::dvec3(0, 1, 0.5));
+  EXPECT_EQ(mesh.triangles[0].vertex[2], 2u);
+}
+
+// Triangle strips (-1 restarts a strip) become triangles that keep the strip's winding.
+TEST(Ply, ReadsTriangleStripsWithRestarts) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\n"
+                           "element tristrips 1\nproperty list int int vertex_indices\nend_header\n";
+  const PlyMesh mesh = parsePly(head + "0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 2 0\n8 0 1 2 3 -1 1 3 4\n");
+  ASSERT_EQ(mesh.triangles.size(), 3u);
+  const std::uint32_t expected[3][3] = {{0, 1, 2}, {2, 1, 3}, {1, 3, 4}};
+  for (int t = 0; t < 3; ++t)
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(mesh.triangles[t].vertex[k], expected[t][k]) << t << " " << k;
+  EXPECT_NE(errorOf(head + "0 0 0\n1 0 0\n0 1 0\n1 1 0\n2 2 0\n4 0 1 2 5\n").find("uses vertex 5"), std::string::npos);
+}
+
+// Colours, as bytes or as floats, are read in 0..1.
+TEST(Ply, ReadsVertexColours) {
+  const std::string head = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+                           "property uchar red\nproperty uchar green\nproperty uchar blue\nproperty uchar alpha\n"
+                           "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  const PlyMesh mesh = parsePly(head + "0 0 0 255 0 0 255\n1 0 0 0 255 0 255\n0 1 0 0 0 51 255\n3 0 1 2\n");
+  ASSERT_EQ(mesh.colors.size(), 3u);
+  EXPECT_EQ(mesh.colors[0], glm::vec3(1, 0, 0));
+  EXPECT_FLOAT_EQ(mesh.colors[2].z, 0.2f);
+}
+
 }  // namespace
 }  // namespace rayview

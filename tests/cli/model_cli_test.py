@@ -5,6 +5,8 @@ Usage: model_cli_test.py --rayview PATH --scratch DIR
 Makes its own models; each check prints one line; exits 1 on the first failure.
 """
 import argparse
+import base64
+import json
 import os
 import re
 import shutil
@@ -44,6 +46,51 @@ def write_ply(path):
             f.write(struct.pack("<3f", *(c + 0.123456789 for c in v)))
         for q in quads:
             f.write(struct.pack("<B4i", 4, *q))
+
+
+def gltf_triangles(indices, normals=None):
+    """A glTF of 4 vertices and the given triangle indices (and normals), its buffer inline."""
+    positions = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0)
+    index_bytes = struct.pack(f"<{len(indices)}H", *indices)
+    index_bytes += b"\0" * (len(index_bytes) % 4)
+    data = positions + index_bytes + (struct.pack("<12f", *normals) if normals else b"")
+    views = [{"buffer": 0, "byteOffset": 0, "byteLength": 48},
+             {"buffer": 0, "byteOffset": 48, "byteLength": 2 * len(indices)}]
+    accessors = [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                 {"bufferView": 1, "componentType": 5123, "count": len(indices), "type": "SCALAR"}]
+    attributes = {"POSITION": 0}
+    if normals:
+        views.append({"buffer": 0, "byteOffset": 48 + len(index_bytes), "byteLength": 48})
+        accessors.append({"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC3"})
+        attributes["NORMAL"] = 2
+    return json.dumps({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": attributes, "indices": 1}]}],
+        "buffers": [{"byteLength": len(data), "uri": "data:application/octet-stream;base64," + base64.b64encode(data).decode()}],
+        "bufferViews": views, "accessors": accessors})
+
+
+def check_broken_models(a, s):
+    """Models other readers would draw in part: refused, the file named, nothing written."""
+    broken = {
+        "index.gltf": gltf_triangles([0, 1, 2, 1, 3, 7]),
+        "short.off": "OFF\n4 3 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n",
+        "index.off": "OFF\n4 2 0\n0 0 0\n1 0 0\n0 1 0\n1 1 0\n3 0 1 2\n3 1 3 9\n",
+        "uv.obj": "v 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/99 2/1 3/1\n",
+    }
+    for name, text in broken.items():
+        with open(s(name), "w") as f:
+            f.write(text)
+        r = run(["import", s(name), "-o", s(name + ".xml")], a.rayview)
+        check(r.returncode == 2 and name in r.stderr and not os.path.exists(s(name + ".xml")),
+              f"{name}: exit 2, the file named, nothing written: " + r.stderr.strip())
+    check("uv.obj:5:" in r.stderr, "an OBJ's bad index is refused with its line")
+    # One normal of no length: only the triangle that uses it loses its normals, and the summary says so.
+    with open(s("zero_normal.gltf"), "w") as f:
+        f.write(gltf_triangles([0, 1, 2, 1, 3, 2], normals=[0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 0]))
+    r = run(["import", s("zero_normal.gltf"), "-o", s("zero_normal.xml")], a.rayview)
+    check(r.returncode == 0 and "dropped: the normals of 1 triangles" in r.stdout,
+          "a zero normal drops only its triangle's normals: " + r.stdout.strip())
 
 
 def main():
@@ -95,6 +142,7 @@ def main():
     check(not [n for n in os.listdir(a.scratch) if n.startswith(".rayview-export")], "no staging directory is left")
     r = run(["export", s("box.xml"), "-o", s("out.fbx")], a.rayview)
     check(r.returncode == 2 and not os.path.exists(s("out.fbx")), "export to an unknown format exits 2")
+    check_broken_models(a, s)
     r = run(["import", "--help"], a.rayview)
     check(r.returncode == 0 and "--up" in r.stdout, "import --help")
 

@@ -1,6 +1,6 @@
 #pragma once
 // Reading a model file into a scene and writing a scene as a model, with Assimp (and rayview's own readers for
-// binary and ASCII PLY and STL, which are faster). Only the import worker (libexec/rayview-import), the tests and
+// OBJ with MTL, binary and ASCII PLY and STL, which are faster and exact). Only the import worker (libexec/rayview-import), the tests and
 // the benchmarks link this; rayview itself opens models through rayview/model_client.h.
 
 #include <filesystem>

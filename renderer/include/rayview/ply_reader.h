@@ -1,7 +1,8 @@
 #pragma once
 // rayview's PLY reader (ASCII, binary little- and big-endian): the vertices' x, y, z, their normals (nx ny nz)
-// and texture coordinates (u v, s t) when the file has them, and the faces' vertex index lists, polygons split
-// into triangle fans. Every other element and property is skipped. Used for the CENG477 dialect's
+// texture coordinates (u v, s t) and colours (red green blue) when the file has them, and the faces' vertex index
+// lists, polygons split into triangle fans (or, in a file with tristrips instead of faces, the strips' triangles).
+// Header lines it does not know are passed over; an ASCII record's extra values at the end of its line too. Every other element and property is skipped. Used for the CENG477 dialect's
 // <Faces plyFile="..."> and by the model importer (import/); refuses a truncated or implausible file instead of
 // guessing.
 
@@ -22,6 +23,7 @@ struct PlyMesh {
   std::vector<glm::dvec3> vertices;
   std::vector<glm::vec3> normals;      // one per vertex as the file gives it (not normalized), or none
   std::vector<glm::vec2> texCoords;    // one per vertex, or none
+  std::vector<glm::vec3> colors;       // one per vertex (red, green, blue in 0..1 for integer colours), or none
   std::vector<Triangle> triangles;     // 0-based indices into `vertices`
   std::size_t skippedFaces = 0;        // faces of fewer than three vertices
 };

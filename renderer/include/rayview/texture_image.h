@@ -1,6 +1,6 @@
 #pragma once
 // Reading images a user names (a <textureimage>, a reference image to compare with): PNG, JPEG, binary
-// PPM/PGM.
+// PPM/PGM, BMP, TGA.
 
 #include <cstdint>
 #include <filesystem>
@@ -25,8 +25,8 @@ inline constexpr std::uintmax_t kMaxTextureFileBytes = 1ULL << 30;
 // and sets `reason` (never throws). The file is recorded as `role` (rayview/input_files.h).
 std::optional<Texture> readTextureImage(const std::filesystem::path& path, std::string& reason,
                                         std::string_view role = kInputRole);
-// Decodes an image file's bytes: PNG with libpng, JPEG with libjpeg-turbo, binary PPM/PGM (P6, P5) with
-// rayview's own reader. Other formats are refused.
+// Decodes an image file's bytes: PNG with libpng, JPEG with libjpeg-turbo, binary PPM/PGM (P6, P5), BMP and TGA
+// with rayview's own readers. Other formats are refused.
 std::optional<Texture> decodeImage(std::string_view bytes, std::string& reason);
 
 // Where `written` (the <textureimage> text) may be, in the order tried: next to the scene

@@ -1,0 +1,86 @@
+// TGA and BMP textures (renderer/tga_bmp_decode.h, through decodeImage as every texture is read), on images the
+// test writes: each variant's pixels where they belong, truncated files refused.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <string>
+
+#include "rayview/texture_image.h"
+
+namespace rayview {
+namespace {
+
+void put(std::string& s, std::uint32_t v, int bytes) {
+  for (int k = 0; k < bytes; ++k) s.push_back(static_cast<char>((v >> (8 * k)) & 0xff));
+}
+
+// A 2x2 image: top row red, green; bottom row blue, white.
+const std::uint8_t kTop[2][3] = {{255, 0, 0}, {0, 255, 0}}, kBottom[2][3] = {{0, 0, 255}, {255, 255, 255}};
+
+void expectPixels(const std::string& bytes, const char* what) {
+  std::string reason;
+  const std::optional<Texture> t = detail::decodeImage(bytes, reason);
+  ASSERT_TRUE(t) << what << ": " << reason;
+  ASSERT_EQ(t->width, 2);
+  ASSERT_EQ(t->height, 2);
+  for (int x = 0; x < 2; ++x)
+    for (int c = 0; c < 3; ++c) {
+      EXPECT_EQ(t->rgb[static_cast<std::size_t>(x * 3 + c)], kTop[x][c]) << what << " top " << x;
+      EXPECT_EQ(t->rgb[static_cast<std::size_t>(6 + x * 3 + c)], kBottom[x][c]) << what << " bottom " << x;
+    }
+}
+
+std::string tgaHeader(int type, int bits) {
+  std::string s(18, '\0');
+  s[2] = static_cast<char>(type);
+  s[12] = 2, s[14] = 2, s[16] = static_cast<char>(bits);
+  return s;
+}
+
+void bgr(std::string& s, const std::uint8_t* p) { s += {static_cast<char>(p[2]), static_cast<char>(p[1]), static_cast<char>(p[0])}; }
+
+TEST(TextureFormats, ReadsPlainAndRunLengthTga) {
+  std::string plain = tgaHeader(2, 24);  // bottom row first
+  for (const auto* row : {kBottom, kTop})
+    for (int x = 0; x < 2; ++x) bgr(plain, row[x]);
+  expectPixels(plain, "plain TGA");
+  std::string rle = tgaHeader(10, 24);
+  rle.push_back(static_cast<char>(0x01));  // a raw packet of 2: blue, white
+  bgr(rle, kBottom[0]);
+  bgr(rle, kBottom[1]);
+  rle.push_back(static_cast<char>(0x80));  // a run of 1: red
+  bgr(rle, kTop[0]);
+  rle.push_back(static_cast<char>(0x00));  // a raw packet of 1: green
+  bgr(rle, kTop[1]);
+  expectPixels(rle, "RLE TGA");
+  std::string reason;
+  EXPECT_FALSE(detail::decodeImage(plain.substr(0, plain.size() - 2), reason));
+  EXPECT_NE(reason.find("truncated"), std::string::npos) << reason;
+}
+
+TEST(TextureFormats, ReadsTwentyFourBitAndPalettedBmp) {
+  auto bmp = [](int bits, const std::string& palette, const std::string& pixels) {
+    std::string s = "BM";
+    put(s, static_cast<std::uint32_t>(54 + palette.size() + pixels.size()), 4);
+    put(s, 0, 4);
+    put(s, static_cast<std::uint32_t>(54 + palette.size()), 4);
+    put(s, 40, 4), put(s, 2, 4), put(s, 2, 4), put(s, 1, 2), put(s, static_cast<std::uint32_t>(bits), 2);
+    for (int k = 0; k < 6; ++k) put(s, 0, 4);
+    return s + palette + pixels;
+  };
+  std::string rows;  // bottom-up, each row padded to 4 bytes
+  for (const auto* row : {kBottom, kTop}) {
+    for (int x = 0; x < 2; ++x) bgr(rows, row[x]);
+    rows += std::string(2, '\0');
+  }
+  expectPixels(bmp(24, "", rows), "24-bit BMP");
+  std::string palette;
+  for (const auto* p : {kTop[0], kTop[1], kBottom[0], kBottom[1]}) bgr(palette, p), palette.push_back('\0');
+  expectPixels(bmp(8, palette, std::string("\2\3\0\0\0\1\0\0", 8)), "8-bit BMP");
+  std::string reason;
+  EXPECT_FALSE(detail::decodeImage(bmp(24, "", rows).substr(0, 60), reason));
+  EXPECT_NE(reason.find("truncated"), std::string::npos) << reason;
+}
+
+}  // namespace
+}  // namespace rayview
