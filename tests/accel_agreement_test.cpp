@@ -343,7 +343,8 @@ TEST(EmbreeLayouts, TheQuickBuildIsForRendersWithFewRaysATriangle) {
   EXPECT_EQ(embreeLayoutFor(92092, 800 * 600), EmbreeLayout::Quick) << "killeroo_2020: ~5 rays a triangle";
   EXPECT_EQ(embreeLayoutFor(6619, 1024 * 768), EmbreeLayout::Fast) << "car: ~120 rays a triangle";
   EXPECT_EQ(embreeLayoutFor(kCompactBvhTriangles), EmbreeLayout::Compact) << "the viewer's build of a big scene";
-  EXPECT_EQ(embreeLayoutFor(1'002'528, 1920 * 1080), EmbreeLayout::CompactQuick) << "the 1M height field: ~2 rays a triangle";
+  EXPECT_EQ(embreeLayoutFor(1'002'528, 1920 * 1080), EmbreeLayout::CompactQuick)
+      << "the 1M height field: ~2 rays a triangle";
   EXPECT_EQ(embreeLayoutFor(kCompactBvhTriangles, kQuickBuildRaysPerTriangle * kCompactBvhTriangles),
             EmbreeLayout::Compact);
   EXPECT_EQ(embreeLayoutFor(1000, kQuickBuildRaysPerTriangle * 1000 - 1), EmbreeLayout::Quick);
