@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The ceiling tables of docs/PERFORMANCE.md: rayview's render time against plain Embree casting the same rays,
-# at 1 and 2 threads, on the seven bench scenes (bench_scenes.py) and on all 16 conformance scenes.
+# at 1 and 2 threads, on the seven bench scenes (bench_scenes.py) and on all 16 conformance scenes; each table gives
+# both shares, against Embree single rays and against Embree 16-wide camera packets.
 # Usage: bench/ceiling.sh [BUILD_DIR] [SHARED_DIR]   (defaults: build/release, ../shared)
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -45,7 +45,7 @@ RTCDevice newDevice(const char* config) {
 // One device per layout and process, made when first needed: creating a device is not free. How many user
 // primitives a leaf may hold is a device setting (Embree's default is one); the compact layout's device allows two.
 RTCDevice sharedDevice(EmbreeLayout layout) {
-  if (layout == EmbreeLayout::Compact) {
+  if (layout == EmbreeLayout::Compact || layout == EmbreeLayout::CompactQuick) {
     static RTCDevice compact = newDevice("object_accel_max_leaf_size=2");
     return compact;
   }
@@ -248,9 +248,10 @@ class EmbreeAccel final : public Accel {
     // ROBUST: watertight triangle tests (SPEC section 6). MEDIUM build quality: the viewer must show
     // a freshly loaded 1M-triangle scene quickly; HIGH builds take several times longer for ~10 % faster rays.
     // The compact layout (embreeLayoutFor) adds COMPACT: a smaller BVH for ~3 % slower rays.
-    rtc_.SetSceneFlags(scene_, layout == EmbreeLayout::Compact ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT
-                                                               : RTC_SCENE_FLAG_ROBUST);
-    rtc_.SetSceneBuildQuality(scene_, layout == EmbreeLayout::Quick ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
+    const bool compact = layout == EmbreeLayout::Compact || layout == EmbreeLayout::CompactQuick;
+    const bool quick = layout == EmbreeLayout::Quick || layout == EmbreeLayout::CompactQuick;
+    rtc_.SetSceneFlags(scene_, compact ? RTC_SCENE_FLAG_ROBUST | RTC_SCENE_FLAG_COMPACT : RTC_SCENE_FLAG_ROBUST);
+    rtc_.SetSceneBuildQuality(scene_, quick ? RTC_BUILD_QUALITY_LOW : RTC_BUILD_QUALITY_MEDIUM);
     ProgressRelay relay{progress, progressUser};
     if (progress) rtc_.SetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
 
@@ -448,9 +449,9 @@ class EmbreeAccel final : public Accel {
 }  // namespace
 
 EmbreeLayout embreeLayoutFor(std::size_t triangles, std::size_t pixels) {
-  if (triangles >= kCompactBvhTriangles) return EmbreeLayout::Compact;
-  if (pixels > 0 && pixels < kQuickBuildRaysPerTriangle * triangles) return EmbreeLayout::Quick;
-  return EmbreeLayout::Fast;
+  const bool fewRays = pixels > 0 && pixels < kQuickBuildRaysPerTriangle * triangles;
+  if (triangles >= kCompactBvhTriangles) return fewRays ? EmbreeLayout::CompactQuick : EmbreeLayout::Compact;
+  return fewRays ? EmbreeLayout::Quick : EmbreeLayout::Fast;
 }
 
 std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,

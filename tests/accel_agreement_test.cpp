@@ -323,22 +323,30 @@ TEST(EmbreeLayouts, TheCompactLayoutGivesTheSameAnswersBitForBit) {
     const std::unique_ptr<Accel> fast = makeEmbreeAccel(scene, origin, EmbreeLayout::Fast, nullptr, nullptr);
     const std::unique_ptr<Accel> compact = makeEmbreeAccel(scene, origin, EmbreeLayout::Compact, nullptr, nullptr);
     const std::unique_ptr<Accel> quick = makeEmbreeAccel(scene, origin, EmbreeLayout::Quick, nullptr, nullptr);
-    ASSERT_TRUE(fast && compact && quick);
+    const std::unique_ptr<Accel> compactQuick =
+        makeEmbreeAccel(scene, origin, EmbreeLayout::CompactQuick, nullptr, nullptr);
+    ASSERT_TRUE(fast && compact && quick && compactQuick);
     const std::vector<Ray> rays = raysAtTriangles(scene, origin, name, 20000);
     EXPECT_GT(expectSameAnswers(*fast, *compact, rays, name), static_cast<int>(rays.size()) / 2)
         << name << ": the rays must mostly hit";
     EXPECT_GT(expectSameAnswers(*fast, *quick, rays, name + " (quick)"), static_cast<int>(rays.size()) / 2);
+    EXPECT_GT(expectSameAnswers(*fast, *compactQuick, rays, name + " (compact quick)"),
+              static_cast<int>(rays.size()) / 2);
   }
   EXPECT_EQ(scenes, 3);
 }
 
 // The quick build is for one render that casts few camera rays a triangle, never for the viewer (no pixels given),
-// and never past the compact layout's size.
+// and past the compact layout's size it keeps that layout's memory (CompactQuick).
 TEST(EmbreeLayouts, TheQuickBuildIsForRendersWithFewRaysATriangle) {
   EXPECT_EQ(embreeLayoutFor(92092), EmbreeLayout::Fast) << "no render given: the viewer's build";
   EXPECT_EQ(embreeLayoutFor(92092, 800 * 600), EmbreeLayout::Quick) << "killeroo_2020: ~5 rays a triangle";
   EXPECT_EQ(embreeLayoutFor(6619, 1024 * 768), EmbreeLayout::Fast) << "car: ~120 rays a triangle";
-  EXPECT_EQ(embreeLayoutFor(kCompactBvhTriangles, 64), EmbreeLayout::Compact);
+  EXPECT_EQ(embreeLayoutFor(kCompactBvhTriangles), EmbreeLayout::Compact) << "the viewer's build of a big scene";
+  EXPECT_EQ(embreeLayoutFor(1'002'528, 1920 * 1080), EmbreeLayout::CompactQuick)
+      << "the 1M height field: ~2 rays a triangle";
+  EXPECT_EQ(embreeLayoutFor(kCompactBvhTriangles, kQuickBuildRaysPerTriangle * kCompactBvhTriangles),
+            EmbreeLayout::Compact);
   EXPECT_EQ(embreeLayoutFor(1000, kQuickBuildRaysPerTriangle * 1000 - 1), EmbreeLayout::Quick);
   EXPECT_EQ(embreeLayoutFor(1000, kQuickBuildRaysPerTriangle * 1000), EmbreeLayout::Fast);
 }
