@@ -120,6 +120,7 @@ void writeMaterial(Writer& w, const Material& m) {
   w.pod(m.phongExponent);
   w.pod(m.mirror);
   w.pod(m.textureFactor);
+  w.pod(m.twoSided);
 }
 
 Material readMaterial(Reader& r) {
@@ -131,6 +132,7 @@ Material readMaterial(Reader& r) {
   m.phongExponent = r.pod<float>();
   m.mirror = r.pod<Color>();
   m.textureFactor = r.pod<float>();
+  m.twoSided = r.pod<bool>();
   return m;
 }
 

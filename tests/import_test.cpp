@@ -169,7 +169,29 @@ TEST(ImportModel, BinaryPlyAndStlAreFramedAndLit) {
   expectFramed(ply, "box_ply");
   const Scene stl = loadModelScene(writeFile("box.stl", boxStl()), small()).scene;
   EXPECT_EQ(stl.triangles.size(), 12u);
+  EXPECT_TRUE(stl.materials.at(0).twoSided);
   expectFramed(stl, "box_stl");
+}
+
+// The box with every face wound inward, as many exported models are: seen from outside, its faces show their
+// backs. Imported materials are two-sided, so it is framed and lit, not a black silhouette.
+std::string inwardBoxObj() {
+  std::ostringstream obj;
+  for (const auto& v : kBox) obj << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
+  for (const auto& q : kBoxQuads) obj << "f " << q[3] + 1 << " " << q[2] + 1 << " " << q[1] + 1 << " " << q[0] + 1 << "\n";
+  return obj.str();
+}
+
+TEST(ImportModel, FacesWoundInwardAreLitFromOutside) {
+  const Scene scene = loadModelScene(writeFile("inward.obj", inwardBoxObj()), small()).scene;
+  ASSERT_FALSE(scene.materials.empty());
+  for (const Material& m : scene.materials) EXPECT_TRUE(m.twoSided) << m.id;
+  expectFramed(scene, "box_inward");
+  Scene oneSided = scene;
+  for (Material& m : oneSided.materials) m.twoSided = false;
+  const Image image = render(oneSided);
+  const std::uint8_t* centre = image.pixel(image.width / 2, image.height / 2);
+  EXPECT_LT(std::max({centre[0], centre[1], centre[2]}), 40);  // the one-sided shading this replaces: ambient only
 }
 
 // Sizes where a fixed epsilon would fail (docs/numerics.md): the made-up scene scales with the model, so the
