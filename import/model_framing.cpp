@@ -170,21 +170,24 @@ std::size_t fileLights(const aiScene& scene, const glm::dvec3& centre, double ra
 }
 
 void madeUpLights(const Axes& a, const glm::dvec3& centre, double radius, SceneParameters& p) {
-  // Irradiance at the model's centre on the 0..255 scale: key, fill, back.
+  // The most irradiance each light gives any point of the model (at its bounding sphere's nearest point), on the
+  // 0..255 scale: key, fill, back. No face direction gathers more than 215 from the three together, so a white
+  // diffuse surface with the ambient 30 stays below 255 (only highlights clip), as F3D's and Blender's kits keep it.
   struct Placed {
     glm::dvec3 direction;
     float irradiance;
   };
-  const Placed placed[] = {{0.9 * a.side + 1.0 * a.up + 0.6 * a.front, 220.0f},
-                           {-1.0 * a.side + 0.3 * a.up + 0.7 * a.front, 90.0f},
-                           {-0.3 * a.side + 0.8 * a.up - 1.0 * a.front, 140.0f}};
-  const double distance = 4.0 * radius;
+  const Placed placed[] = {{0.9 * a.side + 1.0 * a.up + 0.6 * a.front, 180.0f},
+                           {-1.0 * a.side + 0.3 * a.up + 0.7 * a.front, 74.0f},
+                           {-0.3 * a.side + 0.8 * a.up - 1.0 * a.front, 115.0f}};
+  // Far away, so the near and far sides of the model see nearly the same light (7/8 of the most at the centre).
+  const double distance = 8.0 * radius, nearest = distance - radius;
   int id = 1;
   for (const Placed& light : placed) {
     PointLight point;
     point.id = std::to_string(id++);
     point.position = centre + glm::normalize(light.direction) * distance;
-    point.intensity = Color(light.irradiance * static_cast<float>(distance * distance));
+    point.intensity = Color(light.irradiance * static_cast<float>(nearest * nearest));
     p.lights.of<PointLight>().push_back(point);
   }
 }

@@ -455,11 +455,13 @@ inline SurfacePoint surfaceAt(const SceneGeometry& meshes, const glm::dvec3& ori
 }
 
 // A two-sided material's face seen from behind is shaded as its front: both normals turned toward the viewer, so
-// the lights, the mirror ray and the secondary rays' offset all work on the side the ray arrived at.
-inline void faceTheViewer(SurfacePoint& s, const glm::dvec3& direction) {
-  if (glm::dot(s.ng, direction) <= 0.0) return;
+// the lights, the mirror ray and the secondary rays' offset all work on the side the ray arrived at. One flag per
+// hit, decided by the material: one-sided materials (every handout scene's) keep the surface as it is.
+inline SurfacePoint seenSide(SurfacePoint s, bool twoSided, const glm::dvec3& direction) {
+  if (!twoSided || glm::dot(s.ng, direction) <= 0.0) return s;
   s.ng = -s.ng;
   s.n = -s.n;
+  return s;
 }
 
 }  // namespace
@@ -469,8 +471,7 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
                       Shadows& shadows, PathVertex& v, Ray& mirrorRay, LitPoint* lit) const {
   const Material& material = materialOf(hit.triangle);
   const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
-  SurfacePoint surface = surfaceAt(meshes_, shading_.origin, hit, attributes);
-  if (material.twoSided) faceTheViewer(surface, ray.direction);  // one flag per hit, decided by the material
+  const SurfacePoint surface = seenSide(surfaceAt(meshes_, shading_.origin, hit, attributes), material.twoSided, ray.direction);
   const glm::dvec3& pExact = surface.p;
   const glm::dvec3& ngExact = surface.ng;
   const glm::vec3 n = surface.n;

@@ -194,6 +194,63 @@ TEST(ImportModel, FacesWoundInwardAreLitFromOutside) {
   EXPECT_LT(std::max({centre[0], centre[1], centre[2]}), 40);  // the one-sided shading this replaces: ambient only
 }
 
+// A UV sphere: every normal direction, so whichever way the light kit's lights point, some face takes their sum.
+std::string sphereObj(const std::string& material) {
+  std::ostringstream obj;
+  if (!material.empty()) obj << "mtllib sphere.mtl\nusemtl " << material << "\n";
+  const int rings = 24, segments = 48;
+  obj << "v 0 1 0\nv 0 -1 0\n";
+  for (int r = 1; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double theta = M_PI * r / rings, phi = 2.0 * M_PI * s / segments;
+      obj << "v " << std::sin(theta) * std::cos(phi) << " " << std::cos(theta) << " " << std::sin(theta) * std::sin(phi) << "\n";
+    }
+  auto at = [&](int r, int s) { return 3 + (r - 1) * segments + (s % segments); };  // 1-based, rings 1 .. rings-1
+  for (int s = 0; s < segments; ++s) {
+    obj << "f 1 " << at(1, s + 1) << " " << at(1, s) << "\n";
+    obj << "f 2 " << at(rings - 1, s) << " " << at(rings - 1, s + 1) << "\n";
+    for (int r = 1; r + 1 < rings; ++r)
+      obj << "f " << at(r, s) << " " << at(r, s + 1) << " " << at(r + 1, s + 1) << " " << at(r + 1, s) << "\n";
+  }
+  return obj.str();
+}
+
+struct Exposure {
+  double clipped = 0.0;  // the share of the model's pixels that are pure white
+  double mean = 0.0;     // their mean over the three channels, 0..255
+};
+
+Exposure exposureOf(const Scene& scene, const std::string& name) {
+  const Image image = render(scene);
+  writeImageFile(modelDirectory() / (name + ".png"), image);
+  std::size_t model = 0, white = 0;
+  double sum = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      if (isBackground(image, x, y, scene.background)) continue;
+      const std::uint8_t* p = image.pixel(x, y);
+      ++model;
+      white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+      sum += (p[0] + p[1] + p[2]) / 3.0;
+    }
+  if (model == 0) return {};
+  return {static_cast<double>(white) / model, sum / model};
+}
+
+// The made-up lights keep a white model below clipping, as F3D's and Blender's defaults do, and not dark.
+TEST(ImportModel, TheLightKitKeepsAWhiteModelBelowClippingAndVisible) {
+  writeFile("sphere.mtl", "newmtl white\nKd 1 1 1\nKs 0 0 0\nnewmtl shiny\nKd 1 1 1\nKs 0.5 0.5 0.5\nNs 40\n");
+  for (const std::string material : {"white", "shiny"}) {
+    const Exposure e = exposureOf(loadModelScene(writeFile(material + ".obj", sphereObj(material)), small()).scene,
+                                  "sphere_" + material);
+    EXPECT_LE(e.clipped, 0.01) << material;
+    EXPECT_GE(e.mean, 30.0) << material;
+  }
+  const Exposure stl = exposureOf(loadModelScene(writeFile("plain.obj", sphereObj("")), small()).scene, "sphere_plain");
+  EXPECT_LE(stl.clipped, 0.01);
+  EXPECT_GE(stl.mean, 30.0);
+}
+
 // Sizes where a fixed epsilon would fail (docs/numerics.md): the made-up scene scales with the model, so the
 // picture is the same box, framed and lit.
 TEST(ImportModel, TinyAndHugeModelsAreFramedAndLit) {
