@@ -160,8 +160,19 @@ std::vector<OptionSpec> makeOptionTable() {
        [](CommandLine& c, const std::string& v) {
          if (!parseMemoryUse(v, c.memory)) throw UsageError("--memory expects 'auto', 'fast' or 'lean', not '" + v + "'");
        }},
-      {"--camera", "N", kRender, "which camera of a CENG477 scene's <Cameras> to render (1 is the first, the default)",
-       [](CommandLine& c, const std::string& v) { c.camera = parseInt("--camera", v, 1, 1000000); }},
+      {"--camera", "N|file|auto", kRender | kImport,
+       "which camera of a CENG477 scene's <Cameras> to render (1 is the first, the default); for a model, the "
+       "file's own camera (file) or rayview's framing (auto) instead of the default: the file's when it shows the model",
+       [](CommandLine& c, const std::string& v) {
+         if (parseModelCamera(v, c.model.camera)) return;  // a word for a model, else a CENG477 camera number
+         c.camera = parseInt("--camera", v, 1, 1000000);
+       }},
+      {"--lights", "file|kit", kRender | kImport,
+       "a model's lights: the file's own (file) or rayview's key/fill/back kit (kit) instead of the default: the "
+       "file's when they light the model",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseModelLights(v, c.model.lights)) throw UsageError("--lights expects file or kit, not '" + v + "'");
+       }},
       {"--turntable", "N", kRender,
        "render N frames orbiting the camera around the scene's centre (the viewer's orbit pivot); -o names them "
        "with a printf number, e.g. -o frames/spin_%04d.png",

@@ -43,7 +43,7 @@ struct CommandLine {
   double resolutionScale = 1.0;         // bench: --scale F
   std::string diffPath;                 // compare: --diff OUT.png
   double minWithin1 = 100.0;            // compare: --min-within1 P (% of pixels within 1 of the reference)
-  ModelImportOptions model;             // import, and a model rendered or viewed: --up, --resolution
+  ModelImportOptions model;             // import, and a model rendered or viewed: --up, --resolution, --camera, --lights
   CommandKind helpFor = CommandKind::View;  // help: whose help (`rayview render --help`: render's own)
 };
 

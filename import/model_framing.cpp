@@ -15,6 +15,8 @@ namespace rayview::model {
 namespace {
 
 constexpr double kFill = 0.88;  // the share of the frame's tighter dimension the bounding box spans
+constexpr double kLeastCoverage = 0.05;   // a file's camera that shows the model on less of its frame shows nothing
+constexpr float kLeastIrradiance = 20.0f;  // file lights giving less leave a model at about the ambient light alone
 
 struct Axes {
   glm::dvec3 up, front, side;
@@ -192,6 +194,40 @@ void madeUpLights(const Axes& a, const glm::dvec3& centre, double radius, SceneP
   }
 }
 
+// The file's camera when it has one and (unless asked for it whatever it shows) it shows the model.
+bool useFileCamera(const aiScene* scene, const ModelImportOptions& options, Scene& out, const Bounds& bounds,
+                   Notes& notes) {
+  if (!scene || options.camera == ModelViewSource::Rayview || !fileCamera(*scene, out.camera)) return false;
+  if (options.camera == ModelViewSource::File) return true;
+  const double coverage = frameCoverage(out.camera, out, bounds);
+  if (coverage >= kLeastCoverage) return true;
+  char why[200];
+  std::snprintf(why, sizeof why,
+                "the file's camera shows the model on %.0f %% of the frame (inside it, behind it or too far); rayview "
+                "frames it instead (--camera file keeps the file's)",
+                100.0 * coverage);
+  notes.warnings.push_back(why);
+  return false;
+}
+
+// The file's lights when it has some and (unless asked for them whatever they show) they light the model.
+bool useFileLights(const aiScene* scene, const ModelImportOptions& options, Scene& out, const glm::dvec3& centre,
+                   double radius, Notes& notes) {
+  if (!scene || options.lights == ModelViewSource::Rayview || fileLights(*scene, centre, radius, out, notes) == 0)
+    return false;
+  if (options.lights == ModelViewSource::File) return true;
+  const float irradiance = irradianceAt(out.lights.of<PointLight>(), centre, radius);
+  if (irradiance >= kLeastIrradiance) return true;
+  char why[200];
+  std::snprintf(why, sizeof why,
+                "the file's lights give the model an irradiance of %.3g (of 255); too little to see it by, so rayview "
+                "lights it instead (--lights file keeps the file's)",
+                irradiance);
+  notes.warnings.push_back(why);
+  out.lights.of<PointLight>().clear();
+  return false;
+}
+
 }  // namespace
 
 void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& out, Notes& notes) {
@@ -202,7 +238,7 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
   Camera& c = out.camera;
   c.width = options.width;
   c.height = options.height;
-  if (!scene || !fileCamera(*scene, c)) {
+  if (!useFileCamera(scene, options, out, bounds, notes)) {
     const glm::dvec3 toEye = glm::normalize(0.55 * axes.side + 0.45 * axes.up + 1.0 * axes.front);
     c.position = centre + toEye * (2.6 * radius);
     c.gaze = -toEye;
@@ -210,7 +246,7 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
     fitWindow(c, bounds);
     notes.madeUp.push_back("camera");
   }
-  if (!scene || fileLights(*scene, centre, radius, out, notes) == 0) {
+  if (!useFileLights(scene, options, out, centre, radius, notes)) {
     madeUpLights(axes, centre, radius, out);
     notes.madeUp.push_back("key/fill/back lights");
   }

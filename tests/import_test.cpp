@@ -417,8 +417,9 @@ TEST(ImportModel, NormalsAndTextureCoordinatesAreKept) {
   EXPECT_EQ(obj.texCoords[obj.attributesOf(0).texCoord[1]], glm::vec2(1, 0));
 }
 
-// A glTF's own camera and light are used (a triangle seen from 5 units away, a point light above it).
-TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
+// A glTF of one triangle at the origin facing +z, a camera at (0, 0, cameraZ) looking down -z and a point light of
+// `intensity` at (0, 3, 3).
+std::string triangleGltf(double cameraZ, double intensity) {
   std::string buffer;
   for (float v : {-1.f, -1.f, 0.f, 1.f, -1.f, 0.f, 0.f, 1.f, 0.f}) put(buffer, v);
   // The 36 bytes in base64, by hand: no encoder in the test.
@@ -429,17 +430,29 @@ TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
     const unsigned triple = byte(0) << 16 | byte(1) << 8 | byte(2);
     for (int k = 3; k >= 0; --k) encoded.push_back(kBase64[(triple >> (6 * k)) & 63]);
   }
-  const std::string gltf =
-      R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_lights_punctual"],)"
-      R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":1,"color":[1,1,1]}]}},)"
-      R"("scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,5]},)"
-      R"({"extensions":{"KHR_lights_punctual":{"light":0}},"translation":[0,3,3]}],)"
-      R"("cameras":[{"type":"perspective","perspective":{"yfov":0.6,"znear":0.1,"aspectRatio":1.5}}],)"
-      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
-      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}],)"
-      R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
-      R"("uri":"data:application/octet-stream;base64,)" + encoded + R"("}]})";
-  const ImportedModel model = importModel(writeFile("camera.gltf", gltf), small());
+  return R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_lights_punctual"],)"
+         R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":)" + std::to_string(intensity) +
+         R"(,"color":[1,1,1]}]}},)"
+         R"("scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,)" +
+         std::to_string(cameraZ) + R"(]},)"
+         R"({"extensions":{"KHR_lights_punctual":{"light":0}},"translation":[0,3,3]}],)"
+         R"("cameras":[{"type":"perspective","perspective":{"yfov":0.6,"znear":0.1,"aspectRatio":1.5}}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}],)"
+         R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
+         R"("uri":"data:application/octet-stream;base64,)" + encoded + R"("}]})";
+}
+
+bool warned(const ImportedModel& model, const std::string& part) {
+  for (const Diagnostic& w : model.loaded.warnings)
+    if (w.message.find(part) != std::string::npos) return true;
+  return false;
+}
+
+// A glTF's own camera and light are used when they show the model (a triangle seen from 5 units away, a light
+// above it bright enough to see it by).
+TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
+  const ImportedModel model = importModel(writeFile("camera.gltf", triangleGltf(5.0, 10.0)), small());
   const Scene& scene = model.loaded.scene;
   EXPECT_EQ(model.summary.find("camera"), std::string::npos) << model.summary;
   EXPECT_EQ(scene.camera.position, glm::dvec3(0, 0, 5));
@@ -450,6 +463,30 @@ TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
   const Image image = render(scene);
   EXPECT_FALSE(isBackground(image, 80, 45, scene.background));
   EXPECT_TRUE(isBackground(image, 5, 5, scene.background));
+  ModelImportOptions own = small();
+  own.camera = own.lights = ModelViewSource::Rayview;  // --camera auto --lights kit
+  const ImportedModel framed = importModel(writeFile("camera.gltf", triangleGltf(5.0, 10.0)), own);
+  EXPECT_NE(framed.summary.find("made up: camera, key/fill/back lights"), std::string::npos) << framed.summary;
+}
+
+// A camera that looks away from the model, or a light too weak to see it by (1 cd at 4.2 units: 14 of 255), is
+// replaced by rayview's with a warning; asked for, the file's is kept whatever it shows.
+TEST(ImportModel, AFileCameraOrLightThatShowsNothingIsReplaced) {
+  const fs::path away = writeFile("away.gltf", triangleGltf(-5.0, 10.0));
+  const ImportedModel framed = importModel(away, small());
+  EXPECT_NE(framed.summary.find("made up: camera"), std::string::npos) << framed.summary;
+  EXPECT_TRUE(warned(framed, "the file's camera shows the model on 0 % of the frame"));
+  expectFramed(framed.loaded.scene, "gltf_away");
+  ModelImportOptions file = small();
+  file.camera = file.lights = ModelViewSource::File;
+  EXPECT_EQ(importModel(away, file).loaded.scene.camera.position, glm::dvec3(0, 0, -5));
+
+  const fs::path dim = writeFile("dim.gltf", triangleGltf(5.0, 1.0));
+  const ImportedModel lit = importModel(dim, small());
+  EXPECT_NE(lit.summary.find("key/fill/back lights"), std::string::npos) << lit.summary;
+  EXPECT_TRUE(warned(lit, "the file's lights give the model an irradiance of 14.2"));
+  EXPECT_EQ(lit.loaded.scene.lights.of<PointLight>().size(), 3u);
+  EXPECT_EQ(importModel(dim, file).loaded.scene.lights.of<PointLight>().size(), 1u);
 }
 
 // A worker that dies or answers garbage is a clean error about the file, never a crash of rayview.
