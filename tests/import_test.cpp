@@ -268,7 +268,9 @@ TEST(ImportModel, UpZLooksAlongTheModelsZ) {
 }
 
 // A quad textured left half red, right half blue, its PNG inside the .glb.
-std::string texturedGlb() {
+// A quad whose base colour is a 4x4 PNG, red on the left and blue on the right; with `metalRoughMap`, the same image
+// is its metallic-roughness map under glTF's default factors (metallic 1, roughness 1).
+std::string texturedGlb(bool metalRoughMap = false) {
   Image texture(4, 4);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) {
@@ -284,8 +286,10 @@ std::string texturedGlb() {
   while (bin.size() % 4) bin.push_back('\0');
   std::string json =
       R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":0}]}],)"
-      R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":1.0}}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":0}]}],)" +
+      std::string(metalRoughMap ? R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},)"
+                                  R"("metallicRoughnessTexture":{"index":0}}}],)"
+                                : R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":1.0}}],)") +
       R"("textures":[{"source":0}],"images":[{"bufferView":3,"mimeType":"image/png"}],)"
       R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
       R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},{"bufferView":2,"componentType":5125,"count":6,"type":"SCALAR"}],)"
@@ -323,6 +327,20 @@ TEST(ImportModel, GlbWithAnEmbeddedPngTextureShowsIt) {
   }
   EXPECT_GE(firstRed, 0);
   EXPECT_GT(lastBlue, firstRed);
+}
+
+// The metallic-roughness map scales the factors by its average texel: here green (roughness) is 0 everywhere and
+// blue (metallic) 230 on half the texels, so metallic 0.45 and roughness 0, not the defaults' fully metallic, fully
+// rough material whose diffuse colour is black and whose highlight covers everything.
+TEST(ImportModel, AMetallicRoughnessMapScalesTheFactors) {
+  const Scene scene = loadModelScene(writeFile("metal.glb", texturedGlb(true)), small()).scene;
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const Material& m = scene.materials[0];
+  const float metallic = 115.0f / 255.0f;
+  EXPECT_NEAR(m.specular.x, 0.04f + (1.0f - 0.04f) * metallic, 1e-3f);  // the base colour factor is white
+  EXPECT_GT(m.diffuse.x, 0.0f);
+  EXPECT_EQ(m.phongExponent, 10000.0f);  // roughness 0: the sharpest lobe
+  EXPECT_GT(m.mirror.x, 0.4f);
 }
 
 TEST(ImportModel, ObjRoundTripGivesTheSameTrianglesBitForBitInFloat) {
