@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <string_view>
 
 #include "byte_input.h"
 #include "model_parts.h"
@@ -30,6 +31,10 @@ void readPly(const std::string& bytes, const std::filesystem::path& path, SceneG
   }
   if (ply.triangles.empty()) fail(path, "the file has no triangles");
   if (ply.skippedFaces > 0) notes.dropped.push_back(std::to_string(ply.skippedFaces) + " faces of fewer than 3 vertices");
+  // The reader keeps no colours: a header naming them says so in the summary rather than "dropped: nothing".
+  const std::string_view header = std::string_view(bytes).substr(0, bytes.find("end_header"));
+  if (header.find(" red\n") != std::string_view::npos || header.find(" diffuse_red\n") != std::string_view::npos)
+    notes.dropped.push_back("the vertex colours");
   g.vertices = std::move(ply.vertices);
   g.normals.resize(ply.normals.size());
   std::transform(ply.normals.begin(), ply.normals.end(), g.normals.begin(), unitNormal);

@@ -487,6 +487,25 @@ TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
   EXPECT_NE(framed.summary.find("made up: camera, key/fill/back lights"), std::string::npos) << framed.summary;
 }
 
+// What the format cannot keep is named in the summary, not dropped silently.
+TEST(ImportModel, EmissionAndVertexColoursAreReportedAsDropped) {
+  std::string gltf = triangleGltf(5.0, 10.0);
+  const std::string mesh = R"("attributes":{"POSITION":0})";
+  gltf.replace(gltf.find(mesh), mesh.size(), mesh + R"(,"material":0)");
+  gltf.insert(gltf.rfind('}'), R"(,"materials":[{"emissiveFactor":[1,0.5,0]}])");
+  const ImportedModel model = importModel(writeFile("glow.gltf", gltf), small());
+  EXPECT_NE(model.summary.find("dropped: the emission of 1 materials"), std::string::npos) << model.summary;
+  const ImportedModel colours = importModel(
+      writeFile("colours.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                               "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                               "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n"),
+      small());
+  EXPECT_NE(colours.summary.find("dropped: the vertex colours"), std::string::npos) << colours.summary;
+  const ImportedModel plain = importModel(writeFile("plain.gltf", triangleGltf(5.0, 10.0)), small());
+  EXPECT_NE(plain.summary.find("dropped: nothing"), std::string::npos) << plain.summary;
+}
+
 // A camera that looks away from the model, or a light too weak to see it by (1 cd at 4.2 units: 14 of 255), is
 // replaced by rayview's with a warning; asked for, the file's is kept whatever it shows.
 TEST(ImportModel, AFileCameraOrLightThatShowsNothingIsReplaced) {
