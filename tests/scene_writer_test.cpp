@@ -95,6 +95,7 @@ void expectSameScene(const Scene& a, const Scene& b) {
     EXPECT_EQ(ma.phongExponent, mb.phongExponent);
     expectVecEq(ma.mirror, mb.mirror, "mirror of " + ma.id);
     EXPECT_EQ(ma.textureFactor, mb.textureFactor);
+    EXPECT_EQ(ma.twoSided, mb.twoSided);
   }
 
   // The texture is found again from the new file's directory, with the same pixels.
