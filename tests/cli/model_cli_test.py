@@ -92,6 +92,7 @@ def main():
         r = run(["render", s("out." + ext), "-o", s(f"back_{ext}.png")], a.rayview)
         check(r.returncode == 0, f"the exported .{ext} opens again")
     check(os.path.exists(s("out.mtl")) and os.path.exists(s("out.bin")), "export writes the .mtl and the .bin beside")
+    check('"doubleSided": true' in open(s("out.gltf")).read(), "two-sided materials are exported doubleSided")
     check(not [n for n in os.listdir(a.scratch) if n.startswith(".rayview-export")], "no staging directory is left")
     r = run(["export", s("box.xml"), "-o", s("out.fbx")], a.rayview)
     check(r.returncode == 2 and not os.path.exists(s("out.fbx")), "export to an unknown format exits 2")
