@@ -17,6 +17,10 @@ namespace {
 constexpr double kFill = 0.88;  // the share of the frame's tighter dimension the bounding box spans
 constexpr double kLeastCoverage = 0.05;   // a file's camera that shows the model on less of its frame shows nothing
 constexpr float kLeastIrradiance = 20.0f;  // file lights giving less leave a model at about the ambient light alone
+// File lights giving more than kMostIrradiance (glTF's lux and candela times 255 often do) would turn the model
+// white: they are scaled down together to kExposedIrradiance, keeping their arrangement and colours.
+constexpr float kMostIrradiance = 400.0f;
+constexpr float kExposedIrradiance = 200.0f;
 
 struct Axes {
   glm::dvec3 up, front, side;
@@ -217,8 +221,17 @@ bool useFileLights(const aiScene* scene, const ModelImportOptions& options, Scen
     return false;
   if (options.lights == ModelViewSource::File) return true;
   const float irradiance = irradianceAt(out.lights.of<PointLight>(), centre, radius);
-  if (irradiance >= kLeastIrradiance) return true;
   char why[200];
+  if (irradiance > kMostIrradiance) {
+    for (PointLight& light : out.lights.of<PointLight>()) light.intensity *= kExposedIrradiance / irradiance;
+    std::snprintf(why, sizeof why,
+                  "the file's lights give the model an irradiance of %.3g (of 255), which would turn it white; they "
+                  "are scaled down to %.0f (--lights file keeps them as they are)",
+                  irradiance, kExposedIrradiance);
+    notes.warnings.push_back(why);
+    return true;
+  }
+  if (irradiance >= kLeastIrradiance) return true;
   std::snprintf(why, sizeof why,
                 "the file's lights give the model an irradiance of %.3g (of 255); too little to see it by, so rayview "
                 "lights it instead (--lights file keeps the file's)",

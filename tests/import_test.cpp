@@ -524,6 +524,16 @@ TEST(ImportModel, AFileCameraOrLightThatShowsNothingIsReplaced) {
   EXPECT_TRUE(warned(lit, "the file's lights give the model an irradiance of 14.2"));
   EXPECT_EQ(lit.loaded.scene.lights.of<PointLight>().size(), 3u);
   EXPECT_EQ(importModel(dim, file).loaded.scene.lights.of<PointLight>().size(), 1u);
+
+  // 1000 cd at 4.2 units: 14 000 of 255, a white frame; scaled to 200 with its place kept.
+  const fs::path glaring = writeFile("glaring.gltf", triangleGltf(5.0, 1000.0));
+  const ImportedModel exposed = importModel(glaring, small());
+  EXPECT_TRUE(warned(exposed, "which would turn it white"));
+  ASSERT_EQ(exposed.loaded.scene.lights.of<PointLight>().size(), 1u);
+  const PointLight& light = exposed.loaded.scene.lights.of<PointLight>()[0];
+  EXPECT_EQ(light.position, glm::dvec3(0, 3, 3));
+  EXPECT_NEAR(light.intensity.x / 18.0f, 200.0f, 0.01f);  // I / d^2 at the centre, d^2 = 3^2 + 3^2
+  EXPECT_EQ(importModel(glaring, file).loaded.scene.lights.of<PointLight>()[0].intensity.x, 255000.0f);
 }
 
 // A worker that dies or answers garbage is a clean error about the file, never a crash of rayview.
