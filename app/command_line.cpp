@@ -162,10 +162,20 @@ std::vector<OptionSpec> makeOptionTable() {
        [](CommandLine& c, const std::string& v) {
          if (!parseMemoryUse(v, c.job.open.memory)) throw UsageError("--memory expects 'auto', 'fast' or 'lean', not '" + v + "'");
        }},
-      {"--camera", "N", kOpen,
-       "which camera of a CENG477 scene's <Cameras> to open (1 is the first, the default; render -o DIR/ writes "
-       "every camera to its <ImageName> unless one is chosen)",
-       [](CommandLine& c, const std::string& v) { c.job.open.camera = parseInt("--camera", v, 1, 1000000); }},
+      {"--camera", "N|file|auto", kOpen,
+       "which camera to open: of a CENG477 scene's <Cameras>, N (1 is the first, the default; render -o DIR/ writes "
+       "every camera to its <ImageName> unless one is chosen); of a model, the file's own (file) or rayview's "
+       "framing (auto) instead of the default: the file's when it shows the model",
+       [](CommandLine& c, const std::string& v) {
+         if (parseModelCamera(v, c.job.open.model.camera)) return;  // a word for a model, else a camera number
+         c.job.open.camera = parseInt("--camera", v, 1, 1000000);
+       }},
+      {"--lights", "file|kit", kOpen,
+       "a model's lights: the file's own (file) or rayview's key/fill/back kit (kit) instead of the default: the "
+       "file's when they light the model",
+       [](CommandLine& c, const std::string& v) {
+         if (!parseModelLights(v, c.job.open.model.lights)) throw UsageError("--lights expects file or kit, not '" + v + "'");
+       }},
       {"--turntable", "N", kRender,
        "render N frames orbiting the camera around the scene's centre (the viewer's orbit pivot); -o names them "
        "with a printf number, e.g. -o frames/spin_%04d.png",

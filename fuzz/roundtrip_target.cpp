@@ -57,6 +57,7 @@ void compare(const rayview::Scene& a, const rayview::Scene& b) {
     EXPECT_SAME(ma.phongExponent == mb.phongExponent);
     EXPECT_SAME(same(ma.mirror, mb.mirror));
     EXPECT_SAME(ma.textureFactor == mb.textureFactor);
+    EXPECT_SAME(ma.twoSided == mb.twoSided);
   }
 }
 

@@ -44,6 +44,10 @@ aiMaterial* toAssimp(const Material& m) {
     out->AddProperty(&mirror, 1, AI_MATKEY_COLOR_REFLECTIVE);
     out->AddProperty(&reflectivity, 1, AI_MATKEY_REFLECTIVITY);
   }
+  if (m.twoSided) {
+    const int twoSided = 1;
+    out->AddProperty(&twoSided, 1, AI_MATKEY_TWOSIDED);
+  }
   return out;
 }
 

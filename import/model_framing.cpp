@@ -15,6 +15,12 @@ namespace rayview::model {
 namespace {
 
 constexpr double kFill = 0.88;  // the share of the frame's tighter dimension the bounding box spans
+constexpr double kLeastCoverage = 0.05;   // a file's camera that shows the model on less of its frame shows nothing
+constexpr float kLeastIrradiance = 20.0f;  // file lights giving less leave a model at about the ambient light alone
+// File lights giving more than kMostIrradiance (glTF's lux and candela times 255 often do) would turn the model
+// white: they are scaled down together to kExposedIrradiance, keeping their arrangement and colours.
+constexpr float kMostIrradiance = 400.0f;
+constexpr float kExposedIrradiance = 200.0f;
 
 struct Axes {
   glm::dvec3 up, front, side;
@@ -170,23 +176,69 @@ std::size_t fileLights(const aiScene& scene, const glm::dvec3& centre, double ra
 }
 
 void madeUpLights(const Axes& a, const glm::dvec3& centre, double radius, SceneParameters& p) {
-  // Irradiance at the model's centre on the 0..255 scale: key, fill, back.
+  // The most irradiance each light gives any point of the model (at its bounding sphere's nearest point), on the
+  // 0..255 scale: key, fill, back. No face direction gathers more than 215 from the three together, so a white
+  // diffuse surface with the ambient 30 stays below 255 (only highlights clip), as F3D's and Blender's kits keep it.
   struct Placed {
     glm::dvec3 direction;
     float irradiance;
   };
-  const Placed placed[] = {{0.9 * a.side + 1.0 * a.up + 0.6 * a.front, 220.0f},
-                           {-1.0 * a.side + 0.3 * a.up + 0.7 * a.front, 90.0f},
-                           {-0.3 * a.side + 0.8 * a.up - 1.0 * a.front, 140.0f}};
-  const double distance = 4.0 * radius;
+  const Placed placed[] = {{0.9 * a.side + 1.0 * a.up + 0.6 * a.front, 180.0f},
+                           {-1.0 * a.side + 0.3 * a.up + 0.7 * a.front, 74.0f},
+                           {-0.3 * a.side + 0.8 * a.up - 1.0 * a.front, 115.0f}};
+  // Far away, so the near and far sides of the model see nearly the same light (7/8 of the most at the centre).
+  const double distance = 8.0 * radius, nearest = distance - radius;
   int id = 1;
   for (const Placed& light : placed) {
     PointLight point;
     point.id = std::to_string(id++);
     point.position = centre + glm::normalize(light.direction) * distance;
-    point.intensity = Color(light.irradiance * static_cast<float>(distance * distance));
+    point.intensity = Color(light.irradiance * static_cast<float>(nearest * nearest));
     p.lights.of<PointLight>().push_back(point);
   }
+}
+
+// The file's camera when it has one and (unless asked for it whatever it shows) it shows the model.
+bool useFileCamera(const aiScene* scene, const ModelImportOptions& options, Scene& out, const Bounds& bounds,
+                   Notes& notes) {
+  if (!scene || options.camera == ModelViewSource::Rayview || !fileCamera(*scene, out.camera)) return false;
+  if (options.camera == ModelViewSource::File) return true;
+  const double coverage = frameCoverage(out.camera, out, bounds);
+  if (coverage >= kLeastCoverage) return true;
+  char why[200];
+  std::snprintf(why, sizeof why,
+                "the file's camera shows the model on %.0f %% of the frame (inside it, behind it or too far); rayview "
+                "frames it instead (--camera file keeps the file's)",
+                100.0 * coverage);
+  notes.warnings.push_back(why);
+  return false;
+}
+
+// The file's lights when it has some and (unless asked for them whatever they show) they light the model.
+bool useFileLights(const aiScene* scene, const ModelImportOptions& options, Scene& out, const glm::dvec3& centre,
+                   double radius, Notes& notes) {
+  if (!scene || options.lights == ModelViewSource::Rayview || fileLights(*scene, centre, radius, out, notes) == 0)
+    return false;
+  if (options.lights == ModelViewSource::File) return true;
+  const float irradiance = irradianceAt(out.lights.of<PointLight>(), centre, radius);
+  char why[200];
+  if (irradiance > kMostIrradiance) {
+    for (PointLight& light : out.lights.of<PointLight>()) light.intensity *= kExposedIrradiance / irradiance;
+    std::snprintf(why, sizeof why,
+                  "the file's lights give the model an irradiance of %.3g (of 255), which would turn it white; they "
+                  "are scaled down to %.0f (--lights file keeps them as they are)",
+                  irradiance, kExposedIrradiance);
+    notes.warnings.push_back(why);
+    return true;
+  }
+  if (irradiance >= kLeastIrradiance) return true;
+  std::snprintf(why, sizeof why,
+                "the file's lights give the model an irradiance of %.3g (of 255); too little to see it by, so rayview "
+                "lights it instead (--lights file keeps the file's)",
+                irradiance);
+  notes.warnings.push_back(why);
+  out.lights.of<PointLight>().clear();
+  return false;
 }
 
 }  // namespace
@@ -199,7 +251,7 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
   Camera& c = out.camera;
   c.width = options.width;
   c.height = options.height;
-  if (!scene || !fileCamera(*scene, c)) {
+  if (!useFileCamera(scene, options, out, bounds, notes)) {
     const glm::dvec3 toEye = glm::normalize(0.55 * axes.side + 0.45 * axes.up + 1.0 * axes.front);
     c.position = centre + toEye * (2.6 * radius);
     c.gaze = -toEye;
@@ -207,7 +259,7 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
     fitWindow(c, bounds);
     notes.madeUp.push_back("camera");
   }
-  if (!scene || fileLights(*scene, centre, radius, out, notes) == 0) {
+  if (!useFileLights(scene, options, out, centre, radius, notes)) {
     madeUpLights(axes, centre, radius, out);
     notes.madeUp.push_back("key/fill/back lights");
   }

@@ -34,7 +34,13 @@ std::string baseColorTexture(const aiMaterial& m) {
   return {};
 }
 
-Material phongOf(const aiMaterial& m, bool& madeUpColor) {
+// The scale of the metallic and roughness factors: 1, or the averages of the material's metallic-roughness map
+// (glTF: roughness in green, metallic in blue), which the format cannot keep per texel.
+struct MetalRough {
+  float metallic = 1.0f, roughness = 1.0f;
+};
+
+Material phongOf(const aiMaterial& m, bool& madeUpColor, MetalRough scale) {
   Material out;
   aiColor4D color;
   float value = 0.0f;
@@ -49,8 +55,8 @@ Material phongOf(const aiMaterial& m, bool& madeUpColor) {
   const bool hasRoughness = m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS;
   const bool pbr = hasMetallic || hasRoughness;
   if (pbr) {
-    metallic = std::clamp(std::isfinite(metallic) ? metallic : 0.0f, 0.0f, 1.0f);
-    roughness = std::clamp(std::isfinite(roughness) ? roughness : 1.0f, 0.0f, 1.0f);
+    metallic = std::clamp(std::isfinite(metallic) ? metallic * scale.metallic : 0.0f, 0.0f, 1.0f);
+    roughness = std::clamp(std::isfinite(roughness) ? roughness * scale.roughness : 1.0f, 0.0f, 1.0f);
     const Color base = out.diffuse;
     // Roughness r as a Blinn-Phong exponent: 2/a^2 - 2 with a = r^2, the usual match of the two lobes.
     const float alpha = std::max(roughness * roughness, 0.01f);
@@ -73,6 +79,8 @@ Material phongOf(const aiMaterial& m, bool& madeUpColor) {
     }
   }
   out.ambient = out.diffuse;
+  // Models are lit on both sides, as model viewers show them: a face wound inward is not a black hole.
+  out.twoSided = true;
   return out;
 }
 
@@ -122,6 +130,34 @@ Color averageOf(const Texture& t) {
   return Color(static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n), static_cast<float>(sum[2] / n));
 }
 
+// The metallic-roughness map a material names ("" when none): glTF's, which Assimp 5.2.5 files as UNKNOWN, or the
+// metalness map of other formats.
+std::string metalRoughTexture(const aiMaterial& m) {
+  aiString path;
+  for (const aiTextureType type : {aiTextureType_UNKNOWN, aiTextureType_METALNESS})
+    if (m.GetTextureCount(type) > 0 && m.GetTexture(type, 0, &path) == AI_SUCCESS) return path.C_Str();
+  return {};
+}
+
+// A material's factor scales from its metallic-roughness map's average texel, each map read once. Without them
+// glTF's default factors (metallic 1, roughness 1) make every mapped metal a pale, broad highlight.
+MetalRough metalRoughScale(const aiScene& scene, const fs::path& modelDir, const aiMaterial& m,
+                           std::map<std::string, std::optional<MetalRough>>& cache, Notes& notes) {
+  const std::string name = metalRoughTexture(m);
+  if (name.empty()) return {};
+  auto [it, added] = cache.emplace(name, std::nullopt);
+  if (added) {
+    std::string reason;
+    if (const std::optional<Texture> texture = loadTexture(scene, modelDir, name, reason)) {
+      const Color average = averageOf(*texture);
+      it->second = MetalRough{average.z, average.y};
+    } else {
+      notes.warnings.push_back("metallic-roughness map \"" + name + "\" cannot be used (" + reason + ")");
+    }
+  }
+  return it->second.value_or(MetalRough{});
+}
+
 std::string fileNamePart(const std::string& name) {
   const std::string base = fs::path(name).filename().string();
   return base.empty() || base[0] == '*' ? "embedded" : base;
@@ -134,6 +170,7 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
   std::map<unsigned, std::uint32_t> ours;
   std::map<std::string, std::size_t> textureUse;
   std::map<std::string, int> taken;
+  std::map<std::string, std::optional<MetalRough>> metalRough;
   bool madeUpColor = false;
   for (Mesh& mesh : out.meshes) {
     const unsigned index = mesh.material;
@@ -141,8 +178,9 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
     if (added) {
       Material material;
       if (index < scene.mNumMaterials && scene.mMaterials[index]) {
-        material = phongOf(*scene.mMaterials[index], madeUpColor);
-        material.id = materialId(*scene.mMaterials[index], index, taken);
+        const aiMaterial& m = *scene.mMaterials[index];
+        material = phongOf(m, madeUpColor, metalRoughScale(scene, path.parent_path(), m, metalRough, notes));
+        material.id = materialId(m, index, taken);
       } else {
         material.diffuse = material.ambient = Color(0.8f);
         material.id = std::string("material").append(std::to_string(index + 1));

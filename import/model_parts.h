@@ -38,6 +38,12 @@ void mapMaterials(const aiScene& scene, const std::filesystem::path& path, Scene
 // The file's own camera and lights when it has them (glTF, FBX, COLLADA), else made up from the bounds.
 void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& out, Notes& notes);
 
+// The share (0..1) of the camera's frame that the model's triangles cover, on a coarse grid; 0 when the camera is
+// inside the model's bounding box or every triangle is behind it.
+double frameCoverage(const Camera& camera, const SceneGeometry& geometry, const Bounds& bounds);
+// The lights' mean irradiance (0..255 scale) at the model's centre, no light counted nearer than `radius`.
+float irradianceAt(const std::vector<PointLight>& lights, const glm::dvec3& centre, double radius);
+
 // rayview's own readers: nullopt-like false when the file is not one they read (Assimp then reads it).
 bool readPlyOrStl(const std::filesystem::path& path, SceneGeometry& geometry, Notes& notes);
 

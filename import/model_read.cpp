@@ -71,6 +71,7 @@ void singleMaterial(Scene& scene, model::Notes& notes) {
   m.diffuse = m.ambient = Color(0.8f);
   m.specular = Color(0.2f);
   m.phongExponent = 32.0f;
+  m.twoSided = true;  // as every imported material: STL and PLY winding is often inward
   scene.materials.push_back(m);
   for (Mesh& mesh : scene.meshes) mesh.material = 0;
   notes.madeUp.push_back("material");

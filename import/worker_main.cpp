@@ -1,7 +1,7 @@
 // rayview-import: the worker that reads a model (or writes one) for rayview, in a process of its own, and
 // answers on its standard output in the form of wire_format.h. Not a user command: rayview starts it.
 //
-//   rayview-import read MODEL [--up y|z] [--resolution WxH]
+//   rayview-import read MODEL [--up y|z] [--resolution WxH] [--camera shown|file|auto] [--lights shown|file|kit]
 //   rayview-import export SCENE.wire OUTPUT     (the scene as rayview's client wrote it: wire_format.h)
 
 #include <fcntl.h>
@@ -42,7 +42,8 @@ void limitResources(const char* file) {
 }
 
 int usage() {
-  wire::writeError(stdout, "0\nusage: rayview-import read MODEL [--up y|z] [--resolution WxH] | export SCENE.wire OUTPUT");
+  wire::writeError(stdout, "0\nusage: rayview-import read MODEL [--up y|z] [--resolution WxH] [--camera shown|file|auto] "
+                               "[--lights shown|file|kit] | export SCENE.wire OUTPUT");
   return 2;
 }
 
@@ -52,6 +53,8 @@ int readCommand(int argc, char** argv) {
     const std::string name = argv[i], value = argv[i + 1];
     if (name == "--up" && parseModelUpAxis(value, options.up)) continue;
     if (name == "--resolution" && parseResolution(value, options.width, options.height)) continue;
+    if (name == "--camera" && parseModelCamera(value, options.camera)) continue;
+    if (name == "--lights" && parseModelLights(value, options.lights)) continue;
     return usage();
   }
   ModelScene model = readModel(argv[2], options);

@@ -26,7 +26,7 @@ int runRenderJob(const RenderJob& job) {
 namespace {
 
 // Bumped with any change of the layout: a rank of another build is refused rather than misread.
-constexpr std::uint32_t kJobMagic = 0x52564a32;  // "RVJ2"
+constexpr std::uint32_t kJobMagic = 0x52564a33;  // "RVJ3"
 
 class JobWriter {
  public:
@@ -91,6 +91,8 @@ void writeOpenOptions(JobWriter& w, const SceneOpenOptions& o) {
   w.pod(static_cast<std::uint8_t>(o.model.up));
   w.pod(o.model.width);
   w.pod(o.model.height);
+  w.pod(static_cast<std::uint8_t>(o.model.camera));
+  w.pod(static_cast<std::uint8_t>(o.model.lights));
   w.pod(static_cast<std::uint8_t>(o.memory));
   w.pod(static_cast<std::uint8_t>(o.loadTexture));
 }
@@ -102,6 +104,8 @@ SceneOpenOptions readOpenOptions(JobReader& r) {
   o.model.up = static_cast<ModelUpAxis>(r.small(static_cast<std::uint8_t>(ModelUpAxis::Z)));
   o.model.width = r.pod<int>();
   o.model.height = r.pod<int>();
+  o.model.camera = static_cast<ModelViewSource>(r.small(static_cast<std::uint8_t>(ModelViewSource::Rayview)));
+  o.model.lights = static_cast<ModelViewSource>(r.small(static_cast<std::uint8_t>(ModelViewSource::Rayview)));
   o.memory = static_cast<MemoryUse>(r.small(static_cast<std::uint8_t>(MemoryUse::Lean)));
   o.loadTexture = r.small(1) != 0;
   return o;

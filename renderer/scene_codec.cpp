@@ -112,6 +112,7 @@ void writeMaterial(Writer& w, const Material& m) {
   w.pod(m.phongExponent);
   w.pod(m.mirror);
   w.pod(m.textureFactor);
+  w.pod(static_cast<std::uint8_t>(m.twoSided));
 }
 
 Material readMaterial(Reader& r) {
@@ -123,6 +124,7 @@ Material readMaterial(Reader& r) {
   m.phongExponent = r.pod<float>();
   m.mirror = r.pod<Color>();
   m.textureFactor = r.pod<float>();
+  m.twoSided = r.pod<std::uint8_t>() != 0;
   return m;
 }
 

@@ -50,7 +50,7 @@ enum class Tag {
   NearDistance, ImageResolution, Lights, AmbientLight,
   Light,  // the element of a light type (light_types.h); its own fields are read from the type's table
   Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
-  TextureFactor, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
+  TextureFactor, TwoSided, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
   Count
 };
 
@@ -67,6 +67,7 @@ inline constexpr TagName kTagNames[] = {
     {"materials", Tag::Materials}, {"material", Tag::Material}, {"ambient", Tag::Ambient},
     {"diffuse", Tag::Diffuse}, {"specular", Tag::Specular}, {"phongexponent", Tag::PhongExponent},
     {"mirrorreflectance", Tag::MirrorReflectance}, {"texturefactor", Tag::TextureFactor},
+    {"twosided", Tag::TwoSided},
     {"vertexdata", Tag::VertexData}, {"texturedata", Tag::TextureData}, {"normaldata", Tag::NormalData},
     {"textureimage", Tag::TextureImage}, {"objects", Tag::Objects}, {"mesh", Tag::Mesh},
     {"materialid", Tag::MaterialId}, {"faces", Tag::Faces},

@@ -202,6 +202,13 @@ void Loader::readMaterials(const XMLElement* materials) {
         }
         case Tag::MirrorReflectance: material.mirror = readColor(c), have |= 16; break;
         case Tag::TextureFactor: material.textureFactor = static_cast<float>(readScalar(c, true)); break;
+        case Tag::TwoSided: {
+          std::int64_t flag = 0;
+          readIntegers(c, 1, &flag, 0, "0 or 1");
+          if (flag > 1) fail(c->GetLineNum(), elementName(c) + ": expected 0 or 1, found " + trimmedText(c));
+          material.twoSided = flag == 1;
+          break;
+        }
         default: return false;
       }
       return true;

@@ -190,6 +190,7 @@ void writeParameters(XmlWriter& xml, const SceneParameters& parameters) {
     xml.element(3, "mirrorreflectance", m.mirror);
     // A 2025 element: written only when it matters, so 2024 scenes stay 2024 files.
     if (m.textureFactor != 0.0f) xml.element(3, "texturefactor", m.textureFactor);
+    if (m.twoSided) xml.element(3, "twosided", 1);
     xml.close(2, "material");
   }
   xml.close(1, "materials");

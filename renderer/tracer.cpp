@@ -430,8 +430,11 @@ struct SurfacePoint {
   glm::vec3 n;    // the shading normal: the vertex normals interpolated where the face has them, else ng
 };
 
+// A two-sided material's face seen from behind (twoSided, the ray along `direction` meeting its back) is shaded as
+// its front: both normals turned toward the viewer, so the lights, the mirror ray and the secondary rays' offset
+// all work on the side the ray arrived at. One-sided materials (every handout scene's) keep the normals as they are.
 inline SurfacePoint surfaceAt(const SceneGeometry& meshes, const glm::dvec3& origin, const Hit& hit,
-                              const FaceAttributes& attributes) {
+                              const FaceAttributes& attributes, bool twoSided, const glm::dvec3& direction) {
   const Triangle& triangle = meshes.triangles[hit.triangle];
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
@@ -451,6 +454,10 @@ inline SurfacePoint surfaceAt(const SceneGeometry& meshes, const glm::dvec3& ori
     const float length = glm::length(interpolated);
     if (length > 0.0f && std::isfinite(length)) s.n = interpolated / length;
   }
+  if (twoSided && glm::dot(s.ng, direction) > 0.0) [[unlikely]] {
+    s.ng = -s.ng;
+    s.n = -s.n;
+  }
   return s;
 }
 
@@ -461,7 +468,7 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
                       Shadows& shadows, PathVertex& v, Ray& mirrorRay, LitPoint* lit) const {
   const Material& material = materialOf(hit.triangle);
   const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
-  const SurfacePoint surface = surfaceAt(meshes_, shading_.origin, hit, attributes);
+  const SurfacePoint surface = surfaceAt(meshes_, shading_.origin, hit, attributes, material.twoSided, ray.direction);
   const glm::dvec3& pExact = surface.p;
   const glm::dvec3& ngExact = surface.ng;
   const glm::vec3 n = surface.n;

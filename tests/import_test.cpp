@@ -169,7 +169,86 @@ TEST(ImportModel, BinaryPlyAndStlAreFramedAndLit) {
   expectFramed(ply, "box_ply");
   const Scene stl = loadModelScene(writeFile("box.stl", boxStl()), small()).scene;
   EXPECT_EQ(stl.triangles.size(), 12u);
+  EXPECT_TRUE(stl.materials.at(0).twoSided);
   expectFramed(stl, "box_stl");
+}
+
+// The box with every face wound inward, as many exported models are: seen from outside, its faces show their
+// backs. Imported materials are two-sided, so it is framed and lit, not a black silhouette.
+std::string inwardBoxObj() {
+  std::ostringstream obj;
+  for (const auto& v : kBox) obj << "v " << v[0] << " " << v[1] << " " << v[2] << "\n";
+  for (const auto& q : kBoxQuads) obj << "f " << q[3] + 1 << " " << q[2] + 1 << " " << q[1] + 1 << " " << q[0] + 1 << "\n";
+  return obj.str();
+}
+
+TEST(ImportModel, FacesWoundInwardAreLitFromOutside) {
+  const Scene scene = loadModelScene(writeFile("inward.obj", inwardBoxObj()), small()).scene;
+  ASSERT_FALSE(scene.materials.empty());
+  for (const Material& m : scene.materials) EXPECT_TRUE(m.twoSided) << m.id;
+  expectFramed(scene, "box_inward");
+  Scene oneSided = scene;
+  for (Material& m : oneSided.materials) m.twoSided = false;
+  const Image image = render(oneSided);
+  const std::uint8_t* centre = image.pixel(image.width / 2, image.height / 2);
+  EXPECT_LT(std::max({centre[0], centre[1], centre[2]}), 40);  // the one-sided shading this replaces: ambient only
+}
+
+// A UV sphere: every normal direction, so whichever way the light kit's lights point, some face takes their sum.
+std::string sphereObj(const std::string& material) {
+  std::ostringstream obj;
+  if (!material.empty()) obj << "mtllib sphere.mtl\nusemtl " << material << "\n";
+  const int rings = 24, segments = 48;
+  obj << "v 0 1 0\nv 0 -1 0\n";
+  for (int r = 1; r < rings; ++r)
+    for (int s = 0; s < segments; ++s) {
+      const double theta = M_PI * r / rings, phi = 2.0 * M_PI * s / segments;
+      obj << "v " << std::sin(theta) * std::cos(phi) << " " << std::cos(theta) << " " << std::sin(theta) * std::sin(phi) << "\n";
+    }
+  auto at = [&](int r, int s) { return 3 + (r - 1) * segments + (s % segments); };  // 1-based, rings 1 .. rings-1
+  for (int s = 0; s < segments; ++s) {
+    obj << "f 1 " << at(1, s + 1) << " " << at(1, s) << "\n";
+    obj << "f 2 " << at(rings - 1, s) << " " << at(rings - 1, s + 1) << "\n";
+    for (int r = 1; r + 1 < rings; ++r)
+      obj << "f " << at(r, s) << " " << at(r, s + 1) << " " << at(r + 1, s + 1) << " " << at(r + 1, s) << "\n";
+  }
+  return obj.str();
+}
+
+struct Exposure {
+  double clipped = 0.0;  // the share of the model's pixels that are pure white
+  double mean = 0.0;     // their mean over the three channels, 0..255
+};
+
+Exposure exposureOf(const Scene& scene, const std::string& name) {
+  const Image image = render(scene);
+  writeImageFile(modelDirectory() / (name + ".png"), image);
+  std::size_t model = 0, white = 0;
+  double sum = 0.0;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      if (isBackground(image, x, y, scene.background)) continue;
+      const std::uint8_t* p = image.pixel(x, y);
+      ++model;
+      white += p[0] == 255 && p[1] == 255 && p[2] == 255;
+      sum += (p[0] + p[1] + p[2]) / 3.0;
+    }
+  if (model == 0) return {};
+  return {static_cast<double>(white) / model, sum / model};
+}
+
+// The made-up lights keep a white model below clipping, as F3D's and Blender's defaults do, and not dark.
+TEST(ImportModel, TheLightKitKeepsAWhiteModelBelowClippingAndVisible) {
+  writeFile("sphere.mtl", "newmtl white\nKd 1 1 1\nKs 0 0 0\nnewmtl shiny\nKd 1 1 1\nKs 0.5 0.5 0.5\nNs 40\n");
+  for (const std::string material : {"white", "shiny"}) {
+    const Exposure e = exposureOf(loadModelScene(writeFile(material + ".obj", sphereObj(material)), small()).scene,
+                                  "sphere_" + material);
+    EXPECT_LE(e.clipped, 0.01) << material;
+    EXPECT_GE(e.mean, 30.0) << material;
+  }
+  const Exposure stl = exposureOf(loadModelScene(writeFile("plain.obj", sphereObj("")), small()).scene, "sphere_plain");
+  EXPECT_LE(stl.clipped, 0.01);
+  EXPECT_GE(stl.mean, 30.0);
 }
 
 // Sizes where a fixed epsilon would fail (docs/numerics.md): the made-up scene scales with the model, so the
@@ -189,7 +268,9 @@ TEST(ImportModel, UpZLooksAlongTheModelsZ) {
 }
 
 // A quad textured left half red, right half blue, its PNG inside the .glb.
-std::string texturedGlb() {
+// A quad whose base colour is a 4x4 PNG, red on the left and blue on the right; with `metalRoughMap`, the same image
+// is its metallic-roughness map under glTF's default factors (metallic 1, roughness 1).
+std::string texturedGlb(bool metalRoughMap = false) {
   Image texture(4, 4);
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 4; ++x) {
@@ -205,8 +286,10 @@ std::string texturedGlb() {
   while (bin.size() % 4) bin.push_back('\0');
   std::string json =
       R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":0}]}],)"
-      R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":1.0}}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":0}]}],)" +
+      std::string(metalRoughMap ? R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},)"
+                                  R"("metallicRoughnessTexture":{"index":0}}}],)"
+                                : R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":1.0}}],)") +
       R"("textures":[{"source":0}],"images":[{"bufferView":3,"mimeType":"image/png"}],)"
       R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
       R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},{"bufferView":2,"componentType":5125,"count":6,"type":"SCALAR"}],)"
@@ -244,6 +327,20 @@ TEST(ImportModel, GlbWithAnEmbeddedPngTextureShowsIt) {
   }
   EXPECT_GE(firstRed, 0);
   EXPECT_GT(lastBlue, firstRed);
+}
+
+// The metallic-roughness map scales the factors by its average texel: here green (roughness) is 0 everywhere and
+// blue (metallic) 230 on half the texels, so metallic 0.45 and roughness 0, not the defaults' fully metallic, fully
+// rough material whose diffuse colour is black and whose highlight covers everything.
+TEST(ImportModel, AMetallicRoughnessMapScalesTheFactors) {
+  const Scene scene = loadModelScene(writeFile("metal.glb", texturedGlb(true)), small()).scene;
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const Material& m = scene.materials[0];
+  const float metallic = 115.0f / 255.0f;
+  EXPECT_NEAR(m.specular.x, 0.04f + (1.0f - 0.04f) * metallic, 1e-3f);  // the base colour factor is white
+  EXPECT_GT(m.diffuse.x, 0.0f);
+  EXPECT_EQ(m.phongExponent, 10000.0f);  // roughness 0: the sharpest lobe
+  EXPECT_GT(m.mirror.x, 0.4f);
 }
 
 TEST(ImportModel, ObjRoundTripGivesTheSameTrianglesBitForBitInFloat) {
@@ -338,8 +435,9 @@ TEST(ImportModel, NormalsAndTextureCoordinatesAreKept) {
   EXPECT_EQ(obj.texCoords[obj.attributesOf(0).texCoord[1]], glm::vec2(1, 0));
 }
 
-// A glTF's own camera and light are used (a triangle seen from 5 units away, a point light above it).
-TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
+// A glTF of one triangle at the origin facing +z, a camera at (0, 0, cameraZ) looking down -z and a point light of
+// `intensity` at (0, 3, 3).
+std::string triangleGltf(double cameraZ, double intensity) {
   std::string buffer;
   for (float v : {-1.f, -1.f, 0.f, 1.f, -1.f, 0.f, 0.f, 1.f, 0.f}) put(buffer, v);
   // The 36 bytes in base64, by hand: no encoder in the test.
@@ -350,17 +448,29 @@ TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
     const unsigned triple = byte(0) << 16 | byte(1) << 8 | byte(2);
     for (int k = 3; k >= 0; --k) encoded.push_back(kBase64[(triple >> (6 * k)) & 63]);
   }
-  const std::string gltf =
-      R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_lights_punctual"],)"
-      R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":1,"color":[1,1,1]}]}},)"
-      R"("scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,5]},)"
-      R"({"extensions":{"KHR_lights_punctual":{"light":0}},"translation":[0,3,3]}],)"
-      R"("cameras":[{"type":"perspective","perspective":{"yfov":0.6,"znear":0.1,"aspectRatio":1.5}}],)"
-      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
-      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}],)"
-      R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
-      R"("uri":"data:application/octet-stream;base64,)" + encoded + R"("}]})";
-  const ImportedModel model = importModel(writeFile("camera.gltf", gltf), small());
+  return R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_lights_punctual"],)"
+         R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"point","intensity":)" + std::to_string(intensity) +
+         R"(,"color":[1,1,1]}]}},)"
+         R"("scene":0,"scenes":[{"nodes":[0,1,2]}],"nodes":[{"mesh":0},{"camera":0,"translation":[0,0,)" +
+         std::to_string(cameraZ) + R"(]},)"
+         R"({"extensions":{"KHR_lights_punctual":{"light":0}},"translation":[0,3,3]}],)"
+         R"("cameras":[{"type":"perspective","perspective":{"yfov":0.6,"znear":0.1,"aspectRatio":1.5}}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]}],)"
+         R"("bufferViews":[{"buffer":0,"byteLength":36}],"buffers":[{"byteLength":36,)"
+         R"("uri":"data:application/octet-stream;base64,)" + encoded + R"("}]})";
+}
+
+bool warned(const ImportedModel& model, const std::string& part) {
+  for (const Diagnostic& w : model.loaded.warnings)
+    if (w.message.find(part) != std::string::npos) return true;
+  return false;
+}
+
+// A glTF's own camera and light are used when they show the model (a triangle seen from 5 units away, a light
+// above it bright enough to see it by).
+TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
+  const ImportedModel model = importModel(writeFile("camera.gltf", triangleGltf(5.0, 10.0)), small());
   const Scene& scene = model.loaded.scene;
   EXPECT_EQ(model.summary.find("camera"), std::string::npos) << model.summary;
   EXPECT_EQ(scene.camera.position, glm::dvec3(0, 0, 5));
@@ -371,6 +481,59 @@ TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
   const Image image = render(scene);
   EXPECT_FALSE(isBackground(image, 80, 45, scene.background));
   EXPECT_TRUE(isBackground(image, 5, 5, scene.background));
+  ModelImportOptions own = small();
+  own.camera = own.lights = ModelViewSource::Rayview;  // --camera auto --lights kit
+  const ImportedModel framed = importModel(writeFile("camera.gltf", triangleGltf(5.0, 10.0)), own);
+  EXPECT_NE(framed.summary.find("made up: camera, key/fill/back lights"), std::string::npos) << framed.summary;
+}
+
+// What the format cannot keep is named in the summary, not dropped silently.
+TEST(ImportModel, EmissionAndVertexColoursAreReportedAsDropped) {
+  std::string gltf = triangleGltf(5.0, 10.0);
+  const std::string mesh = R"("attributes":{"POSITION":0})";
+  gltf.replace(gltf.find(mesh), mesh.size(), mesh + R"(,"material":0)");
+  gltf.insert(gltf.rfind('}'), R"(,"materials":[{"emissiveFactor":[1,0.5,0]}])");
+  const ImportedModel model = importModel(writeFile("glow.gltf", gltf), small());
+  EXPECT_NE(model.summary.find("dropped: the emission of 1 materials"), std::string::npos) << model.summary;
+  const ImportedModel colours = importModel(
+      writeFile("colours.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                               "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"
+                               "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                               "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n"),
+      small());
+  EXPECT_NE(colours.summary.find("dropped: the vertex colours"), std::string::npos) << colours.summary;
+  const ImportedModel plain = importModel(writeFile("plain.gltf", triangleGltf(5.0, 10.0)), small());
+  EXPECT_NE(plain.summary.find("dropped: nothing"), std::string::npos) << plain.summary;
+}
+
+// A camera that looks away from the model, or a light too weak to see it by (1 cd at 4.2 units: 14 of 255), is
+// replaced by rayview's with a warning; asked for, the file's is kept whatever it shows.
+TEST(ImportModel, AFileCameraOrLightThatShowsNothingIsReplaced) {
+  const fs::path away = writeFile("away.gltf", triangleGltf(-5.0, 10.0));
+  const ImportedModel framed = importModel(away, small());
+  EXPECT_NE(framed.summary.find("made up: camera"), std::string::npos) << framed.summary;
+  EXPECT_TRUE(warned(framed, "the file's camera shows the model on 0 % of the frame"));
+  expectFramed(framed.loaded.scene, "gltf_away");
+  ModelImportOptions file = small();
+  file.camera = file.lights = ModelViewSource::File;
+  EXPECT_EQ(importModel(away, file).loaded.scene.camera.position, glm::dvec3(0, 0, -5));
+
+  const fs::path dim = writeFile("dim.gltf", triangleGltf(5.0, 1.0));
+  const ImportedModel lit = importModel(dim, small());
+  EXPECT_NE(lit.summary.find("key/fill/back lights"), std::string::npos) << lit.summary;
+  EXPECT_TRUE(warned(lit, "the file's lights give the model an irradiance of 14.2"));
+  EXPECT_EQ(lit.loaded.scene.lights.of<PointLight>().size(), 3u);
+  EXPECT_EQ(importModel(dim, file).loaded.scene.lights.of<PointLight>().size(), 1u);
+
+  // 1000 cd at 4.2 units: 14 000 of 255, a white frame; scaled to 200 with its place kept.
+  const fs::path glaring = writeFile("glaring.gltf", triangleGltf(5.0, 1000.0));
+  const ImportedModel exposed = importModel(glaring, small());
+  EXPECT_TRUE(warned(exposed, "which would turn it white"));
+  ASSERT_EQ(exposed.loaded.scene.lights.of<PointLight>().size(), 1u);
+  const PointLight& light = exposed.loaded.scene.lights.of<PointLight>()[0];
+  EXPECT_EQ(light.position, glm::dvec3(0, 3, 3));
+  EXPECT_NEAR(light.intensity.x / 18.0f, 200.0f, 0.01f);  // I / d^2 at the centre, d^2 = 3^2 + 3^2
+  EXPECT_EQ(importModel(glaring, file).loaded.scene.lights.of<PointLight>()[0].intensity.x, 255000.0f);
 }
 
 // A worker that dies or answers garbage is a clean error about the file, never a crash of rayview.

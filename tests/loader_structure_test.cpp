@@ -195,6 +195,15 @@ TEST(Loader, MaterialOptionalParts) {
   EXPECT_TRUE(hasWarning(noMirror, 20, "<material id=\"red\"> has no <mirrorreflectance>; using 0 0 0"));
   const LoadedScene factor = load(with("<phongexponent>1</phongexponent>", "<phongexponent>1</phongexponent><texturefactor>0.25</texturefactor>"));
   EXPECT_EQ(factor.scene.materials[0].textureFactor, 0.25f);
+  EXPECT_FALSE(factor.scene.materials[0].twoSided);
+  const LoadedScene twoSided = load(with("<phongexponent>1</phongexponent>", "<phongexponent>1</phongexponent><twosided>1</twosided>"));
+  EXPECT_TRUE(twoSided.scene.materials[0].twoSided);
+  EXPECT_FALSE(load(with("<phongexponent>1</phongexponent>", "<phongexponent>1</phongexponent><twosided> 0 </twosided>"))
+                   .scene.materials[0].twoSided);
+  expectError(with("<phongexponent>1</phongexponent>", "<phongexponent>1</phongexponent><twosided>2</twosided>"), 24,
+              "<twosided>: expected 0 or 1");
+  expectError(with("<phongexponent>1</phongexponent>", "<phongexponent>1</phongexponent><twosided>yes</twosided>"), 24,
+              "<twosided>: expected 0 or 1");
   expectError(with("<phongexponent>1</phongexponent>", "<phongexponent>-2</phongexponent>"), 24, "<phongexponent>: must be >= 0");
 }
 

@@ -16,6 +16,8 @@ RenderJob everyFieldSet() {
   job.open.model.up = ModelUpAxis::Z;
   job.open.model.width = 321;
   job.open.model.height = 123;
+  job.open.model.camera = ModelViewSource::Rayview;
+  job.open.model.lights = ModelViewSource::File;
   job.open.memory = MemoryUse::Lean;
   job.open.loadTexture = false;
   job.knobs = {{findKnob("depth"), 7}, {findKnob("light-samples"), 16}, {findKnob("samples"), 4}};
@@ -36,6 +38,8 @@ TEST(RenderJob, EveryFieldSurvivesTheBytes) {
   EXPECT_EQ(back.open.model.up, job.open.model.up);
   EXPECT_EQ(back.open.model.width, job.open.model.width);
   EXPECT_EQ(back.open.model.height, job.open.model.height);
+  EXPECT_EQ(back.open.model.camera, job.open.model.camera);
+  EXPECT_EQ(back.open.model.lights, job.open.model.lights);
   EXPECT_EQ(back.open.memory, job.open.memory);
   EXPECT_EQ(back.open.loadTexture, job.open.loadTexture);
   ASSERT_EQ(back.knobs.size(), job.knobs.size());

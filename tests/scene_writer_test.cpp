@@ -95,6 +95,7 @@ void expectSameScene(const Scene& a, const Scene& b) {
     EXPECT_EQ(ma.phongExponent, mb.phongExponent);
     expectVecEq(ma.mirror, mb.mirror, "mirror of " + ma.id);
     EXPECT_EQ(ma.textureFactor, mb.textureFactor);
+    EXPECT_EQ(ma.twoSided, mb.twoSided);
   }
 
   // The texture is found again from the new file's directory, with the same pixels.
@@ -190,6 +191,29 @@ TEST(SceneWriter, UsesTheHandoutsSpellingsAndOneBasedFaces) {
     EXPECT_NE(xml.find(expected), std::string::npos) << expected << "\n" << xml;
   for (const char* misspelled : {"intesity", "traingular", "reflactance", "backgroundColor", "nearPlane"})
     EXPECT_EQ(xml.find(misspelled), std::string::npos) << misspelled;
+}
+
+// The two-sided flag is rayview's extension: written only for a material that has it, read back the same.
+TEST(SceneWriter, TwoSidedMaterialsRoundTrip) {
+  Scene scene;
+  scene.vertices = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  scene.camera.width = scene.camera.height = 4;
+  scene.materials.push_back(Material{"one", {}, {}, {}, 2.0f, {}, 0.0f});
+  scene.materials.push_back(scene.materials[0]);
+  scene.materials[1].id = "two";
+  scene.materials[1].twoSided = true;
+  scene.meshes.push_back(Mesh{"m", 1, 0, 1});
+  Triangle t;
+  t.vertex[1] = 1;
+  t.vertex[2] = 2;
+  scene.addFace(t);
+  const std::string xml = sceneToXml(scene, "");
+  EXPECT_EQ(xml.find("<twosided>"), xml.rfind("<twosided>")) << xml;
+  EXPECT_NE(xml.find("<twosided>1</twosided>"), std::string::npos) << xml;
+  const LoadedScene again = loadSceneText(xml, "t.xml", std::filesystem::temp_directory_path());
+  ASSERT_EQ(again.scene.materials.size(), 2u);
+  EXPECT_FALSE(again.scene.materials[0].twoSided);
+  EXPECT_TRUE(again.scene.materials[1].twoSided);
 }
 
 TEST(SceneWriter, NumbersAreShortAndExact) {

@@ -93,6 +93,27 @@ TEST(Shading, AmbientDiffuseSpecularFromAPointLight) {
   EXPECT_NEAR(centrePixel(scene).x, 2.0f + 125.0f + 62.5f, 1e-3f);
 }
 
+// A face wound away from the camera (a model's inward faces): black but for ambient light when one-sided, lit as
+// its front when the material is two-sided; a face seen from the front is the same either way.
+TEST(Shading, TwoSidedMaterialsLightTheBackOfAFace) {
+  Material m = plainMaterial();
+  m.diffuse = Color(0.5f);
+  Scene scene;
+  scene.camera = frontCamera(3);
+  scene.materials.push_back(m);
+  addTriangle(scene, {-10, -10, -2}, {0, 10, -2}, {10, -10, -2}, 0);  // clockwise from the eye: facing away
+  scene.lights.of<PointLight>().push_back({"1", {0, 0, 0}, Color(1000.0f)});
+  EXPECT_EQ(centrePixel(scene), Color(0.0f));
+  scene.materials[0].twoSided = true;
+  EXPECT_NEAR(centrePixel(scene).x, 0.5f * 250.0f, 1e-3f);  // E = 1000 / 2^2, n.l = 1 once n faces the eye
+
+  Scene front = quadScene(m);
+  front.lights = scene.lights;
+  const Color oneSided = centrePixel(front);
+  front.materials[0].twoSided = true;
+  EXPECT_EQ(centrePixel(front), oneSided);
+}
+
 TEST(Shading, PhongExponentSharpensTheHighlight) {
   Material m = plainMaterial();
   m.ambient = m.diffuse = Color(0.0f);

@@ -30,6 +30,7 @@ SceneParameters edited(SceneParameters p) {
   p.maxRayDepth = 7;
   p.materials.at(0).diffuse = Color(0.1f, 1.0f / 3.0f, 0.99999994f);
   p.materials.at(0).id = "edited \"material\"";
+  p.materials.at(0).twoSided = true;  // an imported model's material
   p.lights.of<PointLight>().at(0).position = {1.0 / 7.0, 2.0, -3.5};
   return p;
 }

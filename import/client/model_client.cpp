@@ -96,7 +96,8 @@ WorkerAnswer runWorker(const fs::path& file, const std::vector<std::string>& arg
 
 std::vector<std::string> readArguments(const fs::path& path, const ModelImportOptions& options) {
   return {"read", path.string(), "--up", options.up == ModelUpAxis::Z ? "z" : "y", "--resolution",
-          std::to_string(options.width) + "x" + std::to_string(options.height)};
+          std::to_string(options.width) + "x" + std::to_string(options.height),
+          "--camera", modelCameraWord(options.camera), "--lights", modelLightsWord(options.lights)};
 }
 
 // The worker's answer as the loader's result: its parameters through the XML loader (which checks them), its

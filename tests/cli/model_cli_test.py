@@ -139,12 +139,24 @@ def main():
         r = run(["render", s("out." + ext), "-o", s(f"back_{ext}.png")], a.rayview)
         check(r.returncode == 0, f"the exported .{ext} opens again")
     check(os.path.exists(s("out.mtl")) and os.path.exists(s("out.bin")), "export writes the .mtl and the .bin beside")
+    check('"doubleSided": true' in open(s("out.gltf")).read(), "two-sided materials are exported doubleSided")
     check(not [n for n in os.listdir(a.scratch) if n.startswith(".rayview-export")], "no staging directory is left")
     r = run(["export", s("box.xml"), "-o", s("out.fbx")], a.rayview)
     check(r.returncode == 2 and not os.path.exists(s("out.fbx")), "export to an unknown format exits 2")
     check_broken_models(a, s)
     r = run(["import", "--help"], a.rayview)
-    check(r.returncode == 0 and "--up" in r.stdout, "import --help")
+    check(r.returncode == 0 and "--up" in r.stdout and "--lights" in r.stdout and "file|auto" in r.stdout,
+          "import --help names --up, --camera file|auto and --lights")
+    r = run(["import", s("box.ply"), "-o", s("own.xml"), "--camera", "auto", "--lights", "kit"], a.rayview)
+    check(r.returncode == 0 and "camera, key/fill/back lights" in r.stdout,
+          "--camera auto --lights kit: rayview's framing and light kit")
+    r = run(["import", s("box.ply"), "-o", s("no.xml"), "--lights", "sun"], a.rayview)
+    check(r.returncode == 2 and "--lights expects file or kit" in r.stderr and not os.path.exists(s("no.xml")),
+          "an unknown --lights word: exit 2, nothing written")
+    r = run(["import", s("box.ply"), "-o", s("no.xml"), "--camera", "best"], a.rayview)
+    check(r.returncode == 2 and "--camera" in r.stderr and not os.path.exists(s("no.xml")),
+          "an unknown --camera word: exit 2")
+    check("<twosided>1</twosided>" in xml, "imported materials are two-sided")
 
 
 if __name__ == "__main__":

@@ -40,6 +40,9 @@ struct Material {
   float phongExponent = 1.0f;
   Color mirror{0.0f};         // <mirrorreflectance>
   float textureFactor = 0.0f;  // <texturefactor>, 2025 variant
+  // <twosided>1</twosided>, rayview's extension for imported models: a face seen from behind is shaded as if seen
+  // from the front (its normals flipped toward the viewer), as model viewers do; the handout's faces are one-sided.
+  bool twoSided = false;
 
   bool isMirror() const { return mirror.x != 0.0f || mirror.y != 0.0f || mirror.z != 0.0f; }
   bool operator==(const Material&) const = default;
