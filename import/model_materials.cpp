@@ -79,8 +79,6 @@ Material phongOf(const aiMaterial& m, bool& madeUpColor, MetalRough scale) {
     }
   }
   out.ambient = out.diffuse;
-  // Models are lit on both sides, as model viewers show them: a face wound inward is not a black hole.
-  out.twoSided = true;
   return out;
 }
 

@@ -71,7 +71,6 @@ void singleMaterial(Scene& scene, model::Notes& notes) {
   m.diffuse = m.ambient = Color(0.8f);
   m.specular = Color(0.2f);
   m.phongExponent = 32.0f;
-  m.twoSided = true;  // as every imported material: STL and PLY winding is often inward
   scene.materials.push_back(m);
   for (Mesh& mesh : scene.meshes) mesh.material = 0;
   notes.madeUp.push_back("material");
@@ -109,6 +108,9 @@ ModelScene readModel(const fs::path& path, const ModelImportOptions& options) {
     model::gatherGeometry(*assimp, path, scene, notes);
     model::mapMaterials(*assimp, path, scene, notes);
   }
+  // Both sides lit, as F3D and Blender light a model: whatever reader made them, a model's faces are often wound
+  // inward (STL, PLY, OBJ exported from CAD).
+  for (Material& m : scene.materials) m.twoSided = true;
   scene.sourcePath = path;
   model::frameScene(assimp, options, scene, notes);
   result.warnings = std::move(notes.warnings);
