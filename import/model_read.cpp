@@ -6,6 +6,7 @@
 
 #include <system_error>
 
+#include "guarded_io.h"
 #include "model_parts.h"
 #include "rayview/model_import.h"
 
@@ -25,7 +26,12 @@ void checkReadable(const fs::path& path) {
 }
 
 const aiScene* readWithAssimp(Assimp::Importer& importer, const fs::path& path) {
+  auto* io = new model::GuardedIOSystem;  // the importer owns it
+  importer.SetIOHandler(io);
   const aiScene* scene = importer.ReadFile(path.string(), kAssimpSteps);
+  if (!io->refused().empty())
+    model::fail(path, "names \"" + io->refused() + "\", which is not a regular file (a FIFO, socket or device is "
+                      "never read)");
   if (!scene) {
     std::string why = importer.GetErrorString();
     model::fail(path, "cannot be read as a model" + (why.empty() ? std::string() : ": " + why));

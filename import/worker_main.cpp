@@ -38,6 +38,12 @@ void limitResources(const char* file) {
     seconds = static_cast<rlim_t>(std::atoi(given));  // the fuzz target's shorter bound
   const rlimit cpu{seconds, seconds + 5};  // SIGXCPU at the bound, SIGKILL should that be caught
   ::setrlimit(RLIMIT_CPU, &cpu);
+  // A worker blocked without using CPU (a read that never returns) is never stopped by the CPU bound: SIGALRM's
+  // default action ends it once three times that bound has passed on the clock, however loaded the machine.
+  unsigned wall = static_cast<unsigned>(3 * seconds);
+  if (const char* given = std::getenv("RAYVIEW_IMPORT_WALL_SECONDS"); given && std::atoi(given) > 0)
+    wall = static_cast<unsigned>(std::atoi(given));
+  ::alarm(wall);
 }
 
 int usage() {

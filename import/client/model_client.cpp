@@ -36,8 +36,9 @@ struct WorkerAnswer {
 };
 
 std::string describeStatus(int status) {
-  if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU || WTERMSIG(status) == SIGKILL))
-    return "the importer was stopped on this file (it ran past its time or memory bound)";
+  if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU || WTERMSIG(status) == SIGKILL ||
+                            WTERMSIG(status) == SIGALRM))
+    return "the importer was stopped on this file (it ran past its time or memory bound, or waited past its clock bound)";
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     const char* name = sigdescr_np(signal);

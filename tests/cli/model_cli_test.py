@@ -97,6 +97,28 @@ def main():
     check(r.returncode == 2 and not os.path.exists(s("out.fbx")), "export to an unknown format exits 2")
     r = run(["import", "--help"], a.rayview)
     check(r.returncode == 0 and "--up" in r.stdout, "import --help")
+    check_fifos(a.rayview, s)
+
+
+def check_fifos(rayview, s):
+    # A FIFO named inside a model blocks its reader without using CPU: it is refused at once, by name.
+    os.mkfifo(s("pipe.mtl"))
+    with open(s("fifo.obj"), "w") as f:
+        f.write("mtllib pipe.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    os.mkfifo(s("pipe.bin"))
+    with open(s("fifo.gltf"), "w") as f:
+        f.write('{"asset":{"version":"2.0"},"buffers":[{"uri":"pipe.bin","byteLength":36}],'
+                '"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,'
+                '"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"meshes":[{"primitives":[{"attributes":'
+                '{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}')
+    for model, named in [("fifo.obj", "pipe.mtl"), ("fifo.gltf", "pipe.bin")]:
+        try:
+            r = subprocess.run([rayview, "render", s(model), "-o", s("fifo.png")], capture_output=True, text=True,
+                               timeout=30)
+        except subprocess.TimeoutExpired:
+            check(False, f"render of {model}, which names a FIFO, does not hang")
+        check(r.returncode == 2 and model in r.stderr and named in r.stderr and not os.path.exists(s("fifo.png")),
+              f"a FIFO named by {model} is refused at once, named: " + r.stderr.strip())
 
 
 if __name__ == "__main__":
