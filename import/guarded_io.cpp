@@ -4,6 +4,8 @@
 
 #include <cstring>
 
+#include "rayview/input_files.h"
+
 namespace rayview::model {
 
 bool GuardedIOSystem::Exists(const char* file) const {
@@ -19,7 +21,10 @@ Assimp::IOStream* GuardedIOSystem::Open(const char* file, const char* mode) {
     return nullptr;
   }
   Assimp::IOStream* stream = Assimp::DefaultIOSystem::Open(file, mode);
-  if (stream && !writing) opened_.push_back(file);
+  if (stream && !writing) {
+    opened_.push_back(file);
+    rememberInput(file, "a file the model names");
+  }
   return stream;
 }
 

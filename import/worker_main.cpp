@@ -14,6 +14,7 @@
 #include <string>
 
 #include "rayview/diagnostics.h"
+#include "rayview/input_files.h"
 #include "rayview/model_import.h"
 #include "rayview/scene_loader.h"
 #include "rayview/scene_writer.h"
@@ -66,6 +67,7 @@ int readCommand(int argc, char** argv) {
   message.summary = std::move(model.summary);
   message.warnings = std::move(model.warnings);
   message.geometry = std::move(static_cast<SceneGeometry&>(model.scene));
+  message.filesRead = rememberedInputs();
   return wire::writeScene(stdout, message) ? 0 : 1;
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "rayview/diagnostics.h"
+#include "rayview/input_files.h"
 #include "wire_format.h"
 
 extern char** environ;
@@ -38,7 +39,8 @@ struct WorkerAnswer {
 std::string describeStatus(int status) {
   if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU || WTERMSIG(status) == SIGKILL ||
                             WTERMSIG(status) == SIGALRM))
-    return "the importer was stopped on this file (it ran past its time or memory bound, or waited past its clock bound)";
+    return "the importer was stopped on this file (it ran past its time or memory bound, or waited past its "
+           "clock bound)";
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     const char* name = sigdescr_np(signal);
@@ -146,6 +148,8 @@ ImportedModel importModel(const fs::path& path, const ModelImportOptions& option
   if (answer.kind != wire::Kind::Scene) fail(path, "the importer's answer is unusable (not a scene)");
   ImportedModel model;
   model.summary = answer.scene.summary;
+  // What the worker read is this process's input as much as the model is: no output may land on it.
+  for (const RememberedInput& file : answer.scene.filesRead) rememberInput(file.path, file.role);
   model.loaded = toLoadedScene(path, std::move(answer.scene));
   return model;
 }

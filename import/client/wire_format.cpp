@@ -113,6 +113,20 @@ bool readTexture(Reader& r, std::optional<Texture>& texture) {
   return true;
 }
 
+// "role NUL path NUL ..." back into its pairs; false when the pairs do not close.
+bool splitFilesRead(const std::string& text, std::vector<RememberedInput>& out) {
+  std::vector<std::string> parts;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = text.find('\0', at);
+    if (end == std::string::npos) return false;
+    parts.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  if (parts.size() % 2 != 0) return false;
+  for (std::size_t i = 0; i < parts.size(); i += 2) out.push_back({parts[i], parts[i + 1]});
+  return true;
+}
+
 }  // namespace
 
 bool writeScene(std::FILE* out, const SceneMessage& m) {
@@ -141,6 +155,10 @@ bool writeScene(std::FILE* out, const SceneMessage& m) {
   w.raw(size, sizeof size);
   w.array(g.texture ? g.texture->rgb : std::vector<std::uint8_t>{});
   w.text(g.textureImage);
+  std::string files;  // role NUL path NUL: a path may hold any byte but NUL
+  for (const RememberedInput& file : m.filesRead)
+    files.append(file.role).append(1, '\0').append(file.path).append(1, '\0');
+  w.text(files);
   return w.finish();
 }
 
@@ -171,12 +189,13 @@ std::string readMessage(int fd, Kind& kind, SceneMessage& m, std::string& error)
   } else if (kind == Kind::Done) {
     if (!r.text(m.summary)) return "truncated answer";
   } else if (kind == Kind::Scene) {
-    std::string warnings;
+    std::string warnings, files;
     SceneGeometry& g = m.geometry;
     if (!r.text(m.parametersXml) || !r.text(m.summary) || !r.text(warnings) || !r.array(g.vertices) ||
         !r.array(g.texCoords) || !r.array(g.normals) || !readMeshes(r, g.meshes) || !r.array(g.triangles) ||
-        !r.array(g.faceAttributes) || !readTexture(r, g.texture) || !r.text(g.textureImage))
+        !r.array(g.faceAttributes) || !readTexture(r, g.texture) || !r.text(g.textureImage) || !r.text(files))
       return "truncated or malformed answer";
+    if (!splitFilesRead(files, m.filesRead)) return "malformed list of files read";
     for (std::size_t at = 0; at < warnings.size();) {
       const std::size_t end = warnings.find('\n', at);
       if (end == std::string::npos) break;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "rayview/input_files.h"
 #include "rayview/scene.h"
 
 namespace rayview::wire {
@@ -22,6 +23,8 @@ struct SceneMessage {
   std::string summary;
   std::vector<std::string> warnings;
   SceneGeometry geometry;     // textureImage names the texture; texture holds it decoded
+  // Every file reading the model read (MTL files, textures, buffers) as role and path: rayview never writes on one.
+  std::vector<RememberedInput> filesRead;
 };
 
 // Each returns false when the stream cannot be written (a closed pipe).

@@ -11,6 +11,7 @@ import shutil
 import struct
 import subprocess
 import sys
+import zlib
 
 
 def run(args, rayview):
@@ -98,6 +99,45 @@ def main():
     r = run(["import", "--help"], a.rayview)
     check(r.returncode == 0 and "--up" in r.stdout, "import --help")
     check_fifos(a.rayview, s)
+    check_referenced_files_kept(a.rayview, s)
+
+
+def write_png16(path):
+    # A 2x2 16-bit RGBA PNG: what rayview would write in its place (8-bit RGB) shows in its bytes.
+    row = b"\x00" + bytes(range(16))
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 2, 16, 6, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(row * 2)) + chunk(b"IEND", b""))
+
+
+def textured_obj(s, name, texture):
+    with open(s(name + ".mtl"), "w") as f:
+        f.write(f"newmtl a\nKd 1 1 1\nmap_Kd {texture}\n")
+    with open(s(name + ".obj"), "w") as f:
+        f.write(f"mtllib {name}.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n")
+
+
+def check_referenced_files_kept(rayview, s):
+    # The files a model makes the importer read (its MTL, its texture) are inputs: no output lands on them.
+    write_png16(s("wood.png"))
+    textured_obj(s, "wooden", "wood.png")
+    before = open(s("wood.png"), "rb").read()
+    r = run(["render", s("wooden.obj"), "-o", s("wood.png")], rayview)
+    check(r.returncode == 2 and "wood.png" in r.stderr and open(s("wood.png"), "rb").read() == before,
+          "render onto the model's texture is refused, the texture kept: " + r.stderr.strip())
+    r = run(["render", s("wooden.obj"), "-o", s("wooden.mtl.png")], rayview)
+    check(r.returncode == 0, "the same model renders to another name")
+    # import's own copy of the texture takes another name when the model's texture already has it.
+    write_png16(s("mine_texture.png"))
+    textured_obj(s, "taken", "mine_texture.png")
+    before = open(s("mine_texture.png"), "rb").read()
+    r = run(["import", s("taken.obj"), "-o", s("mine.xml")], rayview)
+    check(r.returncode == 0 and open(s("mine_texture.png"), "rb").read() == before and
+          os.path.exists(s("mine_texture-2.png")) and "mine_texture-2.png" in open(s("mine.xml")).read() and
+          "mine_texture-2.png" in r.stderr,
+          "import keeps a file named as its texture copy and says which name it took: " + r.stderr.strip())
 
 
 def check_fifos(rayview, s):
