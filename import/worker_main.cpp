@@ -15,6 +15,7 @@
 
 #include "rayview/diagnostics.h"
 #include "rayview/input_files.h"
+#include "rayview/model_client.h"
 #include "rayview/model_import.h"
 #include "rayview/scene_loader.h"
 #include "rayview/scene_writer.h"
@@ -22,6 +23,8 @@
 
 namespace rayview {
 namespace {
+
+using wire::kWriteFailureLine;
 
 // Bounds on what reading one file may take: Assimp's glTF reader was seen to take 12.9 GB and 40 s for a 284-byte
 // file (fuzz_import). Past the memory bound an allocation fails (a clean "out of memory" answer); past the CPU
@@ -87,6 +90,8 @@ int run(int argc, char** argv) {
   } catch (const SceneError& error) {
     // The line travels with the message, so the client's error is located as the loader's would be.
     wire::writeError(stdout, std::to_string(error.diagnostic().where.line) + "\n" + error.diagnostic().message);
+  } catch (const ModelWriteError& error) {
+    wire::writeError(stdout, std::string(kWriteFailureLine) + "\n" + error.what());
   } catch (const std::bad_alloc&) {
     wire::writeError(stdout, "0\nout of memory reading the model");
   } catch (const std::exception& error) {

@@ -88,6 +88,8 @@ WorkerAnswer runWorker(const fs::path& file, const std::vector<std::string>& arg
   if (answer.kind == wire::Kind::Error) {
     // "LINE\nmessage": the line of a scene file's error (0 for a model's).
     const std::size_t newline = answer.error.find('\n');
+    if (answer.error.compare(0, newline, wire::kWriteFailureLine) == 0 && newline != std::string::npos)
+      throw ModelWriteError(answer.error.substr(newline + 1));
     int line = 0;
     if (newline != std::string::npos) line = std::atoi(answer.error.substr(0, newline).c_str());
     throwSceneError(SourceLocation{file.string(), std::max(line, 0)},

@@ -15,6 +15,8 @@ namespace rayview::wire {
 
 inline constexpr char kMagic[8] = {'R', 'V', 'I', 'M', 'P', 'O', 'R', 'T'};
 inline constexpr char kEnd[8] = {'R', 'V', 'I', 'M', 'P', 'E', 'N', 'D'};
+// The line an Error carries when it is a failed write (ModelWriteError), not a bad input.
+inline constexpr char kWriteFailureLine[] = "write";
 enum class Kind : std::uint32_t { Scene = 1, Error = 2, Done = 3 };
 
 // The parts of an imported scene, in the order they are sent.

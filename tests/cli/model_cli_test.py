@@ -100,6 +100,7 @@ def main():
     check(r.returncode == 0 and "--up" in r.stdout, "import --help")
     check_fifos(a.rayview, s)
     check_referenced_files_kept(a.rayview, s)
+    check_export_on_full_disk(a.rayview, s)
 
 
 def write_png16(path):
@@ -138,6 +139,28 @@ def check_referenced_files_kept(rayview, s):
           os.path.exists(s("mine_texture-2.png")) and "mine_texture-2.png" in open(s("mine.xml")).read() and
           "mine_texture-2.png" in r.stderr,
           "import keeps a file named as its texture copy and says which name it took: " + r.stderr.strip())
+
+
+def check_export_on_full_disk(rayview, s):
+    # A file system of 8 KiB in a mount namespace of its own: the export's files do not fit. The old files stay.
+    full = s("full")
+    os.makedirs(full, exist_ok=True)
+    script = ('mount -t tmpfs -o size=8k tmpfs "$1" || exit 99; echo old > "$1/out.mtl"; echo old > "$1/out.obj"; '
+              '"$2" export "$3" -o "$1/out.obj"; echo "exit $?"; cat "$1/out.mtl" "$1/out.obj"; ls -a "$1"')
+    try:
+        r = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", full, rayview, s("box.xml")],
+                           capture_output=True, text=True, timeout=120)
+    except FileNotFoundError:
+        print("  skipped: export on a full disk (no unshare here)")
+        return
+    if r.returncode == 99 or "exit " not in r.stdout:
+        print("  skipped: export on a full disk (cannot mount a small file system here: " + r.stderr.strip() + ")")
+        return
+    print("  " + r.stdout.replace("\n", " | "))
+    check("exit 1" in r.stdout and "out.obj" in r.stderr and "No space left" in r.stderr and
+          r.stdout.count("old\n") == 2 and ".rayview-export" not in r.stdout,
+          "export on a full disk: exit 1, the path and the reason, the old .obj and .mtl as they were: " +
+          r.stderr.strip())
 
 
 def check_fifos(rayview, s):

@@ -3,6 +3,7 @@
 // rayview itself (start-up, and a crash on a malformed file ends the child, not rayview).
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "rayview/model_options.h"
@@ -21,7 +22,11 @@ ImportedModel importModel(const std::filesystem::path& path, const ModelImportOp
 LoadedScene loadModelScene(const std::filesystem::path& path, const ModelImportOptions& options = {});
 
 // Writes the geometry and materials of the scene file `scenePath` as `outputPath` (.obj, .ply, .stl, .gltf, .glb),
-// whole or not at all. Throws SceneError for a bad scene or a failed export.
+// whole or not at all. Throws SceneError for a bad scene or a failed export, ModelWriteError when the files could
+// not be written (a full disk, no permission): the old files are then as they were.
+struct ModelWriteError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 void exportSceneFile(const std::filesystem::path& scenePath, const std::filesystem::path& outputPath);
 
 // The worker's path: $RAYVIEW_IMPORT_WORKER, else libexec/rayview-import beside the running executable, else the
