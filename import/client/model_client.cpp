@@ -108,7 +108,14 @@ std::vector<std::string> readArguments(const fs::path& path, const ModelImportOp
 LoadedScene toLoadedScene(const fs::path& path, wire::SceneMessage&& message) {
   LoadOptions options;
   options.loadTexture = false;
-  LoadedScene loaded = loadSceneText(message.parametersXml, path.string(), path.parent_path(), options);
+  LoadedScene loaded;
+  try {
+    loaded = loadSceneText(message.parametersXml, path.string(), path.parent_path(), options);
+  } catch (const SceneError& error) {
+    // The line is one of the XML the worker made up, which the user never sees: the model is named, without it.
+    fail(path, "has values rayview cannot use (" + error.diagnostic().message +
+                   "; a value that is not finite or too large, in the model or in what is made up from it)");
+  }
   static_cast<SceneGeometry&>(loaded.scene) = std::move(message.geometry);
   loaded.scene.sourcePath = path;
   for (const glm::dvec3& v : loaded.scene.vertices)

@@ -101,6 +101,7 @@ def main():
     check_fifos(a.rayview, s)
     check_referenced_files_kept(a.rayview, s)
     check_export_on_full_disk(a.rayview, s)
+    check_unusable_values_name_the_model(a.rayview, s)
 
 
 def write_png16(path):
@@ -161,6 +162,22 @@ def check_export_on_full_disk(rayview, s):
           r.stdout.count("old\n") == 2 and ".rayview-export" not in r.stdout,
           "export on a full disk: exit 1, the path and the reason, the old .obj and .mtl as they were: " +
           r.stderr.strip())
+
+
+def check_unusable_values_name_the_model(rayview, s):
+    # A NaN colour, or vertices whose made-up lights overflow: the message names the model, never a line of the XML
+    # rayview made up from it (which the user has never seen).
+    with open(s("nan.mtl"), "w") as f:
+        f.write("newmtl a\nKd nan 1 1\n")
+    with open(s("nan.obj"), "w") as f:
+        f.write("mtllib nan.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n")
+    with open(s("huge.obj"), "w") as f:
+        f.write("v 0 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n")
+    for model in ["nan.obj", "huge.obj"]:
+        r = run(["render", s(model), "-o", s("unusable.png")], rayview)
+        check(r.returncode == 2 and r.stderr.startswith(s(model) + ": error:") and
+              not os.path.exists(s("unusable.png")),
+              f"{model}: exit 2, the model named with no line of generated XML: " + r.stderr.strip())
 
 
 def check_fifos(rayview, s):
