@@ -25,6 +25,9 @@ int runExportCommand(const CommandLine& command) {
   } catch (const SceneError& error) {
     std::fprintf(stderr, "%s\n", error.what());
     return kExitBadInput;
+  } catch (const ModelWriteError& error) {
+    std::fprintf(stderr, "rayview: error: %s\n", error.what());
+    return kExitIoFailure;
   }
   std::printf("%s: written from %s\n", output.c_str(), input.c_str());
   return kExitOk;

@@ -27,22 +27,38 @@ bool sameFile(const fs::path& a, const fs::path& b) {
   return !ec && same;
 }
 
+// OUTPUT-STEM_texture.png, or when a file (the user's, perhaps the model's own texture) has that name, the first
+// free OUTPUT-STEM_texture-N.png: import never replaces a file it did not write, and says so.
+std::string freeTextureName(const fs::path& output) {
+  const std::string stem = output.stem().string() + "_texture";
+  std::error_code ec;
+  std::string name = stem + ".png";
+  for (int n = 2; fs::exists(output.parent_path() / name, ec) || fs::is_symlink(output.parent_path() / name, ec); ++n)
+    name = stem + "-" + std::to_string(n) + ".png";
+  if (name != stem + ".png")
+    std::fprintf(stderr, "rayview: note: %s is taken; the texture is written as %s\n",
+                 (output.parent_path() / (stem + ".png")).string().c_str(),
+                 (output.parent_path() / name).string().c_str());
+  return name;
+}
+
 // The texture as a PNG beside the scene; the scene then names it. Returns false (having said why) when it cannot.
 bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, fs::path& written) {
   if (!scene.texture) {
     scene.textureImage.clear();
     return true;
   }
-  scene.textureImage = output.stem().string() + "_texture.png";
-  written = output.parent_path() / scene.textureImage;
-  if (sameFile(written, model)) {
+  scene.textureImage = freeTextureName(output);
+  const fs::path target = output.parent_path() / scene.textureImage;
+  if (sameFile(target, model)) {
     std::fprintf(stderr, "rayview: error: the texture %s would overwrite the model; choose another name\n",
-                 written.string().c_str());
+                 target.string().c_str());
     return false;
   }
   Image image(scene.texture->width, scene.texture->height);
   image.rgb = scene.texture->rgb;
-  writeImageFile(written, std::move(image));
+  writeImageFile(target, std::move(image));
+  written = target;  // only now is it ours to remove should the scene fail to be written
   return true;
 }
 

@@ -12,7 +12,9 @@
 #include <memory>
 #include <system_error>
 
+#include "checked_write.h"
 #include "model_parts.h"
+#include "rayview/model_client.h"
 #include "rayview/model_import.h"
 
 namespace rayview {
@@ -135,7 +137,17 @@ void exportViaDirectory(const aiScene& scene, const std::string& format, const f
   fs::remove_all(staging, ec);
   if (!fs::create_directory(staging, ec)) model::fail(output, "cannot write here: " + ec.message());
   Assimp::Exporter exporter;
-  if (exporter.Export(&scene, format, (staging / output.filename()).string()) != AI_SUCCESS) {
+  auto* io = new model::CheckedWriteIOSystem;  // the exporter owns it
+  exporter.SetIOHandler(io);
+  const bool exported = exporter.Export(&scene, format, (staging / output.filename()).string()) == AI_SUCCESS;
+  if (exported && !io->failure().empty()) {
+    // A staged name means nothing to the user: the reason is what they act on (free space, permissions).
+    const std::string failure = io->failure();
+    const std::string why = failure.substr(failure.rfind(": ") + 2);
+    fs::remove_all(staging, ec);
+    throw ModelWriteError(output.string() + " cannot be written: " + why + "; the files there are as they were");
+  }
+  if (!exported) {
     const std::string why = exporter.GetErrorString();
     fs::remove_all(staging, ec);
     model::fail(output, "cannot be written" + (why.empty() ? std::string() : ": " + why));

@@ -9,6 +9,7 @@
 #include <system_error>
 
 #include "assimp_warnings.h"
+#include "guarded_io.h"
 #include "model_parts.h"
 #include "obj_reader.h"
 #include "rayview/model_import.h"
@@ -30,7 +31,12 @@ void checkReadable(const fs::path& path) {
 
 const aiScene* readWithAssimp(Assimp::Importer& importer, const fs::path& path) {
   const model::AssimpWarnings warnings;
+  auto* io = new model::GuardedIOSystem;  // the importer owns it
+  importer.SetIOHandler(io);
   const aiScene* scene = importer.ReadFile(path.string(), kAssimpSteps);
+  if (!io->refused().empty())
+    model::fail(path, "names \"" + io->refused() + "\", which is not a regular file (a FIFO, socket or device is "
+                      "never read)");
   if (const std::string broken = warnings.brokenData(); !broken.empty())
     model::fail(path, "is broken (" + broken + "); rayview refuses it rather than draw what is left");
   if (!scene) {

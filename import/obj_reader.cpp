@@ -13,6 +13,7 @@
 
 #include "byte_input.h"
 #include "rayview/diagnostics.h"
+#include "rayview/input_files.h"
 
 namespace rayview::model {
 namespace {
@@ -271,10 +272,15 @@ bool ObjParser::readLibrary(const fs::path& file) {
   for (const std::string& seen : libraries_)
     if (seen == file.string()) return true;
   std::error_code ec;
-  if (!fs::is_regular_file(file, ec)) return false;
+  const fs::file_status status = fs::status(file, ec);
+  if (ec || !fs::exists(status)) return false;
+  // A FIFO, socket or device would block or never end: refused at once, by name, as the other readers' files.
+  if (!fs::is_regular_file(status))
+    fail(path_, "names \"" + file.string() + "\", which is not a regular file (a FIFO, socket or device is never read)");
   std::string problem;
   const std::string text = readWholeFile(file, problem);
   if (!problem.empty()) return false;
+  rememberInput(file, "the model's material library");
   libraries_.push_back(file.string());
   parseMaterialLibrary(text, materials_);
   return true;

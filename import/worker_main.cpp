@@ -15,6 +15,8 @@
 #include <string>
 
 #include "rayview/diagnostics.h"
+#include "rayview/input_files.h"
+#include "rayview/model_client.h"
 #include "rayview/model_import.h"
 #include "rayview/scene_loader.h"
 #include "rayview/scene_writer.h"
@@ -22,6 +24,8 @@
 
 namespace rayview {
 namespace {
+
+using wire::kWriteFailureLine;
 
 // Bounds on what reading one file may take: Assimp's glTF reader was seen to take 12.9 GB and 40 s for a 284-byte
 // file (fuzz_import). Past the memory bound an allocation fails (a clean "out of memory" answer); past the CPU
@@ -39,6 +43,12 @@ void limitResources(const char* file) {
     seconds = static_cast<rlim_t>(std::atoi(given));  // the fuzz target's shorter bound
   const rlimit cpu{seconds, seconds + 5};  // SIGXCPU at the bound, SIGKILL should that be caught
   ::setrlimit(RLIMIT_CPU, &cpu);
+  // A worker blocked without using CPU (a read that never returns) is never stopped by the CPU bound: SIGALRM's
+  // default action ends it once three times that bound has passed on the clock, however loaded the machine.
+  unsigned wall = static_cast<unsigned>(3 * seconds);
+  if (const char* given = std::getenv("RAYVIEW_IMPORT_WALL_SECONDS"); given && std::atoi(given) > 0)
+    wall = static_cast<unsigned>(std::atoi(given));
+  ::alarm(wall);
 }
 
 int usage() {
@@ -64,6 +74,7 @@ int readCommand(int argc, char** argv) {
   message.summary = std::move(model.summary);
   message.warnings = std::move(model.warnings);
   message.geometry = std::move(static_cast<SceneGeometry&>(model.scene));
+  message.filesRead = rememberedInputs();
   return wire::writeScene(stdout, message) ? 0 : 1;
 }
 
@@ -96,6 +107,8 @@ int run(int argc, char** argv) {
   } catch (const SceneError& error) {
     // The line travels with the message, so the client's error is located as the loader's would be.
     wire::writeError(stdout, std::to_string(error.diagnostic().where.line) + "\n" + error.diagnostic().message);
+  } catch (const ModelWriteError& error) {
+    wire::writeError(stdout, std::string(kWriteFailureLine) + "\n" + error.what());
   } catch (const std::bad_alloc&) {
     wire::writeError(stdout, "0\nout of memory reading the model");
   } catch (const std::exception& error) {

@@ -58,6 +58,14 @@ void forgetInput(const std::filesystem::path& path) {
   std::erase_if(all.files, [&](const Input& input) { return input.device == st.st_dev && input.inode == st.st_ino; });
 }
 
+std::vector<RememberedInput> rememberedInputs() {
+  Inputs& all = inputs();
+  const std::lock_guard lock(all.mutex);
+  std::vector<RememberedInput> out;
+  for (const Input& input : all.files) out.push_back({input.role, input.path});
+  return out;
+}
+
 void forgetInputs() {
   Inputs& all = inputs();
   const std::lock_guard lock(all.mutex);

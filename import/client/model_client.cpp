@@ -17,6 +17,7 @@
 
 #include "rayview/diagnostics.h"
 #include "rayview/scene_writer.h"
+#include "rayview/input_files.h"
 #include "wire_format.h"
 
 extern char** environ;
@@ -37,8 +38,10 @@ struct WorkerAnswer {
 };
 
 std::string describeStatus(int status) {
-  if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU || WTERMSIG(status) == SIGKILL))
-    return "the importer was stopped on this file (it ran past its time or memory bound)";
+  if (WIFSIGNALED(status) && (WTERMSIG(status) == SIGXCPU || WTERMSIG(status) == SIGKILL ||
+                            WTERMSIG(status) == SIGALRM))
+    return "the importer was stopped on this file (it ran past its time or memory bound, or waited past its "
+           "clock bound)";
   if (WIFSIGNALED(status)) {
     const int signal = WTERMSIG(status);
     const char* name = sigdescr_np(signal);
@@ -86,6 +89,8 @@ WorkerAnswer runWorker(const fs::path& file, const std::vector<std::string>& arg
   if (answer.kind == wire::Kind::Error) {
     // "LINE\nmessage": the line of a scene file's error (0 for a model's).
     const std::size_t newline = answer.error.find('\n');
+    if (answer.error.compare(0, newline, wire::kWriteFailureLine) == 0 && newline != std::string::npos)
+      throw ModelWriteError(answer.error.substr(newline + 1));
     int line = 0;
     if (newline != std::string::npos) line = std::atoi(answer.error.substr(0, newline).c_str());
     throwSceneError(SourceLocation{file.string(), std::max(line, 0)},
@@ -105,7 +110,14 @@ std::vector<std::string> readArguments(const fs::path& path, const ModelImportOp
 LoadedScene toLoadedScene(const fs::path& path, wire::SceneMessage&& message) {
   LoadOptions options;
   options.loadTexture = false;
-  LoadedScene loaded = loadSceneText(message.parametersXml, path.string(), path.parent_path(), options);
+  LoadedScene loaded;
+  try {
+    loaded = loadSceneText(message.parametersXml, path.string(), path.parent_path(), options);
+  } catch (const SceneError& error) {
+    // The line is one of the XML the worker made up, which the user never sees: the model is named, without it.
+    fail(path, "has values rayview cannot use (" + error.diagnostic().message +
+                   "; a value that is not finite or too large, in the model or in what is made up from it)");
+  }
   static_cast<SceneGeometry&>(loaded.scene) = std::move(message.geometry);
   loaded.scene.sourcePath = path;
   for (const glm::dvec3& v : loaded.scene.vertices)
@@ -147,6 +159,8 @@ ImportedModel importModel(const fs::path& path, const ModelImportOptions& option
   if (answer.kind != wire::Kind::Scene) fail(path, "the importer's answer is unusable (not a scene)");
   ImportedModel model;
   model.summary = answer.scene.summary;
+  // What the worker read is this process's input as much as the model is: no output may land on it.
+  for (const RememberedInput& file : answer.scene.filesRead) rememberInput(file.path, file.role);
   model.loaded = toLoadedScene(path, std::move(answer.scene));
   return model;
 }

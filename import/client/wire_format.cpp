@@ -94,6 +94,20 @@ bool readGeometry(Reader& r, SceneGeometry& geometry) {
   }
 }
 
+// "role NUL path NUL ..." back into its pairs; false when the pairs do not close.
+bool splitFilesRead(const std::string& text, std::vector<RememberedInput>& out) {
+  std::vector<std::string> parts;
+  for (std::size_t at = 0; at < text.size();) {
+    const std::size_t end = text.find('\0', at);
+    if (end == std::string::npos) return false;
+    parts.push_back(text.substr(at, end - at));
+    at = end + 1;
+  }
+  if (parts.size() % 2 != 0) return false;
+  for (std::size_t i = 0; i < parts.size(); i += 2) out.push_back({parts[i], parts[i + 1]});
+  return true;
+}
+
 }  // namespace
 
 bool writeScene(std::FILE* out, const SceneMessage& m) {
@@ -107,6 +121,10 @@ bool writeScene(std::FILE* out, const SceneMessage& m) {
   std::vector<std::uint8_t> geometry;
   encodeGeometry(m.geometry, geometry);
   w.array(geometry);
+  std::string files;  // role NUL path NUL: a path may hold any byte but NUL
+  for (const RememberedInput& file : m.filesRead)
+    files.append(file.role).append(1, '\0').append(file.path).append(1, '\0');
+  w.text(files);
   return w.finish();
 }
 
@@ -137,9 +155,11 @@ std::string readMessage(int fd, Kind& kind, SceneMessage& m, std::string& error)
   } else if (kind == Kind::Done) {
     if (!r.text(m.summary)) return "truncated answer";
   } else if (kind == Kind::Scene) {
-    std::string warnings;
-    if (!r.text(m.parametersXml) || !r.text(m.summary) || !r.text(warnings) || !readGeometry(r, m.geometry))
+    std::string warnings, files;
+    if (!r.text(m.parametersXml) || !r.text(m.summary) || !r.text(warnings) || !readGeometry(r, m.geometry) ||
+        !r.text(files))
       return "truncated or malformed answer";
+    if (!splitFilesRead(files, m.filesRead)) return "malformed list of files read";
     for (std::size_t at = 0; at < warnings.size();) {
       const std::size_t end = warnings.find('\n', at);
       if (end == std::string::npos) break;

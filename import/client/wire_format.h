@@ -8,12 +8,15 @@
 #include <string>
 #include <vector>
 
+#include "rayview/input_files.h"
 #include "rayview/scene.h"
 
 namespace rayview::wire {
 
 inline constexpr char kMagic[8] = {'R', 'V', 'I', 'M', 'P', 'O', 'R', 'T'};
 inline constexpr char kEnd[8] = {'R', 'V', 'I', 'M', 'P', 'E', 'N', 'D'};
+// The line an Error carries when it is a failed write (ModelWriteError), not a bad input.
+inline constexpr char kWriteFailureLine[] = "write";
 enum class Kind : std::uint32_t { Scene = 1, Error = 2, Done = 3 };
 
 // The parts of an imported scene, in the order they are sent.
@@ -22,6 +25,8 @@ struct SceneMessage {
   std::string summary;
   std::vector<std::string> warnings;
   SceneGeometry geometry;     // textureImage names the texture; texture holds it decoded
+  // Every file reading the model read (MTL files, textures, buffers) as role and path: rayview never writes on one.
+  std::vector<RememberedInput> filesRead;
 };
 
 // Each returns false when the stream cannot be written (a closed pipe).

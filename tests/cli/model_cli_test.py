@@ -13,6 +13,7 @@ import shutil
 import struct
 import subprocess
 import sys
+import zlib
 
 
 def run(args, rayview):
@@ -157,6 +158,107 @@ def main():
     check(r.returncode == 2 and "--camera" in r.stderr and not os.path.exists(s("no.xml")),
           "an unknown --camera word: exit 2")
     check("<twosided>1</twosided>" in xml, "imported materials are two-sided")
+    check_fifos(a.rayview, s)
+    check_referenced_files_kept(a.rayview, s)
+    check_export_on_full_disk(a.rayview, s)
+    check_unusable_values_name_the_model(a.rayview, s)
+
+
+def write_png16(path):
+    # A 2x2 16-bit RGBA PNG: what rayview would write in its place (8-bit RGB) shows in its bytes.
+    row = b"\x00" + bytes(range(16))
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", 2, 2, 16, 6, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(row * 2)) + chunk(b"IEND", b""))
+
+
+def textured_obj(s, name, texture):
+    with open(s(name + ".mtl"), "w") as f:
+        f.write(f"newmtl a\nKd 1 1 1\nmap_Kd {texture}\n")
+    with open(s(name + ".obj"), "w") as f:
+        f.write(f"mtllib {name}.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3\n")
+
+
+def check_referenced_files_kept(rayview, s):
+    # The files a model makes the importer read (its MTL, its texture) are inputs: no output lands on them.
+    write_png16(s("wood.png"))
+    textured_obj(s, "wooden", "wood.png")
+    before = open(s("wood.png"), "rb").read()
+    r = run(["render", s("wooden.obj"), "-o", s("wood.png")], rayview)
+    check(r.returncode == 2 and "wood.png" in r.stderr and open(s("wood.png"), "rb").read() == before,
+          "render onto the model's texture is refused, the texture kept: " + r.stderr.strip())
+    r = run(["render", s("wooden.obj"), "-o", s("wooden.mtl.png")], rayview)
+    check(r.returncode == 0, "the same model renders to another name")
+    # import's own copy of the texture takes another name when the model's texture already has it.
+    write_png16(s("mine_texture.png"))
+    textured_obj(s, "taken", "mine_texture.png")
+    before = open(s("mine_texture.png"), "rb").read()
+    r = run(["import", s("taken.obj"), "-o", s("mine.xml")], rayview)
+    check(r.returncode == 0 and open(s("mine_texture.png"), "rb").read() == before and
+          os.path.exists(s("mine_texture-2.png")) and "mine_texture-2.png" in open(s("mine.xml")).read() and
+          "mine_texture-2.png" in r.stderr,
+          "import keeps a file named as its texture copy and says which name it took: " + r.stderr.strip())
+
+
+def check_export_on_full_disk(rayview, s):
+    # A file system of 8 KiB in a mount namespace of its own: the export's files do not fit. The old files stay.
+    full = s("full")
+    os.makedirs(full, exist_ok=True)
+    script = ('mount -t tmpfs -o size=8k tmpfs "$1" || exit 99; echo old > "$1/out.mtl"; echo old > "$1/out.obj"; '
+              '"$2" export "$3" -o "$1/out.obj"; echo "exit $?"; cat "$1/out.mtl" "$1/out.obj"; ls -a "$1"')
+    try:
+        r = subprocess.run(["unshare", "-m", "sh", "-c", script, "sh", full, rayview, s("box.xml")],
+                           capture_output=True, text=True, timeout=120)
+    except FileNotFoundError:
+        print("  skipped: export on a full disk (no unshare here)")
+        return
+    if r.returncode == 99 or "exit " not in r.stdout:
+        print("  skipped: export on a full disk (cannot mount a small file system here: " + r.stderr.strip() + ")")
+        return
+    print("  " + r.stdout.replace("\n", " | "))
+    check("exit 1" in r.stdout and "out.obj" in r.stderr and "No space left" in r.stderr and
+          r.stdout.count("old\n") == 2 and ".rayview-export" not in r.stdout,
+          "export on a full disk: exit 1, the path and the reason, the old .obj and .mtl as they were: " +
+          r.stderr.strip())
+
+
+def check_unusable_values_name_the_model(rayview, s):
+    # A NaN colour, or vertices whose made-up lights overflow: the message names the model, never a line of the XML
+    # rayview made up from it (which the user has never seen).
+    with open(s("nan.mtl"), "w") as f:
+        f.write("newmtl a\nKd nan 1 1\n")
+    with open(s("nan.obj"), "w") as f:
+        f.write("mtllib nan.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl a\nf 1 2 3\n")
+    with open(s("huge.obj"), "w") as f:
+        f.write("v 0 0 0\nv 3e38 0 0\nv 0 3e38 0\nf 1 2 3\n")
+    for model in ["nan.obj", "huge.obj"]:
+        r = run(["render", s(model), "-o", s("unusable.png")], rayview)
+        check(r.returncode == 2 and r.stderr.startswith(s(model) + ": error:") and
+              not os.path.exists(s("unusable.png")),
+              f"{model}: exit 2, the model named with no line of generated XML: " + r.stderr.strip())
+
+
+def check_fifos(rayview, s):
+    # A FIFO named inside a model blocks its reader without using CPU: it is refused at once, by name.
+    os.mkfifo(s("pipe.mtl"))
+    with open(s("fifo.obj"), "w") as f:
+        f.write("mtllib pipe.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")
+    os.mkfifo(s("pipe.bin"))
+    with open(s("fifo.gltf"), "w") as f:
+        f.write('{"asset":{"version":"2.0"},"buffers":[{"uri":"pipe.bin","byteLength":36}],'
+                '"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,'
+                '"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"meshes":[{"primitives":[{"attributes":'
+                '{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}')
+    for model, named in [("fifo.obj", "pipe.mtl"), ("fifo.gltf", "pipe.bin")]:
+        try:
+            r = subprocess.run([rayview, "render", s(model), "-o", s("fifo.png")], capture_output=True, text=True,
+                               timeout=30)
+        except subprocess.TimeoutExpired:
+            check(False, f"render of {model}, which names a FIFO, does not hang")
+        check(r.returncode == 2 and model in r.stderr and named in r.stderr and not os.path.exists(s("fifo.png")),
+              f"a FIFO named by {model} is refused at once, named: " + r.stderr.strip())
 
 
 if __name__ == "__main__":

@@ -3,6 +3,7 @@
 // rayview itself (start-up, and a crash on a malformed file ends the child, not rayview).
 
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 
 #include "rayview/model_options.h"
@@ -22,7 +23,11 @@ LoadedScene loadModelScene(const std::filesystem::path& path, const ModelImportO
 
 // Writes the geometry and materials of an opened scene (rayview/scene_open.h: any input) as `outputPath` (.obj, .ply,
 // .stl, .gltf, .glb), whole or not at all, through the worker, which holds the exporters: the scene reaches it in the
-// one scene codec. Throws SceneError naming the scene's file for a failed export.
+// one scene codec. Throws SceneError naming the scene's file for a failed export, ModelWriteError when the files could
+// not be written (a full disk, no permission): the old files are then as they were.
+struct ModelWriteError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
 void exportOpenedScene(const Scene& scene, const std::filesystem::path& outputPath);
 
 // The worker's path: $RAYVIEW_IMPORT_WORKER, else libexec/rayview-import beside the running executable, else the

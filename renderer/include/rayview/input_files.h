@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace rayview {
 
@@ -23,6 +24,13 @@ std::string outputReplacesInput(const std::filesystem::path& output, std::string
 // Forgets `path` (by any spelling): a command that read one of its own earlier outputs only to see whether it is
 // whole (a frame of a resumed turntable) may then replace it.
 void forgetInput(const std::filesystem::path& path);
+
+// Every recorded file as "role" and path, in the order recorded: what the import worker tells rayview it read.
+struct RememberedInput {
+  std::string role;
+  std::string path;
+};
+std::vector<RememberedInput> rememberedInputs();
 
 // Forgets every recorded file: for tests that reuse one name for a new input.
 void forgetInputs();
