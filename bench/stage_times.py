@@ -10,7 +10,8 @@ Runs `rayview render` once per settings row: the first with the environment as i
 more environment variable (e.g. --variant "mimalloc=LD_PRELOAD=libmimalloc.so.2" to try an allocator without
 building one in). The stages are what the summary prints: start-up (main() to the first ray, less load and build:
 the thread pool, the tracer's set-up),
-load, build, render, write (encoding and writing the PNG); "rest" is the whole process less those (its exit
+load, build, render, write (encoding and writing the PNG); "Mrays/s" is the summary's rays traced per second of
+render; "rest" is the whole process less those (its exit
 and the summary's printing); "faults" counts the process's page faults (minor and major; ~13 us each on
 this project's machines, bench/page_fault_bench). Medians of --runs per stage; --spread adds the quartiles.
 """
@@ -28,7 +29,8 @@ from bench_scenes import ROOT, SEVEN, name
 
 SUMMARY = re.compile(r"time\s+load ([\d.]+) ms, BVH build ([\d.]+) ms, render ([\d.]+) ms, write ([\d.]+) ms\n"
                      r"start-up\s+([\d.]+) ms: main\(\)")
-COLUMNS = ["start-up", "load", "build", "render", "write", "rest", "whole", "faults"]
+RATE = re.compile(r"total \d+, ([\d.]+) Mrays/s")
+COLUMNS = ["start-up", "load", "build", "render", "write", "rest", "whole", "faults", "Mrays/s"]
 
 
 def run(cli, scene, threads, out, variable):
@@ -44,7 +46,9 @@ def run(cli, scene, threads, out, variable):
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     faults = (after.ru_minflt - before.ru_minflt) + (after.ru_majflt - before.ru_majflt)
     load, build, render, write, startup = (float(v) for v in SUMMARY.search(p.stdout).groups())
-    return [startup, load, build, render, write, whole - (startup + load + build + render + write), whole, faults]
+    rate = float(RATE.search(p.stdout).group(1))  # the summary's rays (camera, shadow, reflection) over render
+    return [startup, load, build, render, write, whole - (startup + load + build + render + write), whole, faults,
+            rate]
 
 
 def cell(values, form, spread):
@@ -77,7 +81,7 @@ def main():
                     for column, ms in zip(COLUMNS, run(cli, scene, a.threads, out, value)):
                         times[n][column].append(ms)
             for n, by in times.items():
-                cells = " | ".join(cell(by[c], "{:.0f}" if c == "faults" else "{:.1f}", a.spread) for c in COLUMNS)
+                cells = " | ".join(cell(by[c], "{:.0f}" if c == "faults" else "{:.2f}" if c == "Mrays/s" else "{:.1f}", a.spread) for c in COLUMNS)
                 print(f"| {name(scene)} | {n} | {cells} |", flush=True)
 
 
