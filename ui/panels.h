@@ -68,6 +68,7 @@ struct DisplayOptions {
   bool imageView = false;
   DisplayMapping mapping;     // exposure and gamma of the render and the reference (the difference stays raw)
   bool alwaysShowMarks = false;  // the lights and the orbit pivot drawn in the view always, not only while navigating
+  bool showHelp = false;         // F1 or ?: the keys and mouse gestures over the image
 };
 
 // Below this window size (at content scale 1) the stats take one line, so they do not cover the image.
@@ -187,6 +188,8 @@ void drawTextOverlay(const char* id, const std::string& text, const OverlayRect&
 // Floating over the top of the image, one under the other: the located load error (with a dismiss button)
 // and the load progress. Each returns the y below itself (`y` when it is not shown).
 float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
+// F1 or ?: the shortcut table over the image area (x, y, width, height); its close button clears `open`.
+void drawHelpOverlay(bool& open, float x, float y, float width, float height);
 float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
 // The plot of the last measurement (the texture), at its size or smaller to fit, closable (state.showPlot).
 void drawTradeoffPlot(TradeoffPanelState& state, const ImageTexture& plot, float x, float y, float maxWidth,

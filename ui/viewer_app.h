@@ -118,6 +118,8 @@ class ViewerApp final : public ScriptHost {
   // The overlays over the image area (viewer_app_overlays.cpp), placed by placeOverlays so that none covers another.
   void drawOverlays(const ViewerLayout& layout, const std::string& readout);
   std::vector<OverlayRect> keepClear(const ViewerLayout& layout) const;
+  // RAYVIEW_PRINT_OVERLAYS: the progress bar's text, when it changes.
+  void printProgress(const std::string& text);
   void apply(const PanelActions& actions, const Shortcuts& shortcuts);
   // Home, F11, E and Shift+E; the wheel's dolly toward the point under the cursor.
   void applyHabits(const Shortcuts& shortcuts);
@@ -154,6 +156,8 @@ class ViewerApp final : public ScriptHost {
   Clock::time_point marksUntil_{};  // the lights and pivot stay drawn until then after a navigation
   bool printOverlays_ = false;  // RAYVIEW_PRINT_OVERLAYS: tools driving the window (tests) read the placement
   std::string printedOverlays_;
+  std::string printedProgress_;
+  bool helpPrinted_ = false;  // the help's state last printed (`help shown`, `help hidden`)
   std::string shownTitle_;
   int framesToDraw_ = kSettleFrames;
   bool quit_ = false;

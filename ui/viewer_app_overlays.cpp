@@ -42,16 +42,16 @@ std::optional<OverlayRect> onScreen(const Bounds& bounds, const Camera& camera, 
 
 // The full-resolution pass's bar, for a pass long enough to wait for.
 constexpr float kProgressWidth = 300.0f;
-void drawPassProgress(double fraction, const OverlayRect& at) {
+constexpr float kSamplesProgressWidth = 420.0f;  // room for "samples 13/16, 81% of the render, 12 s left"
+void drawPassProgress(const RenderProgress& progress, const OverlayRect& at) {
   ImGui::SetNextWindowPos(ImVec2(at.x, at.y));
   ImGui::SetNextWindowSize(ImVec2(at.width, at.height));
   ImGui::SetNextWindowBgAlpha(0.75f);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
   if (ImGui::Begin("##pass_progress", nullptr, flags)) {
-    char text[64];
-    std::snprintf(text, sizeof text, "full resolution: %.0f%%", 100.0 * fraction);
-    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), text);
+    const double fraction = progress.samplesTotal > 1 ? progress.renderFraction : progress.passFraction;
+    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), describeProgress(progress).c_str());
   }
   ImGui::End();
 }
@@ -104,6 +104,13 @@ void ViewerApp::drawSceneMarks(const ViewerLayout& l) {
   draw->PopClipRect();
 }
 
+void ViewerApp::printProgress(const std::string& text) {
+  if (text == printedProgress_) return;
+  printedProgress_ = text;
+  std::printf("progress %s\n", text.c_str());
+  std::fflush(stdout);
+}
+
 std::vector<OverlayRect> ViewerApp::keepClear(const ViewerLayout& l) const {
   std::vector<OverlayRect> clear;
   // The reference or the difference on screen: the whole image is what the user looks at.
@@ -146,8 +153,11 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
   q.oneLine = display_.oneLineStats || io.DisplaySize.x < kCompactStatsWidth * scale ||
               io.DisplaySize.y < kCompactStatsHeight * scale;
   q.readout = textOverlaySize(readout);
-  const std::optional<double> progress = render_.fullPassProgress(Clock::now());
-  if (progress) q.progress = {kProgressWidth * imgui_.layoutScale(), ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y, 0.0f};
+  const std::optional<RenderProgress> progress = render_.fullPassProgress(Clock::now());
+  if (progress) {
+    const float width = progress->samplesTotal > 1 ? kSamplesProgressWidth : kProgressWidth;
+    q.progress = {width * imgui_.layoutScale(), ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y, 0.0f};
+  }
   q.keepClear = keepClear(l);
   const OverlayPlacement placed = placeOverlays(q);
 
@@ -156,7 +166,15 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
   if (placed.progress) drawPassProgress(*progress, *placed.progress);
   if (placed.stats) drawStatsOverlay(stats, *placed.stats, placed.statsOneLine);
   if (placed.readout) drawTextOverlay("##readout", readout, *placed.readout, 0.75f);
+  // Over everything else: asked for, it is what the user is reading.
+  drawHelpOverlay(display_.showHelp, l.viewX, l.viewY, l.viewWidth, l.viewHeight);
+  if (display_.showHelp != helpPrinted_) {
+    helpPrinted_ = display_.showHelp;
+    std::printf("help %s\n", helpPrinted_ ? "shown" : "hidden");
+    std::fflush(stdout);
+  }
   if (!printOverlays_) return;
+  if (placed.progress) printProgress(describeProgress(*progress));
   const std::string line = "overlays view=" + std::to_string(static_cast<int>(l.viewWidth)) + "x" +
                            std::to_string(static_cast<int>(l.viewHeight)) + describe("label", placed.label) +
                            describe("toast", placed.toast) + describe("progress", placed.progress) +
