@@ -129,6 +129,8 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
       drawErrorOverlay(load_.loadError(), stillShowing, l.viewX + margin, l.viewY + margin, l.viewWidth - 2.0f * margin);
   const float belowLoading = drawLoadingOverlay(load_.progress(), l.viewX + margin, belowError,
                                                 std::min(l.viewWidth - 2.0f * margin, 480.0f * imgui_.layoutScale()));
+  if (const std::optional<bool> restore = recovery_.draw(l.viewX + margin, belowLoading, l.viewWidth - 2.0f * margin))
+    answerRecovery(*restore);
   drawTradeoffPlot(tradeoff_.panel(), tradeoff_.plot(), l.viewX + margin, belowLoading, l.viewWidth - 2.0f * margin,
                    l.viewY + l.viewHeight - margin - belowLoading);
 
@@ -166,6 +168,13 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
   if (placed.progress) drawPassProgress(*progress, *placed.progress);
   if (placed.stats) drawStatsOverlay(stats, *placed.stats, placed.statsOneLine);
   if (placed.readout) drawTextOverlay("##readout", readout, *placed.readout, 0.75f);
+  if (!endingMessage_.empty()) {
+    const OverlaySize size = textOverlaySize(endingMessage_);
+    const float width = std::min(size.width, l.viewWidth - 2.0f * margin);
+    drawTextOverlay("##ending", endingMessage_,
+                    {l.viewX + 0.5f * (l.viewWidth - width), l.viewY + 0.4f * l.viewHeight, width, size.height}, 1.0f,
+                    kToastFailed);
+  }
   // Over everything else: asked for, it is what the user is reading.
   drawHelpOverlay(display_.showHelp, l.viewX, l.viewY, l.viewWidth, l.viewHeight);
   if (display_.showHelp != helpPrinted_) {
@@ -174,6 +183,16 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
     std::fflush(stdout);
   }
   if (!printOverlays_) return;
+  if (!endingMessage_.empty() && !printedEnding_) {
+    printedEnding_ = true;
+    std::printf("ending shown\n");
+    std::fflush(stdout);
+  }
+  if (!recovery_.buttons().empty() && recovery_.buttons() != printedRecovery_) {
+    std::printf("recovery panel %s\n", recovery_.buttons().c_str());
+    std::fflush(stdout);
+  }
+  printedRecovery_ = recovery_.buttons();
   if (placed.progress) printProgress(describeProgress(*progress));
   const std::string line = "overlays view=" + std::to_string(static_cast<int>(l.viewWidth)) + "x" +
                            std::to_string(static_cast<int>(l.viewHeight)) + describe("label", placed.label) +

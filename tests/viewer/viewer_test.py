@@ -40,6 +40,10 @@ Cases:
   help         F1 and ? show and hide the help over the image, Esc hides it; an orbit alone quits without asking
                (viewer_keeps_case.py)
   samples      a 16-sample render shows samples done of total and the time left (viewer_keeps_case.py)
+  recovery     unsaved edits outlive kill -9 in a recovery file; the next start restores them by script and by a
+               click on its panel; a save removes the file (viewer_keeps_case.py)
+  ending       SIGTERM after an edit: the window and stderr say why it closes and where the edits are kept, the
+               recovery file holds them, exit 143 (viewer_keeps_case.py)
   overlays     at 800x600, 1000x640 and 1280x800 the readout, a toast and the stats are apart and inside the image
                area (viewer_saves_case.py)
 
@@ -62,7 +66,7 @@ from viewer_model_case import case_model  # noqa: E402
 from viewer_window_view_case import case_window_view  # noqa: E402
 from viewer_saves_case import case_saves, case_overlays  # noqa: E402
 from viewer_habits_case import case_habits  # noqa: E402
-from viewer_keeps_case import case_help, case_samples  # noqa: E402
+from viewer_keeps_case import case_ending, case_help, case_recovery, case_samples  # noqa: E402
 from viewer_harness import (  # noqa: E402
     run_script,
     last_generation,
@@ -615,7 +619,8 @@ CASES = {"interaction": case_interaction, "script": case_script, "reload": case_
          "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
          "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view,
          "model": case_model, "saves": case_saves, "overlays": case_overlays, "habits": case_habits,
-         "help": case_help, "samples": case_samples}
+         "help": case_help, "samples": case_samples, "recovery": case_recovery,
+         "ending": case_ending}
 
 
 def main():
