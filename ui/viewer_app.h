@@ -120,6 +120,9 @@ class ViewerApp final : public ScriptHost {
   // The overlays over the image area (viewer_app_overlays.cpp), placed by placeOverlays so that none covers another.
   void drawOverlays(const ViewerLayout& layout, const std::string& readout);
   std::vector<OverlayRect> keepClear(const ViewerLayout& layout) const;
+  // What goes over every other overlay: why the process is being ended, the help; and, with RAYVIEW_PRINT_OVERLAYS,
+  // where the recovery offer's buttons are.
+  void drawOnTop(const ViewerLayout& layout, float margin);
   // RAYVIEW_PRINT_OVERLAYS: the progress bar's text, when it changes.
   void printProgress(const std::string& text);
   void apply(const PanelActions& actions, const Shortcuts& shortcuts);

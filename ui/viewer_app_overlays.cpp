@@ -104,6 +104,34 @@ void ViewerApp::drawSceneMarks(const ViewerLayout& l) {
   draw->PopClipRect();
 }
 
+void ViewerApp::drawOnTop(const ViewerLayout& l, float margin) {
+  if (!endingMessage_.empty()) {
+    const OverlaySize size = textOverlaySize(endingMessage_);
+    const float width = std::min(size.width, l.viewWidth - 2.0f * margin);
+    drawTextOverlay("##ending", endingMessage_,
+                    {l.viewX + 0.5f * (l.viewWidth - width), l.viewY + 0.4f * l.viewHeight, width, size.height}, 1.0f,
+                    kToastFailed);
+  }
+  // Over everything else: asked for, it is what the user is reading.
+  drawHelpOverlay(display_.showHelp, l.viewX, l.viewY, l.viewWidth, l.viewHeight);
+  if (display_.showHelp != helpPrinted_) {
+    helpPrinted_ = display_.showHelp;
+    std::printf("help %s\n", helpPrinted_ ? "shown" : "hidden");
+    std::fflush(stdout);
+  }
+  if (!printOverlays_) return;
+  if (!endingMessage_.empty() && !printedEnding_) {
+    printedEnding_ = true;
+    std::printf("ending shown\n");
+    std::fflush(stdout);
+  }
+  if (!recovery_.buttons().empty() && recovery_.buttons() != printedRecovery_) {
+    std::printf("recovery panel %s\n", recovery_.buttons().c_str());
+    std::fflush(stdout);
+  }
+  printedRecovery_ = recovery_.buttons();
+}
+
 void ViewerApp::printProgress(const std::string& text) {
   if (text == printedProgress_) return;
   printedProgress_ = text;
@@ -168,31 +196,8 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
   if (placed.progress) drawPassProgress(*progress, *placed.progress);
   if (placed.stats) drawStatsOverlay(stats, *placed.stats, placed.statsOneLine);
   if (placed.readout) drawTextOverlay("##readout", readout, *placed.readout, 0.75f);
-  if (!endingMessage_.empty()) {
-    const OverlaySize size = textOverlaySize(endingMessage_);
-    const float width = std::min(size.width, l.viewWidth - 2.0f * margin);
-    drawTextOverlay("##ending", endingMessage_,
-                    {l.viewX + 0.5f * (l.viewWidth - width), l.viewY + 0.4f * l.viewHeight, width, size.height}, 1.0f,
-                    kToastFailed);
-  }
-  // Over everything else: asked for, it is what the user is reading.
-  drawHelpOverlay(display_.showHelp, l.viewX, l.viewY, l.viewWidth, l.viewHeight);
-  if (display_.showHelp != helpPrinted_) {
-    helpPrinted_ = display_.showHelp;
-    std::printf("help %s\n", helpPrinted_ ? "shown" : "hidden");
-    std::fflush(stdout);
-  }
+  drawOnTop(l, margin);
   if (!printOverlays_) return;
-  if (!endingMessage_.empty() && !printedEnding_) {
-    printedEnding_ = true;
-    std::printf("ending shown\n");
-    std::fflush(stdout);
-  }
-  if (!recovery_.buttons().empty() && recovery_.buttons() != printedRecovery_) {
-    std::printf("recovery panel %s\n", recovery_.buttons().c_str());
-    std::fflush(stdout);
-  }
-  printedRecovery_ = recovery_.buttons();
   if (placed.progress) printProgress(describeProgress(*progress));
   const std::string line = "overlays view=" + std::to_string(static_cast<int>(l.viewWidth)) + "x" +
                            std::to_string(static_cast<int>(l.viewHeight)) + describe("label", placed.label) +
