@@ -135,6 +135,7 @@ struct ViewerStats {
   std::string traversal;                // how the stats name it ("" = toString(accel))
   int threads = 0;
   std::string tracedBy;  // the other processes tracing the passes (rayview/pass_farm.h); "" when none
+  std::vector<std::string> lostRanks;  // of those, the ones that died or were left out, each with why
   // The process's resident memory and its peak, in bytes, read at each pass shown (0: not known).
   std::uint64_t residentBytes = 0, peakResidentBytes = 0;
 };

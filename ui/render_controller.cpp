@@ -50,7 +50,14 @@ bool RenderController::takeNewFrame() {
   const ProcessMemory memory = processMemory();
   stats_.residentBytes = memory.resident;
   stats_.peakResidentBytes = memory.peak;
-  if (farm_) stats_.tracedBy = farm_->describe();
+  if (farm_) {
+    stats_.tracedBy = farm_->describe();
+    // A rank lost is said once on stdout as well as in the stats, for the user and for tools driving the window.
+    std::vector<std::string> lost = farm_->lostRanks();
+    for (std::size_t k = stats_.lostRanks.size(); k < lost.size(); ++k) std::printf("lost %s\n", lost[k].c_str());
+    if (lost.size() != stats_.lostRanks.size()) std::fflush(stdout);
+    stats_.lostRanks = std::move(lost);
+  }
   stats_.width = frame_.width;
   stats_.height = frame_.height;
   return true;

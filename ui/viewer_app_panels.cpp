@@ -35,7 +35,7 @@ void ViewerApp::drawPanelColumn(const ViewerLayout&, PanelActions& actions) {
   if (ImGui::SmallButton("Hide panels (F9)")) actions.togglePanels = true;
   // Text, not a button: where it stands, a click did nothing before, and tools that click there rely on it.
   ImGui::SameLine();
-  ImGui::TextDisabled("F1 or ?: every key and mouse gesture");
+  ImGui::TextDisabled("F1 or ?: keys and mouse");
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // room for the labels on the right
   SceneSession* s = session();
   const SceneInfo info{scenePath().empty() ? (s ? "default scene (embedded)" : "no scene yet") : scenePath(),
