@@ -30,6 +30,8 @@ constexpr int kDepth = 2;
 // A worker holding tiles and silent this long is left out, its tiles dealt to the others: it says it is alive every
 // kAliveEvery while it builds or traces, so this is a rank that stopped, not a slow one.
 constexpr auto kSilentFor = kLostAfter;
+// A tile owed this long at the end of a pass is dealt again to a free rank (see Pass::patience).
+constexpr auto kLatePatience = std::chrono::milliseconds(40);
 
 template <class T>
 std::vector<std::uint8_t> bytesOf(const T& value) {
@@ -47,8 +49,7 @@ class ViewerFarm::Pass {
       : farm_(farm), source_(source), pass_(pass), sink_(sink),
         tiles_(clusterTiles((source.width() + pass.stride - 1) / pass.stride,
                             (source.height() + pass.stride - 1) / pass.stride, farm.ranks_)),
-        dealer_(tiles_.size()), held_(static_cast<std::size_t>(farm.ranks_), 0),
-        lastHeard_(static_cast<std::size_t>(farm.ranks_), Clock::now()) {}
+        dealer_(tiles_.size()), held_(static_cast<std::size_t>(farm.ranks_), 0), dealtAt_(tiles_.size()) {}
 
   bool run(const std::function<bool()>& stopped, RayCounts& rays) {
     std::thread local([this] { traceOwnShare(); });
@@ -117,10 +118,12 @@ class ViewerFarm::Pass {
   }
 
   void deal(int worker) {
-    while (!farm_.lost_[worker] && held_[worker] < kDepth) {
+    const auto now = Clock::now();
+    while (!farm_.lost(worker) && !farm_.suspect(worker, now, patience()) && held_[worker] < kDepth) {
       const auto tile = dealer_.take(worker);
       if (!tile) return;
-      if (held_[worker] == 0) lastHeard_[worker] = Clock::now();
+      if (!farm_.owedSince_[worker]) farm_.owedSince_[worker] = now;
+      dealtAt_[*tile] = now;
       ++held_[worker];
       const Tile& t = tiles_[*tile];
       const ViewTileRequest request{farm_.passSerial_, pass_.generation, static_cast<std::int32_t>(*tile),
@@ -137,17 +140,19 @@ class ViewerFarm::Pass {
     if (!arrival->whole) {
       std::fprintf(stderr, "rayview: warning: rank %d fell silent mid-message; the other ranks go on without it\n",
                    worker);
-      lose(worker);
+      lose(worker, Loss::SilentMidMessage);
       return true;
     }
-    lastHeard_[worker] = Clock::now();
     if (arrival->tag == kTagViewProblem) {
       std::fprintf(stderr, "rayview: error: rank %d cannot trace: %.*s; the other ranks go on without it\n", worker,
                    static_cast<int>(arrival->bytes), reinterpret_cast<const char*>(inbox_.data()));
-      lose(worker);
+      lose(worker, Loss::CannotTrace);
     } else if (arrival->tag == kTagViewResult && arrival->bytes >= sizeof(ViewTileResultHeader)) {
       takeResult(worker, arrival->bytes, rays);
     }
+    // Any word from it (a result, a heartbeat) says it is alive: what it still holds is owed from now on.
+    if (!farm_.lost(worker))
+      farm_.owedSince_[worker] = held_[worker] > 0 ? std::optional(Clock::now()) : std::nullopt;
     return true;
   }
 
@@ -161,6 +166,7 @@ class ViewerFarm::Pass {
       gridTilePixels(tiles_[tile], pass_.stride, pass_.skipStride, pixels_);
       const std::size_t expected = sizeof header + pixels_.size() * sizeof(Color);
       const bool whole = bytes == expected && static_cast<std::size_t>(header.pixels) == pixels_.size();
+      if (whole) slowestTile_ = std::max(slowestTile_, Clock::now() - dealtAt_[tile]);
       if (whole && dealer_.finish(tile, worker)) {
         colors_.resize(pixels_.size());
         // A tile may hold no pixel of the pass (all on the coarser grid), and memcpy must not see a null pointer.
@@ -177,23 +183,32 @@ class ViewerFarm::Pass {
 
   void watchWorkers() {
     const auto now = Clock::now();
+    const bool noneToDeal = !dealer_.next();
     for (int w = 1; w < farm_.ranks_; ++w) {
-      if (farm_.lost_[w]) continue;
-      if (held_[w] > 0 && now - lastHeard_[w] > kSilentFor) {
+      if (farm_.lost(w)) continue;
+      if (farm_.suspect(w, now, kSilentFor)) {
         std::fprintf(stderr, "rayview: warning: rank %d fell silent; the other ranks go on without it\n", w);
-        lose(w);
+        lose(w, Loss::Silent);
         continue;
       }
-      deal(w);
+      // The pass waits only for a rank that is late: its tiles go to whoever is free (rank 0's own thread first), and
+      // the first to finish a tile gives its pixels. A rank that is only slow keeps its tiles and may still win.
+      if (noneToDeal && farm_.suspect(w, now, patience())) dealer_.reclaim(w);
     }
+    for (int w = 1; w < farm_.ranks_; ++w) deal(w);
   }
 
-  void lose(int worker) {
-    farm_.lost_[worker] = true;
+  void lose(int worker, Loss why) {
+    farm_.markLost(worker, why);
     held_[worker] = 0;
     dealer_.reclaim(worker);
   }
 
+  // How long a rank may owe a tile before it counts as late: twice the slowest tile of this pass so far, and never
+  // less than kLatePatience (a tile's round trip on a busy machine).
+  Clock::duration patience() const { return std::max<Clock::duration>(kLatePatience, 2 * slowestTile_); }
+
+  using Loss = ViewerFarm::Loss;
   ViewerFarm& farm_;
   const PixelSource& source_;
   FarmPass pass_;
@@ -201,7 +216,8 @@ class ViewerFarm::Pass {
   std::vector<Tile> tiles_;
   TileDealer dealer_;
   std::vector<int> held_;
-  std::vector<Clock::time_point> lastHeard_;
+  std::vector<Clock::time_point> dealtAt_;  // per tile: when it was last dealt
+  Clock::duration slowestTile_{};  // the longest a tile of this pass took from dealt to its result
   std::mutex localMutex_;
   std::deque<LocalTile> local_;
   std::vector<std::uint8_t> inbox_;
@@ -210,15 +226,50 @@ class ViewerFarm::Pass {
 };
 
 ViewerFarm::ViewerFarm(int ranks, int threads)
-    : ranks_(std::max(ranks, 1)), pool_(threads), lost_(static_cast<std::size_t>(ranks_), false),
+    : ranks_(std::max(ranks, 1)), pool_(threads),
+      lost_(std::make_unique<std::atomic<int>[]>(static_cast<std::size_t>(ranks_))),
+      owedSince_(static_cast<std::size_t>(ranks_)),
       tilesTraced_(std::make_unique<std::atomic<std::size_t>[]>(static_cast<std::size_t>(ranks_))),
       busyMicroseconds_(std::make_unique<std::atomic<std::uint64_t>[]>(static_cast<std::size_t>(ranks_))) {}
 
 std::string ViewerFarm::describe() const {
-  std::string text = std::to_string(ranks_) + " ranks, busy";
+  int working = 0;
+  for (int r = 0; r < ranks_; ++r) working += lost(r) ? 0 : 1;
+  // A lost rank is counted out of the total, and its time is not shown as work going on.
+  std::string text = (working == ranks_ ? std::to_string(ranks_) : std::to_string(working) + " of " + std::to_string(ranks_)) +
+                     " ranks, busy";
   for (int r = 0; r < ranks_; ++r)
-    text += (r == 0 ? " " : " / ") + std::to_string(busyMicroseconds_[r].load() / 1000) + (r + 1 < ranks_ ? "" : " ms");
+    text += (r == 0 ? " " : " / ") + (lost(r) ? std::string("lost") : std::to_string(busyMicroseconds_[r].load() / 1000)) +
+            (r + 1 < ranks_ ? "" : " ms");
   return text;
+}
+
+namespace {
+
+const char* lossText(ViewerFarm::Loss why) {
+  switch (why) {
+    case ViewerFarm::Loss::Silent: return "fell silent (died or stopped)";
+    case ViewerFarm::Loss::SilentMidMessage: return "fell silent mid-message";
+    case ViewerFarm::Loss::CannotTrace: return "cannot trace the scene";
+    case ViewerFarm::Loss::SceneTooLarge: return "left out: the scene is too large to send";
+    case ViewerFarm::Loss::None: break;
+  }
+  return "";
+}
+
+}  // namespace
+
+std::vector<std::string> ViewerFarm::lostRanks() const {
+  std::vector<std::string> lostOnes;
+  for (int r = 1; r < ranks_; ++r)
+    if (lost(r)) lostOnes.push_back("rank " + std::to_string(r) + ": " + lossText(static_cast<Loss>(lost_[r].load())));
+  return lostOnes;
+}
+
+void ViewerFarm::markLost(int rank, Loss why) {
+  int none = static_cast<int>(Loss::None);
+  lost_[rank].compare_exchange_strong(none, static_cast<int>(why));
+  owedSince_[rank].reset();
 }
 
 ViewerFarm::~ViewerFarm() = default;
@@ -265,24 +316,51 @@ void ViewerFarm::sendToAll(int tag, std::vector<std::uint8_t> bytes) {
   if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
     std::fprintf(stderr, "rayview: error: the scene is too large to send to the other ranks (over 2 GB); this window "
                  "traces it alone\n");
-    std::fill(lost_.begin() + 1, lost_.end(), true);
+    for (int w = 1; w < ranks_; ++w) markLost(w, Loss::SceneTooLarge);
     return;
   }
   const auto shared = std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes));
   for (int w = 1; w < ranks_; ++w)
-    if (!lost_[w]) outbox_.sendPart(w, tag, shared, 0, shared->size());
+    if (!lost(w)) outbox_.sendPart(w, tag, shared, 0, shared->size());
+}
+
+// A rank that still owes tiles when the window closes may have died between passes: any word from it says it is
+// alive (it will say goodbye once its tile is done); silent until kLostAfter from when it began to owe, it is lost,
+// and the others are told to end without it (MPI_Finalize would wait for it for ever).
+void ViewerFarm::settleOwed() {
+  std::vector<std::uint8_t> inbox;
+  for (;;) {
+    const auto now = Clock::now();
+    bool owing = false;
+    for (int w = 1; w < ranks_; ++w) {
+      if (lost(w) || !owedSince_[w]) continue;
+      if (now - *owedSince_[w] > kLostAfter) {
+        std::fprintf(stderr, "rayview: warning: rank %d fell silent; the other ranks end without it\n", w);
+        markLost(w, Loss::Silent);
+      } else {
+        owing = true;
+      }
+    }
+    if (!owing) return;
+    if (const std::optional<Arrival> arrival = receiveAny(inbox, std::chrono::milliseconds(kLostAfter)))
+      owedSince_[arrival->source].reset();
+    else
+      std::this_thread::sleep_for(kLongestProbePause);
+  }
 }
 
 void ViewerFarm::shutdown() {
   if (ended_) return;
   ended_ = true;
+  settleOwed();
   // With a rank lost, MPI_Finalize would wait for it for ever: the others are told to end without it.
-  const bool anyLost = std::find(lost_.begin(), lost_.end(), true) != lost_.end();
+  std::vector<bool> gone(static_cast<std::size_t>(ranks_), false);
+  for (int r = 0; r < ranks_; ++r) gone[r] = lost(r);
+  const bool anyLost = std::find(gone.begin(), gone.end(), true) != gone.end();
   if (anyLost) notePeerLost();
   // A rank left out only for its silence may still be there and hear it; a dead one's send is not waited for.
   for (int w = 1; w < ranks_; ++w) sendTo(w, kTagViewQuit, {static_cast<std::uint8_t>(anyLost ? 1 : 0)});
   // Every worker's last message is its goodbye: what it sent before (late results) is read and dropped.
-  std::vector<bool> gone(lost_.begin(), lost_.end());
   int waiting = static_cast<int>(std::count(gone.begin() + 1, gone.end(), false));
   std::vector<std::uint8_t> inbox;
   const auto deadline = Clock::now() + std::chrono::seconds(5);
@@ -304,11 +382,15 @@ void ViewerFarm::shutdown() {
   }
   outbox_.drain(std::chrono::seconds(5));
   if (waiting > 0) notePeerLost();
-  // Who traced what, for the user deciding how many ranks are worth it (and for the tests).
+  // Who traced what, for the user deciding how many ranks are worth it (and for the tests). A lost rank is said to be
+  // lost, not listed as working: what it traced before counts for nothing now.
   std::printf("tiles traced:");
-  for (int r = 0; r < ranks_; ++r)
-    std::printf(" rank %d %zu (busy %.0f ms)%s", r, tilesTraced_[r].load(),
-                static_cast<double>(busyMicroseconds_[r].load()) / 1000.0, r + 1 < ranks_ ? "," : "\n");
+  for (int r = 0; r < ranks_; ++r) {
+    if (lost(r)) std::printf(" rank %d lost: %s", r, lossText(static_cast<Loss>(lost_[r].load())));
+    else std::printf(" rank %d %zu (busy %.0f ms)", r, tilesTraced_[r].load(),
+                     static_cast<double>(busyMicroseconds_[r].load()) / 1000.0);
+    std::printf("%s", r + 1 < ranks_ ? "," : "\n");
+  }
   std::fflush(stdout);
 }
 

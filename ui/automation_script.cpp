@@ -231,6 +231,10 @@ Script parseScript(const std::string& text, const std::string& file) {
         if (!tokens.empty()) p.integers(tokens, 0, 1, "quit [EXIT_CODE]", 0, 255);
       } else if (c.name == "pick") {
         p.integers(tokens, 0, 2, "pick COLUMN ROW (a pixel of the image, from its top left)", 0, 16383);
+      } else if (c.name == "recovery") {
+        if (tokens.size() != 1 || (tokens[0] != "restore" && tokens[0] != "discard"))
+          p.fail("usage: recovery restore|discard (the unsaved edits a viewer that stopped left for this scene)");
+        c.args = tokens;
       } else if (c.name == "view") {
         if (tokens.size() != 1 || (tokens[0] != "window" && tokens[0] != "image"))
           p.fail("usage: view window|image (the window's pixels, or the file's image)");

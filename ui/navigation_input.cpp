@@ -90,27 +90,8 @@ void NavigationInput::handleKey(const InputEvent& e, bool imguiWantsKeyboard, Sh
     return;
   }
   if (!e.pressed || e.repeat) return;
-  const bool shift = (e.mods & GLFW_MOD_SHIFT) != 0;
-  // Control shortcuts and F5 mean nothing to a text field, so they work while one is focused.
-  if (control && e.key == GLFW_KEY_S) (shift ? shortcuts.saveScene : shortcuts.saveFrame) = true;
-  else if (control && e.key == GLFW_KEY_O) shortcuts.focusOpen = true;
-  else if (control && e.key == GLFW_KEY_Q) shortcuts.quit = true;
-  // A text field being typed in has its own undo.
-  else if (control && !imguiWantsKeyboard && e.key == GLFW_KEY_Z) (shift ? shortcuts.redo : shortcuts.undo) = true;
-  else if (control && !imguiWantsKeyboard && e.key == GLFW_KEY_Y) shortcuts.redo = true;
-  else if (e.key == GLFW_KEY_F5) shortcuts.reload = true;
-  else if (e.key == GLFW_KEY_F9) shortcuts.togglePanels = true;
-  else if (e.key == GLFW_KEY_F11) shortcuts.toggleFullscreen = true;
-  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_HOME) shortcuts.frameAll = true;
-  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_E) shortcuts.exposureSteps += shift ? -1 : 1;
-  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_F) shortcuts.frameScene = true;
-  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_R) shortcuts.resetCamera = true;
-  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_D) shortcuts.toggleDifference = true;
-  else if (!control && !imguiWantsKeyboard && e.key == GLFW_KEY_V) shortcuts.toggleImageView = true;
-  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_0 || e.key == GLFW_KEY_KP_0)) shortcuts.imageFit = true;
-  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_1 || e.key == GLFW_KEY_KP_1)) shortcuts.imageOneToOne = true;
-  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_EQUAL || e.key == GLFW_KEY_KP_ADD)) shortcuts.imageZoomBy *= 2.0;
-  else if (!control && !imguiWantsKeyboard && (e.key == GLFW_KEY_MINUS || e.key == GLFW_KEY_KP_SUBTRACT)) shortcuts.imageZoomBy *= 0.5;
+  // The table (shortcut_table.cpp) is what the help lists: a key does what its row says, nothing else.
+  if (const ShortcutRow* row = matchShortcut(e.key, e.mods, imguiWantsKeyboard)) row->action(shortcuts);
 }
 
 }  // namespace rayview

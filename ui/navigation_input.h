@@ -7,42 +7,10 @@
 #include <vector>
 
 #include "scene_session.h"
+#include "shortcut_table.h"
 #include "window.h"
 
 namespace rayview {
-
-struct Shortcuts {
-  bool frameScene = false;   // F
-  bool resetCamera = false;  // R
-  bool reload = false;       // F5
-  bool saveFrame = false;    // Ctrl+S
-  bool saveScene = false;    // Ctrl+Shift+S
-  bool focusOpen = false;    // Ctrl+O
-  bool quit = false;         // Ctrl+Q
-  bool togglePanels = false; // F9
-  bool undo = false;         // Ctrl+Z
-  bool redo = false;         // Ctrl+Shift+Z, Ctrl+Y
-  bool toggleDifference = false;  // D: the difference from the reference image
-  bool toggleImageView = false;   // V: the image view (the file's image) or the window view (the area's pixels)
-  bool frameAll = false;          // Home: frame every mesh, ground planes too
-  bool toggleFullscreen = false;  // F11
-  int exposureSteps = 0;          // E: +1, Shift+E: -1 (kExposureKeyStops each)
-  // The wheel without Ctrl: dolly by these notches toward the scene point under the cursor (at dollyAt).
-  double dollySteps = 0.0;
-  std::pair<double, double> dollyAt{0.0, 0.0};
-  // The image view (image_placement.h): 0 fits, 1 shows 1:1, + and - zoom by 2 at the view's centre,
-  // Ctrl+wheel zooms at the cursor, Ctrl+drag moves the image.
-  bool imageFit = false;
-  bool imageOneToOne = false;
-  double imageZoomBy = 1.0;                       // at the view's centre
-  double imageWheelZoomBy = 1.0;                  // at imageWheelAt
-  std::pair<double, double> imageWheelAt{0.0, 0.0};
-  double imagePanX = 0.0, imagePanY = 0.0;        // window units
-  // A left click on the image (pressed and released without moving more than kClickSlop pixels): where, in
-  // window coordinates, and whether it completed a double-click.
-  std::optional<std::pair<double, double>> click;
-  bool doubleClick = false;
-};
 
 // A press and release closer than this (window coordinates, per axis) is a click, not a drag.
 inline constexpr double kClickSlop = 3.0;

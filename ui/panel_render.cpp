@@ -163,6 +163,12 @@ StatsText statsText(const ViewerStats& s) {
   // Single spaces about the bars: at 1000x640 the line then fits the image area without wrapping.
   text.oneLine = std::string(level) + " | " + text.lines[1].second + " | " + text.lines[2].second +
                  " | edit to final " + text.lines[4].second;
+  if (!s.lostRanks.empty()) {
+    std::string lost;
+    for (const std::string& rank : s.lostRanks) lost += (lost.empty() ? "" : "; ") + rank;
+    text.lines.push_back({"Lost", lost});
+    text.oneLine += " | " + std::to_string(s.lostRanks.size()) + (s.lostRanks.size() == 1 ? " rank lost" : " ranks lost");
+  }
   return text;
 }
 

@@ -68,6 +68,7 @@ struct DisplayOptions {
   bool imageView = false;
   DisplayMapping mapping;     // exposure and gamma of the render and the reference (the difference stays raw)
   bool alwaysShowMarks = false;  // the lights and the orbit pivot drawn in the view always, not only while navigating
+  bool showHelp = false;         // F1 or ?: the keys and mouse gestures over the image
 };
 
 // Below this window size (at content scale 1) the stats take one line, so they do not cover the image.
@@ -134,6 +135,7 @@ struct ViewerStats {
   std::string traversal;                // how the stats name it ("" = toString(accel))
   int threads = 0;
   std::string tracedBy;  // the other processes tracing the passes (rayview/pass_farm.h); "" when none
+  std::vector<std::string> lostRanks;  // of those, the ones that died or were left out, each with why
   // The process's resident memory and its peak, in bytes, read at each pass shown (0: not known).
   std::uint64_t residentBytes = 0, peakResidentBytes = 0;
 };
@@ -187,6 +189,8 @@ void drawTextOverlay(const char* id, const std::string& text, const OverlayRect&
 // Floating over the top of the image, one under the other: the located load error (with a dismiss button)
 // and the load progress. Each returns the y below itself (`y` when it is not shown).
 float drawErrorOverlay(std::string& error, const std::string& stillShowing, float x, float y, float width);
+// F1 or ?: the shortcut table over the image area (x, y, width, height); its close button clears `open`.
+void drawHelpOverlay(bool& open, float x, float y, float width, float height);
 float drawLoadingOverlay(const LoadProgress& progress, float x, float y, float width);
 // The plot of the last measurement (the texture), at its size or smaller to fit, closable (state.showPlot).
 void drawTradeoffPlot(TradeoffPanelState& state, const ImageTexture& plot, float x, float y, float maxWidth,

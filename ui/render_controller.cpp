@@ -50,7 +50,14 @@ bool RenderController::takeNewFrame() {
   const ProcessMemory memory = processMemory();
   stats_.residentBytes = memory.resident;
   stats_.peakResidentBytes = memory.peak;
-  if (farm_) stats_.tracedBy = farm_->describe();
+  if (farm_) {
+    stats_.tracedBy = farm_->describe();
+    // A rank lost is said once on stdout as well as in the stats, for the user and for tools driving the window.
+    std::vector<std::string> lost = farm_->lostRanks();
+    for (std::size_t k = stats_.lostRanks.size(); k < lost.size(); ++k) std::printf("lost %s\n", lost[k].c_str());
+    if (lost.size() != stats_.lostRanks.size()) std::fflush(stdout);
+    stats_.lostRanks = std::move(lost);
+  }
   stats_.width = frame_.width;
   stats_.height = frame_.height;
   return true;
@@ -64,19 +71,18 @@ void RenderController::announceFinal() {
   std::fflush(stdout);
 }
 
-std::optional<double> RenderController::fullPassProgress(std::chrono::steady_clock::time_point now) {
+std::optional<RenderProgress> RenderController::fullPassProgress(std::chrono::steady_clock::time_point now) {
   const PassProgress pass = renderer_.passProgress();
   const bool onScreen = haveFrame_ && frame_.generation == generation_ && frame_.final;
   if (pass.stride != 1 || pass.generation != generation_ || onScreen || renderer_.idle()) return std::nullopt;
-  // Each anti-aliasing sample is a full pass of its own: the bar starts again with each, after the same delay.
-  const int samplesDone = haveFrame_ && frame_.generation == generation_ ? frame_.samples.done : 0;
-  if (pass.generation != fullPassGeneration_ || samplesDone != fullPassSamples_) {
-    fullPassGeneration_ = pass.generation;
-    fullPassSamples_ = samplesDone;
-    fullPassSeen_ = now;
-  }
-  if (now - fullPassSeen_ < kProgressAfter) return std::nullopt;
-  return pass.fraction;
+  // Each anti-aliasing sample is a full pass of its own; the bar is of them all. A coarse pass on screen says
+  // how many samples the render takes but that none is complete at full resolution yet.
+  const bool ofThis = haveFrame_ && frame_.generation == generation_;
+  const int samplesDone = ofThis && frame_.stride == 1 ? frame_.samples.done : 0;
+  const RenderProgress progress =
+      progress_.update(pass.generation, samplesDone, ofThis ? frame_.samples.total : 1, pass.fraction, now);
+  if (now - progress_.since() < kProgressAfter) return std::nullopt;
+  return progress;
 }
 
 const ImageTexture& RenderController::texture(const DisplayMapping& mapping) {

@@ -12,6 +12,7 @@
 #include "image_texture.h"
 #include "panels.h"
 #include "rayview/progressive_renderer.h"
+#include "render_progress.h"
 
 namespace rayview {
 
@@ -54,9 +55,10 @@ class RenderController {
   const ImageTexture& texture(const DisplayMapping& mapping);
   bool isRenderTexture(const ImageTexture& texture) const { return &texture == &texture_; }
 
-  // The share done of a full-resolution pass of the latest restart that has run for kProgressAfter and is not
-  // on screen yet; nullopt otherwise (short passes show no bar).
-  std::optional<double> fullPassProgress(std::chrono::steady_clock::time_point now);
+  // How far the full-resolution passes of the latest restart are (with several samples per pixel, the whole render:
+  // samples done of total, time left), once they have run for kProgressAfter and while the final pass is not on
+  // screen; nullopt otherwise (short renders show no bar).
+  std::optional<RenderProgress> fullPassProgress(std::chrono::steady_clock::time_point now);
 
   ViewerStats& stats() { return stats_; }
   const ViewerStats& stats() const { return stats_; }
@@ -73,9 +75,7 @@ class RenderController {
   std::uint64_t announcedFinal_ = 0;
   bool interactive_ = false;
   ViewerStats stats_;
-  std::uint64_t fullPassGeneration_ = 0;  // the generation whose full pass was first seen running at fullPassSeen_
-  int fullPassSamples_ = 0;
-  std::chrono::steady_clock::time_point fullPassSeen_{};
+  RenderProgressEstimate progress_;
   ImageTexture texture_;  // the render as displayed
   MappedImage shownRender_;
 };

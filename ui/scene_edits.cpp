@@ -58,4 +58,12 @@ std::string editProblem(const SceneParameters& edits, const RenderSettings& sett
 }
 
 int findMaterial(const SceneParameters& edits, const std::string& id) { return findById(edits.materials, id); }
+bool sameApartFromTheView(const SceneParameters& a, const SceneParameters& b) {
+  SceneParameters moved = b;
+  moved.camera.position = a.camera.position;
+  moved.camera.gaze = a.camera.gaze;
+  moved.camera.up = a.camera.up;
+  return a == moved;
+}
+
 }  // namespace rayview

@@ -28,6 +28,10 @@ EditEffect classifyEdit(const SceneParameters& before, const RenderSettings& bef
 // Empty when the parameters describe a scene that can be rendered; otherwise what is wrong, for the user.
 std::string editProblem(const SceneParameters& edits, const RenderSettings& settings);
 
+// The same but for where the camera stands and looks (position, gaze, up: what orbit, pan and dolly move).
+// Moving the view is looking at the scene, not editing it: alone it never asks to be saved.
+bool sameApartFromTheView(const SceneParameters& a, const SceneParameters& b);
+
 // Index of the material with `id`, or -1.
 int findMaterial(const SceneParameters& edits, const std::string& id);
 

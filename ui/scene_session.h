@@ -107,8 +107,9 @@ class SceneSession {
   // What F frames (scene_framing.h): the selected mesh, or the meshes that are not ground planes.
   Bounds framingBounds() const;
 
-  // The edits differ from the file as loaded (with the command line's options) or as last saved.
-  bool unsaved() const { return edits_ != savedEdits_; }
+  // The edits differ from the file as loaded (with the command line's options) or as last saved, in more than the
+  // view: quitting or opening another scene asks first. A save still writes the camera as it is.
+  bool unsaved() const { return !sameApartFromTheView(edits_, savedEdits_); }
   void markSaved(const SceneParameters& saved) { savedEdits_ = saved; }
   // The edits differ from what the open file holds (as loaded, or as last written to that file): the title's `*`.
   // A save to another file (Save scene as, numbered) keeps it, since the open file did not change.

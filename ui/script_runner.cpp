@@ -197,6 +197,8 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
     const Knob* knob = c.args[0] == "advice" ? nullptr : findKnob(c.args[0]);
     if (const std::string why = host.applyTradeoff(knob, knob ? static_cast<int>(c.numbers[0]) : 0); !why.empty())
       fail("tradeoff-apply: " + why);
+  } else if (name == "recovery") {
+    if (const std::string why = host.answerRecovery(c.args[0] == "restore"); !why.empty()) fail("recovery: " + why);
   } else if (name == "undo" || name == "redo") {
     SceneSession* session = host.session();
     if (!session) return fail("no scene is loaded");

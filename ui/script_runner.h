@@ -74,6 +74,9 @@ class ScriptHost {
   // null) the setting the advice suggests. "" when applied, else why not.
   virtual std::string applyTradeoff(const Knob* knob, int value) = 0;
   virtual void quit(int exitCode) = 0;
+  // The unsaved edits a viewer that stopped left for this scene: restore them, or discard them ("" when done, else
+  // why not: none offered, or they no longer fit the scene).
+  virtual std::string answerRecovery(bool) { return "no recovered edits are offered"; }
 };
 
 class ScriptRunner {

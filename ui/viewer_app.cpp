@@ -4,9 +4,15 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <unistd.h>
+
+#include <csignal>
 #include <cstdlib>
 #include <utility>
 
+#include <GLFW/glfw3.h>
+
+#include "termination_notice.h"
 #include "view_habits.h"
 
 namespace rayview {
@@ -26,9 +32,11 @@ ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
 
 int ViewerApp::run() {
   load_.request(options_.scenePath, false);
+  watchForTermination([] { glfwPostEmptyEvent(); });
   double waitSeconds = 0.0;
   while (!quit_) {
     window_.waitEvents(waitSeconds);
+    if (const int signal = terminationSignal()) endOnSignal(signal);
     if (window_.shouldClose()) {
       if (!session() || !session()->unsaved()) break;
       window_.cancelClose();
@@ -39,6 +47,7 @@ int ViewerApp::run() {
     if (window_.takeContentScaleChange()) imgui_.setScale(window_.contentScale(), window_.framebufferScale());
     if (const std::vector<std::string> dropped = window_.takeDroppedPaths(); !dropped.empty()) openFromUser(dropped.front());
     changed |= pollTasks(Clock::now());
+    recovery_.keep(session(), scenePath(), Clock::now());
     // Read before taking the frame: when the renderer was idle, its last pass is certainly taken below.
     const bool rendererIdle = render_.idle();
     changed |= takeNewFrame();
@@ -57,7 +66,31 @@ int ViewerApp::run() {
     }
     waitSeconds = nextWaitSeconds(Clock::now(), rendererIdle);
   }
+  // Quitting as asked: whatever is still unsaved was discarded (the question's Discard, a script's quit).
+  if (exitCode_ == 0) recovery_.discard(scenePath());
   return exitCode_;
+}
+
+void ViewerApp::endOnSignal(int signal) {
+  const std::string kept = recovery_.keepNow(session(), scenePath());
+  // Under mpirun a SIGTERM is mpirun ending the whole job, which it does when a rank dies (mpirun names the rank).
+  const std::string why = options_.farm && signal == SIGTERM
+                              ? "mpirun is ending the job (SIGTERM): a rank of it probably died, and without\n"
+                                "--enable-recovery mpirun ends every rank (its own message names the rank)"
+                              : std::string("rayview is being ended (") + describeTermination(signal) + ")";
+  endingMessage_ = why + ".\n" + kept + ".";
+  std::fprintf(stderr, "rayview: %s\n", endingMessage_.c_str());
+  // Shown until shortly before the watch ends the process (or mpirun's SIGKILL comes), so the window says it.
+  const auto until = Clock::now() + kTerminationGrace - std::chrono::milliseconds(200);
+  while (Clock::now() < until) {
+    drawFrame();
+    window_.waitEvents(0.05);
+  }
+  // As the signal's default action would, and at once: under mpirun, waiting for the other ranks' goodbyes would
+  // only meet mpirun's SIGKILL.
+  std::fflush(stdout);
+  std::fflush(stderr);
+  ::_exit(128 + signal);
 }
 
 bool ViewerApp::pollTasks(Clock::time_point now) {
@@ -102,6 +135,7 @@ void ViewerApp::onLoad(const LoadEvent& event) {
   if (event.kind == LoadEvent::Kind::Rebuilt) return render_.restart(s.currentSource());
   navigation_.cancel();
   saves_.sceneReplaced(event.anotherScene);
+  if (event.anotherScene) recovery_.sceneOpened(scenePath());
   editProblem_.clear();
   stats.triangles = s.loaded().triangles.size();
   stats.readMs = event.readMs;
@@ -170,12 +204,19 @@ FrameSaveContext ViewerApp::frameSaveContext() const {
 
 void ViewerApp::open(const std::string& path) {
   stopTradeoff("cancelled: a scene is loading", true);
+  // Asked (the question answered, or a script): the edits on screen are given up. Kept again if the load fails.
+  recovery_.discard(scenePath());
   load_.open(path);
 }
 
 void ViewerApp::reload() {
   stopTradeoff("cancelled: a scene is loading", true);
   load_.reload();
+}
+
+std::string ViewerApp::answerRecovery(bool restore) {
+  framesToDraw_ = kSettleFrames;
+  return recovery_.answer(restore, session());
 }
 
 void ViewerApp::quit(int exitCode) {
@@ -238,6 +279,7 @@ double ViewerApp::nextWaitSeconds(Clock::time_point now, bool rendererIdle) cons
   if (tradeoff_.measuring()) wait = std::min(wait, kMeasuringPollSeconds);
   if (saves_.renderingFileImage()) wait = std::min(wait, kLoadingPollSeconds);  // its progress in the Save panel
   if (const std::optional<double> toast = saves_.secondsUntilToastEnds(now)) wait = std::min(wait, *toast + 0.001);
+  if (const std::optional<double> due = recovery_.secondsUntilDue(now)) wait = std::min(wait, *due + 0.001);
   if (now < marksUntil_) wait = std::min(wait, std::chrono::duration<double>(marksUntil_ - now).count() + 0.001);
   // A script condition to check: look again soon. A pass in flight wakes us when it is published.
   if (script_ && script_->running()) wait = std::min(wait, kRenderingPollSeconds);

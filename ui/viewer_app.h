@@ -15,6 +15,7 @@
 #include "imgui_layer.h"
 #include "load_controller.h"
 #include "navigation_input.h"
+#include "recovery_controller.h"
 #include "panels.h"
 #include "render_controller.h"
 #include "save_controller.h"
@@ -82,6 +83,7 @@ class ViewerApp final : public ScriptHost {
   void setDisplayMapping(const DisplayMapping& mapping) override { display_.mapping = mapping; }
   std::string applyTradeoff(const Knob* knob, int value) override { return tradeoff_.apply(session(), knob, value); }
   void quit(int exitCode) override;
+  std::string answerRecovery(bool restore) override;
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -118,6 +120,11 @@ class ViewerApp final : public ScriptHost {
   // The overlays over the image area (viewer_app_overlays.cpp), placed by placeOverlays so that none covers another.
   void drawOverlays(const ViewerLayout& layout, const std::string& readout);
   std::vector<OverlayRect> keepClear(const ViewerLayout& layout) const;
+  // What goes over every other overlay: why the process is being ended, the help; and, with RAYVIEW_PRINT_OVERLAYS,
+  // where the recovery offer's buttons are.
+  void drawOnTop(const ViewerLayout& layout, float margin);
+  // RAYVIEW_PRINT_OVERLAYS: the progress bar's text, when it changes.
+  void printProgress(const std::string& text);
   void apply(const PanelActions& actions, const Shortcuts& shortcuts);
   // Home, F11, E and Shift+E; the wheel's dolly toward the point under the cursor.
   void applyHabits(const Shortcuts& shortcuts);
@@ -131,6 +138,9 @@ class ViewerApp final : public ScriptHost {
   void openFromUser(const std::string& path);
   void quitFromUser();
   void answerUnsaved(UnsavedPrompt::Answer answer);
+  // SIGTERM, SIGHUP or SIGINT arrived (termination_notice.h): keep the edits, say so in the window and on stderr,
+  // and end the process (exit 128 + signal).
+  [[noreturn]] void endOnSignal(int signal);
 
   ViewerOptions options_;
   Window window_;
@@ -149,11 +159,17 @@ class ViewerApp final : public ScriptHost {
   SaveController saves_;
   ImageViewController imageView_;
   UnsavedPrompt unsaved_;
+  RecoveryController recovery_;
 
   std::string editProblem_;  // why the current edits are not rendered
+  std::string endingMessage_;  // the process is being ended from outside: why, and where the edits are
   Clock::time_point marksUntil_{};  // the lights and pivot stay drawn until then after a navigation
   bool printOverlays_ = false;  // RAYVIEW_PRINT_OVERLAYS: tools driving the window (tests) read the placement
   std::string printedOverlays_;
+  std::string printedProgress_;
+  std::string printedRecovery_;
+  bool printedEnding_ = false;
+  bool helpPrinted_ = false;  // the help's state last printed (`help shown`, `help hidden`)
   std::string shownTitle_;
   int framesToDraw_ = kSettleFrames;
   bool quit_ = false;

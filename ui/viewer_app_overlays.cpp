@@ -42,16 +42,16 @@ std::optional<OverlayRect> onScreen(const Bounds& bounds, const Camera& camera, 
 
 // The full-resolution pass's bar, for a pass long enough to wait for.
 constexpr float kProgressWidth = 300.0f;
-void drawPassProgress(double fraction, const OverlayRect& at) {
+constexpr float kSamplesProgressWidth = 420.0f;  // room for "samples 13/16, 81% of the render, 12 s left"
+void drawPassProgress(const RenderProgress& progress, const OverlayRect& at) {
   ImGui::SetNextWindowPos(ImVec2(at.x, at.y));
   ImGui::SetNextWindowSize(ImVec2(at.width, at.height));
   ImGui::SetNextWindowBgAlpha(0.75f);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoSavedSettings |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav | ImGuiWindowFlags_NoInputs;
   if (ImGui::Begin("##pass_progress", nullptr, flags)) {
-    char text[64];
-    std::snprintf(text, sizeof text, "full resolution: %.0f%%", 100.0 * fraction);
-    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), text);
+    const double fraction = progress.samplesTotal > 1 ? progress.renderFraction : progress.passFraction;
+    ImGui::ProgressBar(static_cast<float>(fraction), ImVec2(-1.0f, 0.0f), describeProgress(progress).c_str());
   }
   ImGui::End();
 }
@@ -104,6 +104,41 @@ void ViewerApp::drawSceneMarks(const ViewerLayout& l) {
   draw->PopClipRect();
 }
 
+void ViewerApp::drawOnTop(const ViewerLayout& l, float margin) {
+  if (!endingMessage_.empty()) {
+    const OverlaySize size = textOverlaySize(endingMessage_);
+    const float width = std::min(size.width, l.viewWidth - 2.0f * margin);
+    drawTextOverlay("##ending", endingMessage_,
+                    {l.viewX + 0.5f * (l.viewWidth - width), l.viewY + 0.4f * l.viewHeight, width, size.height}, 1.0f,
+                    kToastFailed);
+  }
+  // Over everything else: asked for, it is what the user is reading.
+  drawHelpOverlay(display_.showHelp, l.viewX, l.viewY, l.viewWidth, l.viewHeight);
+  if (display_.showHelp != helpPrinted_) {
+    helpPrinted_ = display_.showHelp;
+    std::printf("help %s\n", helpPrinted_ ? "shown" : "hidden");
+    std::fflush(stdout);
+  }
+  if (!printOverlays_) return;
+  if (!endingMessage_.empty() && !printedEnding_) {
+    printedEnding_ = true;
+    std::printf("ending shown\n");
+    std::fflush(stdout);
+  }
+  if (!recovery_.buttons().empty() && recovery_.buttons() != printedRecovery_) {
+    std::printf("recovery panel %s\n", recovery_.buttons().c_str());
+    std::fflush(stdout);
+  }
+  printedRecovery_ = recovery_.buttons();
+}
+
+void ViewerApp::printProgress(const std::string& text) {
+  if (text == printedProgress_) return;
+  printedProgress_ = text;
+  std::printf("progress %s\n", text.c_str());
+  std::fflush(stdout);
+}
+
 std::vector<OverlayRect> ViewerApp::keepClear(const ViewerLayout& l) const {
   std::vector<OverlayRect> clear;
   // The reference or the difference on screen: the whole image is what the user looks at.
@@ -122,6 +157,8 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
       drawErrorOverlay(load_.loadError(), stillShowing, l.viewX + margin, l.viewY + margin, l.viewWidth - 2.0f * margin);
   const float belowLoading = drawLoadingOverlay(load_.progress(), l.viewX + margin, belowError,
                                                 std::min(l.viewWidth - 2.0f * margin, 480.0f * imgui_.layoutScale()));
+  if (const std::optional<bool> restore = recovery_.draw(l.viewX + margin, belowLoading, l.viewWidth - 2.0f * margin))
+    answerRecovery(*restore);
   drawTradeoffPlot(tradeoff_.panel(), tradeoff_.plot(), l.viewX + margin, belowLoading, l.viewWidth - 2.0f * margin,
                    l.viewY + l.viewHeight - margin - belowLoading);
 
@@ -146,8 +183,11 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
   q.oneLine = display_.oneLineStats || io.DisplaySize.x < kCompactStatsWidth * scale ||
               io.DisplaySize.y < kCompactStatsHeight * scale;
   q.readout = textOverlaySize(readout);
-  const std::optional<double> progress = render_.fullPassProgress(Clock::now());
-  if (progress) q.progress = {kProgressWidth * imgui_.layoutScale(), ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y, 0.0f};
+  const std::optional<RenderProgress> progress = render_.fullPassProgress(Clock::now());
+  if (progress) {
+    const float width = progress->samplesTotal > 1 ? kSamplesProgressWidth : kProgressWidth;
+    q.progress = {width * imgui_.layoutScale(), ImGui::GetFrameHeight() + 2.0f * style.WindowPadding.y, 0.0f};
+  }
   q.keepClear = keepClear(l);
   const OverlayPlacement placed = placeOverlays(q);
 
@@ -156,7 +196,9 @@ void ViewerApp::drawOverlays(const ViewerLayout& l, const std::string& readout) 
   if (placed.progress) drawPassProgress(*progress, *placed.progress);
   if (placed.stats) drawStatsOverlay(stats, *placed.stats, placed.statsOneLine);
   if (placed.readout) drawTextOverlay("##readout", readout, *placed.readout, 0.75f);
+  drawOnTop(l, margin);
   if (!printOverlays_) return;
+  if (placed.progress) printProgress(describeProgress(*progress));
   const std::string line = "overlays view=" + std::to_string(static_cast<int>(l.viewWidth)) + "x" +
                            std::to_string(static_cast<int>(l.viewHeight)) + describe("label", placed.label) +
                            describe("toast", placed.toast) + describe("progress", placed.progress) +

@@ -18,7 +18,11 @@ void ViewerApp::drawPanels(const ViewerLayout& l, PanelActions& actions) {
   if (display_.hidePanels) {
     // The image has the whole window; one small button brings the column back.
     if (ImGui::Begin("##showpanels", nullptr, flags | ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoSavedSettings))
+    {
       if (ImGui::Button("Show panels (F9)")) actions.togglePanels = true;
+      ImGui::SameLine();
+      ImGui::TextDisabled("F1: keys");
+    }
     ImGui::End();
   } else {
     ImGui::SetNextWindowSize(ImVec2(l.panelWidth, l.viewHeight));
@@ -29,6 +33,9 @@ void ViewerApp::drawPanels(const ViewerLayout& l, PanelActions& actions) {
 
 void ViewerApp::drawPanelColumn(const ViewerLayout&, PanelActions& actions) {
   if (ImGui::SmallButton("Hide panels (F9)")) actions.togglePanels = true;
+  // Text, not a button: where it stands, a click did nothing before, and tools that click there rely on it.
+  ImGui::SameLine();
+  ImGui::TextDisabled("F1 or ?: keys and mouse");
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // room for the labels on the right
   SceneSession* s = session();
   const SceneInfo info{scenePath().empty() ? (s ? "default scene (embedded)" : "no scene yet") : scenePath(),
@@ -78,6 +85,8 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   }
   if (s && (actions.frameScene || shortcuts.frameScene)) s->navigate([&](OrbitCamera& o) { o.frame(s->framingBounds()); });
   if (s && (actions.resetCamera || shortcuts.resetCamera)) s->navigate([](OrbitCamera& o) { o.reset(); });
+  if (shortcuts.toggleHelp) display_.showHelp = !display_.showHelp;
+  if (shortcuts.closeHelp) display_.showHelp = false;
   applyHabits(shortcuts);
 }
 

@@ -43,6 +43,8 @@ std::string ViewerApp::stateLine() const {
   line += figures;
   line += " exposure=" + formatNumber(display_.mapping.exposureStops) + " gamma=" + formatNumber(display_.mapping.gamma);
   if (load_.session()) line += " traversal=" + std::string(toString(stats.accel));
+  line += std::string(" recovery=") + (recovery_.offered() ? "offered" : "none");
+  if (options_.farm) line += " lost_ranks=" + std::to_string(stats.lostRanks.size());
   line += " error=" + std::string(loadError().empty() ? "0" : "1");
   line += " scene=" + describeScene(scenePath());
   return line;

@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The viewer under mpirun: `mpirun -n N rayview SCENE` opens the window on rank 0, the other ranks trace its
 passes, edits reach them, the final pass is `rayview render`'s image byte for byte, and quitting ends every rank.
+A worker killed: under --enable-recovery the window goes on and says so; under plain mpirun the edits are kept.
 Needs xvfb-run and mpirun (exit 77, skipped, without them)."""
 import argparse
 import os
@@ -9,6 +10,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mpi_test  # noqa: E402  (the render test's preparation, beside this file)
@@ -28,6 +30,8 @@ def main():
             print(f"{tool} not found: skipped")
             return SKIP
     mpi_test.prepare(args.scratch)
+    # The viewer's recovery files of unsaved edits go to the scratch folder, never the user's ~/.local/state.
+    os.environ["XDG_STATE_HOME"] = os.path.join(args.scratch, "state")
     failures = []
     bunny = os.path.join(args.shared, "conformance", "ceng477", "bunny.xml")
     textured = os.path.join(args.source, "scenes", "textured_2025.xml")
@@ -43,6 +47,7 @@ def main():
     for scene, name, edits, options in scenes:
         failures += edited_render_matches(args, scene, name, edits, options)
     failures += killed_worker(args, textured)
+    failures += killed_worker_plain(args, textured)
     for failure in failures:
         print("FAIL:", failure)
     print(f"{len(failures)} failed")
@@ -84,21 +89,24 @@ def edited_render_matches(args, scene, name, edits, options):
 
 
 def killed_worker(args, scene):
-    """Under mpirun --enable-recovery, a worker killed while the passes render: the window goes on with the other
-    ranks, the final pass is still `rayview render`'s image, and quitting ends every rank."""
+    """Under mpirun --enable-recovery, a worker killed while the window is idle: the next edit's first pass is not held
+    up waiting for it (it once took over 3 s), the render goes on with the other ranks and its final pass is still
+    `rayview render`'s image; the stats then count the dead rank out (`lost_ranks=1`), the quit summary says it was
+    lost instead of listing it as working, and quitting ends every rank."""
     out = os.path.join(args.scratch, "killed.png")
     script = os.path.join(args.scratch, "killed.txt")
     with open(script, "w") as f:
-        f.write(f"view image\nwait-final\nset samples 40\nwait-final\nsave-frame {out}\nquit\n")
+        f.write(f"view image\nwait-final\nprint-state\nsleep 4\nset samples 12\nwait-final\nprint-state\n"
+                f"save-frame {out}\nsleep 3.5\nset samples 1\nwait-final\nprint-state\nquit\n")
     marker = f"rayview-killed-{os.getpid()}"
-    env = dict(os.environ, RAYVIEW_TEST_JOB=marker)
+    env = dict(os.environ, RAYVIEW_TEST_JOB=marker, XDG_STATE_HOME=os.path.join(args.scratch, "state"))
     job = subprocess.Popen(["xvfb-run", "-a", "mpirun", "--enable-recovery", "-n", "3", args.rayview, "--threads", "1",
                             "--script", script, scene], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
                            env=env)
     seen = []
     for line in job.stdout:  # the first final pass: the workers hold the geometry and trace
         seen.append(line)
-        if "final pass generation 2" in line:
+        if line.startswith("state "):
             break
     victim = job_rank(marker, 1)
     if victim is None:
@@ -111,16 +119,72 @@ def killed_worker(args, scene):
         job.kill()
         return ["killed worker: the job did not end within 180 s"]
     text = "".join(seen) + rest
+    states = [line for line in text.splitlines() if line.startswith("state ")]
     failures = []
-    if job.returncode != 0 or "rank 1 fell silent" not in text:
-        failures.append(f"killed worker: exit {job.returncode}, or no word of rank 1:\n{text}")
+    if job.returncode != 0 or len(states) != 3:
+        return [f"killed worker: exit {job.returncode}, or not the script's three states:\n{text}"]
+    first_pass = float(re.search(r" first_pass_ms=([0-9.]+)", states[1]).group(1))
+    if first_pass > 1500:  # waiting for the dead rank took kLostAfter, 3 s
+        failures.append(f"killed worker: the first pass after the loss took {first_pass} ms:\n{text}")
+    if " lost_ranks=1 " not in states[2] or "lost rank 1: fell silent" not in text:
+        failures.append(f"killed worker: the stats should count rank 1 out:\n{text}")
+    summary = re.search(r"tiles traced: rank 0 \d+ [^,]*, rank 1 lost: [^,]*, rank 2 \d+", text)
+    if not summary or "PMIX" in summary.group(0):
+        failures.append(f"killed worker: the summary should say rank 1 was lost, not list it as working:\n{text}")
     reference = os.path.join(args.scratch, "killed_render.png")
-    subprocess.run([args.rayview, "render", scene, "--samples", "40", "-o", reference, "--quiet"], check=False)
+    subprocess.run([args.rayview, "render", scene, "--samples", "12", "-o", reference, "--quiet"], check=False)
     if not (os.path.exists(out) and open(out, "rb").read() == open(reference, "rb").read()):
         failures.append(f"killed worker: the final pass is not `rayview render`'s image ({out})")
     if job_rank(marker, 2) is not None:
         failures.append("killed worker: rank 2 still runs after the window closed")
     return failures
+
+
+def killed_worker_plain(args, scene):
+    """Under plain mpirun (the README's command), a worker killed after an edit: OpenMPI 4.1 ends the whole job
+    (only mpirun's own --enable-recovery, or OMPI_MCA_orte_enable_recovery=1 in its environment, lets it go on), so
+    the window says why it closes and that the edits are kept, their recovery file holds them, and the next start
+    restores them."""
+    state = os.path.join(args.scratch, "plain_state")
+    shutil.rmtree(state, ignore_errors=True)
+    script = os.path.join(args.scratch, "plain.txt")
+    with open(script, "w") as f:
+        f.write("view image\nwait-final\nset material floor diffuse 0.25 0.5 0.75\nwait-final\nprint-state\nsleep 60\n")
+    marker = f"rayview-plain-{os.getpid()}"
+    env = dict(os.environ, RAYVIEW_TEST_JOB=marker, XDG_STATE_HOME=state)
+    job = subprocess.Popen(["xvfb-run", "-a", "mpirun", "-n", "3", args.rayview, "--threads", "1", "--script", script,
+                            scene], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    seen = []
+    for line in job.stdout:
+        seen.append(line)
+        if line.startswith("state "):
+            break
+    time.sleep(1.5)  # the recovery file is written at most 1 s after the edit; SIGTERM writes it anyway
+    victim = job_rank(marker, 1)
+    if victim is None:
+        job.kill()
+        return [f"plain mpirun: rank 1 not found:\n{''.join(seen)}"]
+    os.kill(victim, signal.SIGKILL)
+    try:
+        rest, _ = job.communicate(timeout=60)
+    except subprocess.TimeoutExpired:
+        job.kill()
+        return ["plain mpirun: the job did not end within 60 s of the kill"]
+    text = "".join(seen) + rest
+    kept = re.search(r"your unsaved edits are kept in (\S+\.recovery\.xml)", text)
+    if "mpirun is ending the job" not in text or not kept or not os.path.exists(kept.group(1)):
+        return [f"plain mpirun: the window should say why it closes and where the edits are:\n{text}"]
+    restore = os.path.join(args.scratch, "plain_restore.txt")
+    restored = os.path.join(args.scratch, "plain_restored.xml")
+    with open(restore, "w") as f:
+        f.write(f"wait-final\nrecovery restore\nwait-final\nsave-scene {restored}\nquit\n")
+    run = subprocess.run(["xvfb-run", "-a", args.rayview, "--threads", "1", "--script", restore, scene],
+                         capture_output=True, text=True, timeout=120, env=dict(os.environ, XDG_STATE_HOME=state))
+    if run.returncode != 0 or "recovery offered" not in run.stdout:
+        return [f"plain mpirun: the next start should offer the edits:\n{run.stdout}\n{run.stderr}"]
+    if not os.path.exists(restored) or "0.25 0.5 0.75" not in open(restored).read():
+        return [f"plain mpirun: the restored scene {restored} lacks the edit"]
+    return []
 
 
 def job_rank(marker, rank):

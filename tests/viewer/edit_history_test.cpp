@@ -154,6 +154,23 @@ TEST(SceneSessionHistory, UnsavedUntilSavedOrUndoneBack) {
   EXPECT_FALSE(session.unsaved());
 }
 
+TEST(SceneSessionHistory, MovingTheViewAloneIsNoUnsavedEdit) {
+  SceneSession session(loadScene(), RenderSettings{});
+  std::string problem;
+  session.navigate([](OrbitCamera& o) { o.orbit(0.4, 0.2); });
+  session.navigate([](OrbitCamera& o) { o.dolly(2.0); });
+  session.commit(problem);
+  EXPECT_FALSE(session.unsaved()) << "orbit and dolly only look at the scene";
+  EXPECT_TRUE(session.differsFromFile()) << "the title's * still says the file's camera is not the one on screen";
+  session.edits().camera.nearDistance *= 2.0;  // the lens is the scene's: an edit
+  session.commit(problem);
+  EXPECT_TRUE(session.unsaved());
+  const Camera moved = session.committedEdits().camera;
+  session.markSaved(session.committedEdits());
+  EXPECT_FALSE(session.unsaved());
+  EXPECT_EQ(session.editedScene().parameters().camera, moved) << "what a save writes keeps the camera as it is";
+}
+
 // Pixels of tests/viewer/viewer_scene.xml's 480x300 image (see docs/viewer.md for the picture).
 TEST(Pick, NamesTheMeshAndMaterialThePixelShows) {
   SceneSession session(loadScene(), RenderSettings{});

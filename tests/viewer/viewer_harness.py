@@ -313,6 +313,8 @@ def run_case(script, cases, args, screen=SCREEN, needs_display=True):
     work = fresh_directory(os.path.abspath(args.output), args.case)
     # Recent files and any other settings go to the case's directory, never to the user's ~/.config.
     os.environ["XDG_CONFIG_HOME"] = os.path.join(work, "config")
+    # The recovery files of unsaved edits too, never the user's ~/.local/state.
+    os.environ["XDG_STATE_HOME"] = os.path.join(work, "state")
     started = time.monotonic()
     try:
         cases[args.case](args, work)

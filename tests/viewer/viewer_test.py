@@ -37,6 +37,13 @@ Cases:
                hidden a toast shows each save's success and failure (viewer_saves_case.py)
   habits       E and Shift+E, Home, the wheel, F11, SCENE.png beside the scene, smoothing below 1:1
                (viewer_habits_case.py)
+  help         F1 and ? show and hide the help over the image, Esc hides it; an orbit alone quits without asking
+               (viewer_keeps_case.py)
+  samples      a 16-sample render shows samples done of total and the time left (viewer_keeps_case.py)
+  recovery     unsaved edits outlive kill -9 in a recovery file; the next start restores them by script and by a
+               click on its panel; a save removes the file (viewer_keeps_case.py)
+  ending       SIGTERM after an edit: the window and stderr say why it closes and where the edits are kept, the
+               recovery file holds them, exit 143 (viewer_keeps_case.py)
   overlays     at 800x600, 1000x640 and 1280x800 the readout, a toast and the stats are apart and inside the image
                area (viewer_saves_case.py)
 
@@ -59,6 +66,7 @@ from viewer_model_case import case_model  # noqa: E402
 from viewer_window_view_case import case_window_view  # noqa: E402
 from viewer_saves_case import case_saves, case_overlays  # noqa: E402
 from viewer_habits_case import case_habits  # noqa: E402
+from viewer_keeps_case import case_ending, case_help, case_recovery, case_samples  # noqa: E402
 from viewer_harness import (  # noqa: E402
     run_script,
     last_generation,
@@ -410,9 +418,8 @@ def case_pick(args, work):
         # F frames the picked box (not the whole scene): the view changes again.
         key(window, "f")
         viewer.wait_final(after_generation=generation)
+        # Picks, the pivot and F only moved the view: quitting does not ask.
         key(window, "ctrl+q")
-        viewer.wait_for("unsaved edits: save, discard or cancel?")
-        key(window, "d")
         if viewer.finish() != 0:
             raise Failure("rayview did not exit cleanly\n" + viewer.output())
     finally:
@@ -611,7 +618,9 @@ CASES = {"interaction": case_interaction, "script": case_script, "reload": case_
          "no-display": case_no_display, "keys": case_keys, "small-window": case_small_window,
          "undo": case_undo, "pick": case_pick, "compare": case_compare, "display": case_display,
          "image-view": case_image_view, "anti-aliasing": case_anti_aliasing, "window-view": case_window_view,
-         "model": case_model, "saves": case_saves, "overlays": case_overlays, "habits": case_habits}
+         "model": case_model, "saves": case_saves, "overlays": case_overlays, "habits": case_habits,
+         "help": case_help, "samples": case_samples, "recovery": case_recovery,
+         "ending": case_ending}
 
 
 def main():

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "rayview/color.h"
 #include "rayview/grid_render.h"
@@ -44,6 +45,8 @@ class PassFarm {
                           const std::function<bool()>& stopped, RayCounts& rays) = 0;
   // Who traces, and how much each has, for the viewer's stats ("3 ranks, tiles 120 / 80 / 75"). Any thread.
   virtual std::string describe() const { return {}; }
+  // The processes that died or were left out, each with why ("rank 1: fell silent"); empty when none. Any thread.
+  virtual std::vector<std::string> lostRanks() const { return {}; }
 };
 
 }  // namespace rayview
