@@ -13,7 +13,8 @@ enum ViewTag : int {
   kTagViewProblem = 24,   // worker -> rank 0: why it cannot trace (text); rank 0 deals its tiles to the others
   kTagViewQuit = 25,      // rank 0 -> worker: one byte, 1 when a rank was lost; the window closed
   kTagViewBye = 26,       // worker -> rank 0: nothing; sent last, after every result
-  kTagViewAlive = 27,     // worker -> rank 0: nothing; while it builds or traces, so that rank 0 knows it is there
+  // worker -> rank 0: nothing; while it builds or traces, and when it drops tiles of a replaced generation
+  kTagViewAlive = 27,
 };
 
 struct ViewSnapshotHeader {

@@ -121,7 +121,13 @@ class ViewWorker {
 
   // Traces the oldest tile of the current generation; tiles of replaced generations are dropped unread.
   bool traceNext() {
-    while (!queue_.empty() && (queue_.front().generation != generation_ || !image_)) queue_.pop_front();
+    bool dropped = false;
+    while (!queue_.empty() && (queue_.front().generation != generation_ || !image_)) {
+      queue_.pop_front();
+      dropped = true;
+    }
+    // Rank 0 counts them as owed until it hears from this rank: a word says they will not come.
+    if (dropped) send(kTagViewAlive, {});
     if (queue_.empty()) return false;
     const ViewTileRequest request = queue_.front();
     queue_.pop_front();

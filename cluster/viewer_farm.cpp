@@ -52,6 +52,10 @@ class ViewerFarm::Pass {
         dealer_(tiles_.size()), held_(static_cast<std::size_t>(farm.ranks_), 0), dealtAt_(tiles_.size()) {}
 
   bool run(const std::function<bool()>& stopped, RayCounts& rays) {
+    // What the workers sent while no pass listened (late results, heartbeats) speaks for them before any silence is
+    // judged: a rank idle between passes is silent only from rank 0's side.
+    while (receiveOne(rays)) {
+    }
     std::thread local([this] { traceOwnShare(); });
     for (int w = 1; w < farm_.ranks_; ++w) deal(w);
     auto pause = kProbePause;
@@ -330,6 +334,11 @@ void ViewerFarm::sendToAll(int tag, std::vector<std::uint8_t> bytes) {
 void ViewerFarm::settleOwed() {
   std::vector<std::uint8_t> inbox;
   for (;;) {
+    // Everything that arrived since the last pass is read before any rank is judged silent: nobody listened then.
+    while (const std::optional<Arrival> arrival = receiveAny(inbox, std::chrono::milliseconds(kLostAfter))) {
+      if (arrival->whole) owedSince_[arrival->source].reset();
+      else markLost(arrival->source, Loss::SilentMidMessage);
+    }
     const auto now = Clock::now();
     bool owing = false;
     for (int w = 1; w < ranks_; ++w) {
@@ -342,10 +351,7 @@ void ViewerFarm::settleOwed() {
       }
     }
     if (!owing) return;
-    if (const std::optional<Arrival> arrival = receiveAny(inbox, std::chrono::milliseconds(kLostAfter)))
-      owedSince_[arrival->source].reset();
-    else
-      std::this_thread::sleep_for(kLongestProbePause);
+    std::this_thread::sleep_for(kLongestProbePause);
   }
 }
 

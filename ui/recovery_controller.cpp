@@ -57,12 +57,23 @@ void RecoveryController::keep(const SceneSession* session, const std::string& sc
 
 std::string RecoveryController::keepNow(const SceneSession* session, const std::string& scenePath) {
   // An offer still up: its file is left as it is (it holds the edits offered), and nothing new was kept.
+  if (!offer_) {
+    std::string problem;
+    keeper_.keepNow(session, scenePath, problem);
+    if (!problem.empty()) return "your unsaved edits could not be kept: " + problem;
+  }
+  return note(session, scenePath);
+}
+
+std::string RecoveryController::note(const SceneSession* session, const std::string& scenePath) const {
   if (offer_) return "the unsaved edits offered at the start are still kept in " + offer_->file.string();
-  std::string problem;
-  const fs::path file = keeper_.keepNow(session, scenePath, problem);
-  if (!problem.empty()) return "your unsaved edits could not be kept: " + problem;
-  if (file.empty()) return "there were no unsaved edits";
-  return "your unsaved edits are kept in " + file.string() + ", offered when you open the scene again";
+  const fs::path file = recoveryFileFor(scenePath);
+  if (!session || !session->unsaved() || file.empty()) return "there were no unsaved edits";
+  const std::optional<SceneParameters>& written = keeper_.written();
+  if (!written) return "your unsaved edits could not be kept";
+  // The file is written at most kRecoveryInterval after an edit: the last moment's edits may be missing.
+  const char* which = *written == session->committedEdits() ? "your unsaved edits are" : "your unsaved edits but the last moment's are";
+  return std::string(which) + " kept in " + file.string() + ", offered when you open the scene again";
 }
 
 std::string RecoveryController::answer(bool restore, SceneSession* session) {

@@ -25,6 +25,8 @@ class RecoveryController {
   std::optional<double> secondsUntilDue(Clock::time_point now) const { return keeper_.secondsUntilDue(now); }
   // The process is being ended: the edits written at once. Returns what to tell the user about them.
   std::string keepNow(const SceneSession* session, const std::string& scenePath);
+  // What to tell the user about the unsaved edits if the process ended now, without writing anything.
+  std::string note(const SceneSession* session, const std::string& scenePath) const;
   // Unsaved edits discarded as asked: their file goes.
   void discard(const std::string& scenePath) { keeper_.discard(scenePath); }
 

@@ -51,6 +51,8 @@ class RecoveryKeeper {
   // The process is being ended: the unsaved edits written now, whatever the interval. Returns the file that holds
   // them (empty when nothing is unsaved or it could not be written, `problem` then says why).
   std::filesystem::path keepNow(const SceneSession* session, const std::string& scenePath, std::string& problem);
+  // What the file of the scene on screen holds, when this process wrote it.
+  const std::optional<SceneParameters>& written() const { return written_; }
   // Seconds until keep() must run again to stay within kRecoveryInterval; nullopt when nothing waits.
   std::optional<double> secondsUntilDue(Clock::time_point now) const;
   // Another scene is on screen: the previous one's file stays only if its edits were unsaved when it left.

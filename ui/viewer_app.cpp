@@ -32,7 +32,7 @@ ViewerApp::ViewerApp(const ViewerOptions& options, std::optional<Script> script)
 
 int ViewerApp::run() {
   load_.request(options_.scenePath, false);
-  watchForTermination([] { glfwPostEmptyEvent(); });
+  watchForTermination([] { glfwPostEmptyEvent(); }, options_.farm != nullptr);
   double waitSeconds = 0.0;
   while (!quit_) {
     window_.waitEvents(waitSeconds);
@@ -48,6 +48,7 @@ int ViewerApp::run() {
     if (const std::vector<std::string> dropped = window_.takeDroppedPaths(); !dropped.empty()) openFromUser(dropped.front());
     changed |= pollTasks(Clock::now());
     recovery_.keep(session(), scenePath(), Clock::now());
+    publishTerminationNote();
     // Read before taking the frame: when the renderer was idle, its last pass is certainly taken below.
     const bool rendererIdle = render_.idle();
     changed |= takeNewFrame();
@@ -71,15 +72,19 @@ int ViewerApp::run() {
   return exitCode_;
 }
 
+void ViewerApp::publishTerminationNote() {
+  std::string note = recovery_.note(session(), scenePath());
+  if (note == terminationNote_) return;
+  terminationNote_ = note;
+  setTerminationNote(std::move(note));
+}
+
 void ViewerApp::endOnSignal(int signal) {
+  // The watch thread has said why and where the edits were at once; what was edited since is written now and said
+  // again only when it changed the answer.
   const std::string kept = recovery_.keepNow(session(), scenePath());
-  // Under mpirun a SIGTERM is mpirun ending the whole job, which it does when a rank dies (mpirun names the rank).
-  const std::string why = options_.farm && signal == SIGTERM
-                              ? "mpirun is ending the job (SIGTERM): a rank of it probably died, and without\n"
-                                "--enable-recovery mpirun ends every rank (its own message names the rank)"
-                              : std::string("rayview is being ended (") + describeTermination(signal) + ")";
-  endingMessage_ = why + ".\n" + kept + ".";
-  std::fprintf(stderr, "rayview: %s\n", endingMessage_.c_str());
+  if (kept != terminationNote_) std::fprintf(stderr, "rayview: %s.\n", kept.c_str());
+  endingMessage_ = terminationReason(signal) + ".\n" + kept + ".";
   // Shown until shortly before the watch ends the process (or mpirun's SIGKILL comes), so the window says it.
   const auto until = Clock::now() + kTerminationGrace - std::chrono::milliseconds(200);
   while (Clock::now() < until) {

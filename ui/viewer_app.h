@@ -141,6 +141,8 @@ class ViewerApp final : public ScriptHost {
   // SIGTERM, SIGHUP or SIGINT arrived (termination_notice.h): keep the edits, say so in the window and on stderr,
   // and end the process (exit 128 + signal).
   [[noreturn]] void endOnSignal(int signal);
+  // Hands the termination watch what to say about the unsaved edits should a signal come now.
+  void publishTerminationNote();
 
   ViewerOptions options_;
   Window window_;
@@ -163,6 +165,7 @@ class ViewerApp final : public ScriptHost {
 
   std::string editProblem_;  // why the current edits are not rendered
   std::string endingMessage_;  // the process is being ended from outside: why, and where the edits are
+  std::string terminationNote_;  // what the termination watch says about the edits (publishTerminationNote)
   Clock::time_point marksUntil_{};  // the lights and pivot stay drawn until then after a navigation
   bool printOverlays_ = false;  // RAYVIEW_PRINT_OVERLAYS: tools driving the window (tests) read the placement
   std::string printedOverlays_;
