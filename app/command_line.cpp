@@ -176,6 +176,10 @@ std::vector<OptionSpec> makeOptionTable() {
        [](CommandLine& c, const std::string& v) {
          if (!parseModelLights(v, c.job.open.model.lights)) throw UsageError("--lights expects file or kit, not '" + v + "'");
        }},
+      {"--copy-textures", "", kImport,
+       "copy a texture that lies outside the model's folder beside the scene too (by default the scene names it "
+       "where it lies); one inside the folder is always copied",
+       [](CommandLine& c, const std::string&) { c.copyTextures = true; }},
       {"--turntable", "N", kRender,
        "render N frames orbiting the camera around the scene's centre (the viewer's orbit pivot); -o names them "
        "with a printf number, e.g. -o frames/spin_%04d.png",

@@ -32,6 +32,7 @@ struct CommandLine {
   std::string outputDirectory;          // bench: --out DIR
   double resolutionScale = 1.0;         // bench: --scale F
   std::string diffPath;                 // compare: --diff OUT.png
+  bool copyTextures = false;            // import: --copy-textures (a texture outside the model's folder too)
   double minWithin1 = 100.0;            // compare: --min-within1 P (% of pixels within 1 of the reference)
   CommandKind helpFor = CommandKind::View;  // help: whose help (`rayview render --help`: render's own)
 };

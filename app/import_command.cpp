@@ -42,10 +42,21 @@ std::string freeTextureName(const fs::path& output) {
   return name;
 }
 
-// The texture as a PNG beside the scene; the scene then names it. Returns false (having said why) when it cannot.
-bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, fs::path& written) {
+// The texture as a PNG beside the scene; the scene then names it. One outside the model's folder (named by its
+// absolute path, model_materials.cpp) is copied only when asked, else the scene names it where it lies, relative to
+// the scene's folder. Returns false (having said why) when it cannot.
+bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, bool copyOutside, fs::path& written) {
   if (!scene.texture) {
     scene.textureImage.clear();
+    return true;
+  }
+  const fs::path outside = fs::path(scene.textureImage).is_absolute() ? fs::path(scene.textureImage) : fs::path();
+  if (!outside.empty() && !copyOutside) {
+    std::error_code ec;
+    const fs::path relative = outside.lexically_relative(fs::absolute(output.parent_path(), ec).lexically_normal());
+    scene.textureImage = relative.empty() ? outside.string() : relative.string();
+    std::fprintf(stderr, "rayview: note: the scene names the texture where it lies, %s; --copy-textures copies it "
+                 "beside the scene\n", outside.string().c_str());
     return true;
   }
   scene.textureImage = freeTextureName(output);
@@ -59,6 +70,9 @@ bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, f
   image.rgb = scene.texture->rgb;
   writeImageFile(target, std::move(image));
   written = target;  // only now is it ours to remove should the scene fail to be written
+  if (!outside.empty())
+    std::fprintf(stderr, "rayview: note: the texture %s is copied beside the scene as %s\n", outside.string().c_str(),
+                 target.string().c_str());
   return true;
 }
 
@@ -85,7 +99,7 @@ int runImportCommand(const CommandLine& command) {
   Scene& scene = imported.loaded.scene;
   fs::path texture;
   try {
-    if (!writeTexture(scene, output, model, texture)) return kExitBadInput;
+    if (!writeTexture(scene, output, model, command.copyTextures, texture)) return kExitBadInput;
     // Floats as floats (at most 9 significant digits): the handout's peers read them as float.
     writeFileAtomically(output, sceneToXml(scene.parameters(), scene.geometry(), scene.textureImage, NumberText::FloatWhenExact));
   } catch (const ImageIoError& error) {

@@ -91,9 +91,19 @@ std::string materialId(const aiMaterial& m, std::size_t index, std::map<std::str
   return id;
 }
 
-// A texture named by a material: embedded ("*0", or a .glb's own image by name), or a file beside the model.
+// Whether `file` lies outside `dir` (and its subfolders), symbolic links followed.
+bool outsideFolder(const fs::path& dir, const fs::path& file) {
+  std::error_code ec;
+  const fs::path folder = fs::weakly_canonical(dir.empty() ? fs::path(".") : dir, ec);
+  const fs::path relative = fs::weakly_canonical(file, ec).lexically_relative(folder);
+  return ec || relative.empty() || *relative.begin() == "..";
+}
+
+// A texture named by a material: embedded ("*0", or a .glb's own image by name), or a file beside the model. A file
+// outside the model's folder (`../`, an absolute path) is read, with a warning naming it in `notes`: a model can
+// name any image on the machine, and the user should know which one it took.
 std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDir, const std::string& name,
-                                   std::string& reason) {
+                                   std::string& reason, Notes& notes, fs::path* file = nullptr) {
   if (const aiTexture* embedded = scene.GetEmbeddedTexture(name.c_str())) {
     if (!embedded->pcData) {
       reason = "the embedded image is empty";
@@ -114,8 +124,15 @@ std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDi
     return t;
   }
   std::error_code ec;
-  for (const fs::path& candidate : detail::textureCandidates(modelDir, name))
-    if (fs::is_regular_file(candidate, ec)) return detail::readTextureImage(candidate, reason);
+  for (const fs::path& candidate : detail::textureCandidates(modelDir, name)) {
+    if (!fs::is_regular_file(candidate, ec)) continue;
+    std::optional<Texture> texture = detail::readTextureImage(candidate, reason);
+    if (texture && outsideFolder(modelDir, candidate))
+      notes.warnings.push_back("texture \"" + name + "\" is read from outside the model's folder: " +
+                               fs::absolute(candidate, ec).lexically_normal().string());
+    if (file) *file = candidate;
+    return texture;
+  }
   reason = "not found";
   return std::nullopt;
 }
@@ -146,7 +163,7 @@ MetalRough metalRoughScale(const aiScene& scene, const fs::path& modelDir, const
   auto [it, added] = cache.emplace(name, std::nullopt);
   if (added) {
     std::string reason;
-    if (const std::optional<Texture> texture = loadTexture(scene, modelDir, name, reason)) {
+    if (const std::optional<Texture> texture = loadTexture(scene, modelDir, name, reason, notes)) {
       const Color average = averageOf(*texture);
       it->second = MetalRough{average.z, average.y};
     } else {
@@ -200,7 +217,8 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
   std::map<std::string, std::optional<Color>> averageByName;
   for (const auto& [name, triangles] : textureUse) {
     std::string reason;
-    std::optional<Texture> texture = loadTexture(scene, path.parent_path(), name, reason);
+    fs::path file;
+    std::optional<Texture> texture = loadTexture(scene, path.parent_path(), name, reason, notes, &file);
     if (!texture) {
       notes.warnings.push_back("texture \"" + name + "\" cannot be used (" + reason + "); its material keeps its colour");
       continue;
@@ -209,7 +227,11 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
     if (name == chosen) {
       notes.texture = fileNamePart(name) + " (" + std::to_string(texture->width) + "x" +
                       std::to_string(texture->height) + ")";
-      out.textureImage = path.stem().string() + "_texture.png";
+      // A file outside the model's folder is named where it lies: `import` copies it only when asked.
+      std::error_code ec;
+      out.textureImage = !file.empty() && outsideFolder(path.parent_path(), file)
+                             ? fs::absolute(file, ec).lexically_normal().string()
+                             : path.stem().string() + "_texture.png";
       out.texture = std::move(texture);
     } else {
       averaged.push_back(fileNamePart(name));

@@ -160,6 +160,7 @@ def main():
     check("<twosided>1</twosided>" in xml, "imported materials are two-sided")
     check_fifos(a.rayview, s)
     check_referenced_files_kept(a.rayview, s)
+    check_texture_outside_the_folder(a.rayview, s)
     check_export_on_full_disk(a.rayview, s)
     check_unusable_values_name_the_model(a.rayview, s)
 
@@ -200,6 +201,36 @@ def check_referenced_files_kept(rayview, s):
           os.path.exists(s("mine_texture-2.png")) and "mine_texture-2.png" in open(s("mine.xml")).read() and
           "mine_texture-2.png" in r.stderr,
           "import keeps a file named as its texture copy and says which name it took: " + r.stderr.strip())
+
+
+def check_texture_outside_the_folder(rayview, s):
+    # A model may name any image on the machine: one outside its folder is used with a warning naming it, and import
+    # copies it beside the scene only when asked (--copy-textures); one in a subfolder is the model's own.
+    for folder in ("model", "tex", "out", "model/maps"):
+        os.makedirs(s("outside/" + folder), exist_ok=True)
+    write_png16(s("outside/tex/wood.png"))
+    write_png16(s("outside/model/maps/own.png"))
+    textured_obj(lambda f: s("outside/model/" + f), "far", "../tex/wood.png")
+    textured_obj(lambda f: s("outside/model/" + f), "near", "maps/own.png")
+    wood = os.path.realpath(s("outside/tex/wood.png"))
+    r = run(["render", s("outside/model/far.obj"), "-o", s("outside/far.png")], rayview)
+    check(r.returncode == 0 and "outside the model's folder" in r.stderr and wood in r.stderr,
+          "a texture outside the model's folder is used, the warning naming it: " + r.stderr.strip())
+    r = run(["render", s("outside/model/near.obj"), "-o", s("outside/near.png")], rayview)
+    check(r.returncode == 0 and "outside" not in r.stderr, "a texture in the model's subfolder draws no warning")
+    scene = s("outside/out/far.xml")
+    r = run(["import", s("outside/model/far.obj"), "-o", scene], rayview)
+    check(r.returncode == 0 and not os.path.exists(s("outside/out/far_texture.png")) and
+          "../tex/wood.png" in open(scene).read() and "--copy-textures" in r.stderr,
+          "import names an outside texture where it lies, copies nothing and says how to copy: " + r.stderr.strip())
+    r = run(["render", scene, "-o", s("outside/far_scene.png")], rayview)
+    check(r.returncode == 0 and open(s("outside/far_scene.png"), "rb").read() == open(s("outside/far.png"), "rb").read(),
+          "the imported scene finds the texture where it lies and renders as the model did: " + r.stderr.strip())
+    copied = s("outside/out/copied.xml")
+    r = run(["import", s("outside/model/far.obj"), "-o", copied, "--copy-textures"], rayview)
+    check(r.returncode == 0 and os.path.exists(s("outside/out/copied_texture.png")) and
+          "copied_texture.png" in open(copied).read() and "copied beside the scene" in r.stderr,
+          "import --copy-textures copies it beside the scene and says so: " + r.stderr.strip())
 
 
 def check_export_on_full_disk(rayview, s):
