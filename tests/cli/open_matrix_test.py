@@ -8,6 +8,8 @@ byte, the same first message.
 Usage: open_matrix_test.py --rayview PATH --source DIR --scratch DIR
 """
 import argparse
+import base64
+import json
 import os
 import re
 import shutil
@@ -48,6 +50,22 @@ CENG477 = """<Scene>
 <Objects><Mesh id="1"><Material>1</Material><Faces>1 2 3</Faces></Mesh></Objects>
 </Scene>
 """
+
+
+def write_lit_gltf(path):
+    """A glTF triangle with a point light of its own (KHR_lights_punctual) above it, bright enough to light it."""
+    data = base64.b64encode(struct.pack("<9f", -1, -1, 0, 1, -1, 0, 0, 1, 0)).decode()
+    gltf = {"asset": {"version": "2.0"}, "extensionsUsed": ["KHR_lights_punctual"],
+            "extensions": {"KHR_lights_punctual": {"lights": [{"type": "point", "intensity": 10, "color": [1, 0.5, 0.2]}]}},
+            "scene": 0, "scenes": [{"nodes": [0, 1]}],
+            "nodes": [{"mesh": 0}, {"extensions": {"KHR_lights_punctual": {"light": 0}}, "translation": [0, 3, 3]}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3", "min": [-1, -1, 0],
+                           "max": [1, 1, 0]}],
+            "bufferViews": [{"buffer": 0, "byteLength": 36}],
+            "buffers": [{"byteLength": 36, "uri": "data:application/octet-stream;base64," + data}]}
+    with open(path, "w") as f:
+        json.dump(gltf, f)
 
 
 def write_ply(path):
@@ -188,8 +206,8 @@ def cell_checks(rows, row):
             differ = differ and len(two.files) == 1
         return differ and stopped, f"exit {one.code} {two.code} {three.code}: {three.stderr[-300:]}"
 
-    def varies(*pair):
-        a, b = run("model", *pair[0]), run("model", *pair[1])
+    def varies(*pair, kind="model"):
+        a, b = run(kind, *pair[0]), run(kind, *pair[1])
         if export:
             return a.code == 0 and b.code == 0, f"exit {a.code} {b.code}"
         return a.code == 0 and b.code == 0 and a.files and a.files != b.files, f"exit {a.code} {b.code} {b.stderr[-300:]}"
@@ -208,6 +226,7 @@ def cell_checks(rows, row):
         "`--camera N`": camera,
         "`--up`": lambda: varies(["--up", "y"], ["--up", "z"]),
         "`--resolution`": lambda: varies(["--resolution", "40x30"], ["--resolution", "48x20"]),
+        "`--lights`": lambda: varies(["--lights", "file"], ["--lights", "kit"], kind="lit model"),
         "`--memory`": memory,
     }
     return checks, runs
@@ -235,7 +254,9 @@ def make_inputs(scratch):
         f.write(CENG477.format(cameras=cameras))
     inputs["model"] = os.path.join(scratch, "inputs", "tetra.ply")
     write_ply(inputs["model"])
-    for kind in ("handout XML", "model", "typo"):
+    inputs["lit model"] = os.path.join(scratch, "inputs", "lit.gltf")
+    write_lit_gltf(inputs["lit model"])
+    for kind in ("handout XML", "model", "lit model", "typo"):
         base, ext = os.path.splitext(inputs[kind])
         inputs[kind + " copy"] = base + "_copy" + ext
         shutil.copy(inputs[kind], inputs[kind + " copy"])
