@@ -8,9 +8,13 @@
 #include <cmath>
 #include <charconv>
 #include <cstdint>
+#include <cstdlib>
+#include <limits>
+#include <string>
 #include <optional>
 
 #include "obj_reader.h"
+#include "rayview/diagnostics.h"
 
 namespace rayview::model {
 namespace {
@@ -150,9 +154,35 @@ std::filesystem::path materialLibraryPath(const std::filesystem::path& modelPath
   return modelPath.parent_path() / library;
 }
 
-void parseMaterialLibrary(std::string_view text, ObjMaterials& out) {
+namespace {
+
+// The keys whose words are numbers (the spectral and xyz forms of a colour are skipped, their words too).
+bool numericKey(std::string_view key) {
+  for (const char* k : {"Kd", "Ka", "Ks", "Ke", "Ns", "Ni", "d", "Tr", "Pr", "Pm"})
+    if (key == k) return true;
+  return false;
+}
+
+// The first word of a numeric statement that reads as a number but not as a finite float ("" when none).
+std::string_view unusableNumber(std::string_view rest) {
+  for (std::string_view w = word(rest); !w.empty(); w = word(rest)) {
+    std::string_view digits = w;
+    if (digits[0] == '+') digits.remove_prefix(1);
+    double v = 0.0;
+    const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), v);
+    if (end != digits.data() + digits.size()) break;  // a word, not a number: "spectral", "xyz"
+    // Out of a double's range: strtod says which way (HUGE_VAL over, 0 under; an underflow is a usable 0).
+    if (error == std::errc::result_out_of_range) v = std::strtod(std::string(digits).c_str(), nullptr);
+    if (!(std::abs(v) <= std::numeric_limits<float>::max())) return w;
+  }
+  return {};
+}
+
+}  // namespace
+
+void parseMaterialLibrary(std::string_view text, ObjMaterials& out, const std::filesystem::path& file) {
   std::size_t current = SIZE_MAX;  // the material being defined, or none
-  while (!text.empty()) {
+  for (int lineNumber = 1; !text.empty(); ++lineNumber) {
     std::size_t end = text.find('\n');
     if (end == std::string_view::npos) end = text.size();
     std::string_view line = text.substr(0, end);
@@ -160,6 +190,10 @@ void parseMaterialLibrary(std::string_view text, ObjMaterials& out) {
     if (const std::size_t hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
     const std::string_view key = word(line);
     if (key.empty()) continue;
+    if (numericKey(key))
+      if (const std::string_view bad = unusableNumber(line); !bad.empty())
+        throwSceneError(SourceLocation{file.string(), lineNumber},
+                        std::string(key) + ": '" + std::string(bad) + "' is not a finite number rayview can use");
     if (key == "newmtl") {
       const std::string name(trimmed(line));
       const unsigned index = out.named(name);

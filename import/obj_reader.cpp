@@ -282,7 +282,7 @@ bool ObjParser::readLibrary(const fs::path& file) {
   if (!problem.empty()) return false;
   rememberInput(file, "the model's material library");
   libraries_.push_back(file.string());
-  parseMaterialLibrary(text, materials_);
+  parseMaterialLibrary(text, materials_, file);
   return true;
 }
 

@@ -44,7 +44,9 @@ std::filesystem::path materialLibraryPath(const std::filesystem::path& modelPath
 
 // Parses an MTL file's text into `out` (newmtl and each material's statements; toScene reads Kd, Ka, Ks, Ke, Ns, Ni,
 // d, Tr, Pr, Pm, map_Kd and the other maps as Assimp's OBJ reader does). A second definition of a name is ignored.
-void parseMaterialLibrary(std::string_view text, ObjMaterials& out);
+// A number of those keys that is not finite as a float (nan, inf, 1e39) throws SceneError at `file`'s line: it would
+// otherwise surface as a value of the scene rayview makes up, which the user never wrote.
+void parseMaterialLibrary(std::string_view text, ObjMaterials& out, const std::filesystem::path& file);
 
 // Reads the OBJ file at `path` into `g` (each mesh's material an index into the returned list) and returns its
 // materials. Throws SceneError naming the file and the line.

@@ -105,8 +105,14 @@ int run(int argc, char** argv) {
     if (command == "export" && argc == 4) return exportCommand(argv);
     return usage();
   } catch (const SceneError& error) {
-    // The line travels with the message, so the client's error is located as the loader's would be.
-    wire::writeError(stdout, std::to_string(error.diagnostic().where.line) + "\n" + error.diagnostic().message);
+    // The line travels with the message, so the client's error is located as the loader's would be. One in a file
+    // the model names (its MTL) names that file and line in the message: the client names the model.
+    const SourceLocation& where = error.diagnostic().where;
+    if (argc > 2 && !where.file.empty() && where.file != argv[2])
+      wire::writeError(stdout, "0\nin " + where.file + ", line " + std::to_string(where.line) + ": " +
+                                   error.diagnostic().message);
+    else
+      wire::writeError(stdout, std::to_string(where.line) + "\n" + error.diagnostic().message);
   } catch (const ModelWriteError& error) {
     wire::writeError(stdout, std::string(kWriteFailureLine) + "\n" + error.what());
   } catch (const std::bad_alloc&) {

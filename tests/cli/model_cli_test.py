@@ -269,6 +269,9 @@ def check_unusable_values_name_the_model(rayview, s):
         check(r.returncode == 2 and r.stderr.startswith(s(model) + ": error:") and
               not os.path.exists(s("unusable.png")),
               f"{model}: exit 2, the model named with no line of generated XML: " + r.stderr.strip())
+        if model == "nan.obj":
+            check("nan.mtl, line 2: Kd: 'nan'" in r.stderr and "<" not in r.stderr,
+                  "the NaN is found where the user wrote it, the MTL's line, and no tag of generated XML is named")
 
 
 def check_fifos(rayview, s):
