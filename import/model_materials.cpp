@@ -127,9 +127,12 @@ std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDi
   for (const fs::path& candidate : detail::textureCandidates(modelDir, name)) {
     if (!fs::is_regular_file(candidate, ec)) continue;
     std::optional<Texture> texture = detail::readTextureImage(candidate, reason);
+    const fs::path literal = (fs::path(name).is_absolute() ? fs::path(name) : modelDir / name).lexically_normal();
     if (texture && outsideFolder(modelDir, candidate))
       notes.warnings.push_back("texture \"" + name + "\" is read from outside the model's folder: " +
                                fs::absolute(candidate, ec).lexically_normal().string());
+    else if (texture && candidate != literal)  // a Windows path, or another machine's: the name found beside it
+      notes.warnings.push_back("texture \"" + name + "\" is not where the model says; read as " + candidate.string());
     if (file) *file = candidate;
     return texture;
   }

@@ -1,6 +1,7 @@
 #include "rayview/texture_image.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <memory>
 
@@ -60,9 +61,17 @@ std::vector<fs::path> textureCandidates(const fs::path& sceneDirectory, const st
   if (asWritten.is_relative())
     for (const fs::path& b : bases) add(b / asWritten);
   add(asWritten);
-  // Trailing components of the path: "capsule0.jpg", "textures/capsule0.jpg", "hw1/textures/capsule0.jpg".
+  // Trailing components of the path: "capsule0.jpg", "textures/capsule0.jpg", "hw1/textures/capsule0.jpg". A path
+  // written on Windows (".\\tex.jpg", "D:\\models\\tex.jpg") is one component here: its own separators split it.
+  std::string portable = written;
+  if (portable.find('\\') != std::string::npos) {
+    std::replace(portable.begin(), portable.end(), '\\', '/');
+    if (portable.size() >= 2 && std::isalpha(static_cast<unsigned char>(portable[0])) && portable[1] == ':')
+      portable.erase(0, 2);
+  }
   std::vector<fs::path> parts;
-  for (const fs::path& part : asWritten.relative_path()) parts.push_back(part);
+  for (const fs::path& part : fs::path(portable).relative_path())
+    if (part != ".") parts.push_back(part);
   for (std::size_t k = 1; k <= std::min<std::size_t>(3, parts.size()); ++k) {
     fs::path tail;
     for (std::size_t i = parts.size() - k; i < parts.size(); ++i) tail /= parts[i];

@@ -161,6 +161,7 @@ def main():
     check_fifos(a.rayview, s)
     check_referenced_files_kept(a.rayview, s)
     check_texture_outside_the_folder(a.rayview, s)
+    check_windows_texture_paths(a.rayview, s)
     check_export_on_full_disk(a.rayview, s)
     check_unusable_values_name_the_model(a.rayview, s)
 
@@ -231,6 +232,23 @@ def check_texture_outside_the_folder(rayview, s):
     check(r.returncode == 0 and os.path.exists(s("outside/out/copied_texture.png")) and
           "copied_texture.png" in open(copied).read() and "copied beside the scene" in r.stderr,
           "import --copy-textures copies it beside the scene and says so: " + r.stderr.strip())
+
+
+def check_windows_texture_paths(rayview, s):
+    # A texture path written on Windows or another machine, whose file lies beside the model: used, with a warning
+    # naming the file read, and the image is the one the plain name gives.
+    os.makedirs(s("windows"), exist_ok=True)
+    write_png16(s("windows/wood2.png"))
+    in_windows = lambda f: s("windows/" + f)
+    textured_obj(in_windows, "plain", "wood2.png")
+    r = run(["render", in_windows("plain.obj"), "-o", in_windows("plain.png")], rayview)
+    check(r.returncode == 0 and "warning" not in r.stderr, "a texture named as it lies draws no warning")
+    for name, written in (("dot", ".\\wood2.png"), ("drive", "D:\\work\\maps\\wood2.png")):
+        textured_obj(in_windows, name, written)
+        r = run(["render", in_windows(name + ".obj"), "-o", in_windows(name + ".png")], rayview)
+        check(r.returncode == 0 and "is not where the model says" in r.stderr and "wood2.png" in r.stderr and
+              open(in_windows(name + ".png"), "rb").read() == open(in_windows("plain.png"), "rb").read(),
+              f"the Windows path {written} finds the texture beside the model, with a warning: " + r.stderr.strip())
 
 
 def check_export_on_full_disk(rayview, s):

@@ -32,7 +32,8 @@ std::optional<Texture> decodeImage(std::string_view bytes, std::string& reason);
 // Where `written` (the <textureimage> text) may be, in the order tried: next to the scene
 // (sceneDirectory/written), the scene directory's ancestors up to 3 levels (for paths relative to a
 // repository root), the path as written, then the file name and the last 2-3 path components (for
-// absolute paths from the author's machine) in the scene directory and its ancestors. No duplicates.
+// absolute paths from the author's machine) in the scene directory and its ancestors; a path with backslashes
+// (written on Windows) is split at them for those components. No duplicates.
 std::vector<std::filesystem::path> textureCandidates(const std::filesystem::path& sceneDirectory,
                                                      const std::string& written);
 
