@@ -235,6 +235,10 @@ Script parseScript(const std::string& text, const std::string& file) {
         if (tokens.size() != 1 || (tokens[0] != "restore" && tokens[0] != "discard"))
           p.fail("usage: recovery restore|discard (the unsaved edits a viewer that stopped left for this scene)");
         c.args = tokens;
+      } else if (c.name == "model-up") {
+        if (tokens.size() != 1 || (tokens[0] != "y" && tokens[0] != "z"))
+          p.fail("usage: model-up y|z (which axis of the model on screen points up; as --up)");
+        c.args = tokens;
       } else if (c.name == "view") {
         if (tokens.size() != 1 || (tokens[0] != "window" && tokens[0] != "image"))
           p.fail("usage: view window|image (the window's pixels, or the file's image)");

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <span>
 
+#include "rayview/model_options.h"
 #include "widgets.h"
 
 namespace rayview {
@@ -30,6 +31,13 @@ void LoadController::request(const std::string& path, bool isReload) {
   awaitedLoad_ = loader_.request(std::move(request));
   awaitedIsReload_ = isReload;
   rebuildRequested_.reset();
+}
+
+void LoadController::setModelUp(ModelUpAxis up) {
+  if (up == options_.open.model.up) return;
+  options_.open.model.up = up;
+  // The model on screen, not a newer path that failed to open.
+  if (session_ && isModelFile(scenePath_)) request(scenePath_, true);
 }
 
 bool LoadController::rebuildWanted() const {

@@ -37,6 +37,9 @@ class LoadController {
   // The path the user asked for last, even when that load failed: after `rayview missing.xml`, creating the file
   // and pressing F5 loads it (not the embedded default scene).
   void reload() { request(requestedPath_, requestedPath_ == scenePath_ && session_ != nullptr); }
+  // Which model axis points up (--up, the Scene panel's Up axis): a model on screen is read again with it.
+  ModelUpAxis modelUp() const { return options_.open.model.up; }
+  void setModelUp(ModelUpAxis up);
   // The session's traversal changed and no rebuild for it was asked yet.
   bool rebuildWanted() const;
   // Prepare the geometry again for the session's traversal, in the background.

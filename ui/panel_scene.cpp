@@ -75,6 +75,16 @@ void drawScenePanel(FilePanelState& state, const RecentFiles& recent, const Scen
     }
     ImGui::EndCombo();
   }
+  if (info.modelUp) {
+    // Which of the model's axes points up in the camera rayview makes for it (z for CAD and scans; --up).
+    int up = *info.modelUp == ModelUpAxis::Z ? 1 : 0;
+    ImGui::TextUnformatted("Up axis");
+    ImGui::SameLine();
+    const bool y = ImGui::RadioButton("Y", &up, 0);
+    ImGui::SameLine();
+    const bool z = ImGui::RadioButton("Z", &up, 1);
+    if (y || z) actions.modelUp = up == 1 ? ModelUpAxis::Z : ModelUpAxis::Y;
+  }
   if (ImGui::Button("Reload (F5)")) actions.reload = true;
   ImGui::SameLine();
   ImGui::Checkbox("Reload when the file changes", &state.reloadOnChange);

@@ -12,6 +12,7 @@
 #include "display_mapping.h"
 #include "image_texture.h"
 #include "overlay_layout.h"
+#include "rayview/model_options.h"
 #include "rayview/diagnostics.h"
 #include "rayview/progressive_renderer.h"
 #include "rayview/tradeoff.h"
@@ -37,6 +38,7 @@ struct PanelActions {
   std::optional<std::string> loadReference;  // the Compare panel's path
   bool toggleDifference = false;
   std::optional<std::size_t> applyTradeoffRow;  // Apply: the row's setting (an index into the report's points)
+  std::optional<ModelUpAxis> modelUp;  // the Scene panel's Up axis: read the model again with it
 };
 
 // The text fields and toggles of the file panels, kept between frames.
@@ -143,6 +145,7 @@ struct ViewerStats {
 struct SceneInfo {
   std::string displayName;  // the path, or "default scene (embedded)"
   const std::vector<Diagnostic>& warnings;
+  std::optional<ModelUpAxis> modelUp;  // a model on screen: which of its axes points up
 };
 
 // A scene with thousands of repaired lines lists this many; the rest are counted.

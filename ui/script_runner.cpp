@@ -157,6 +157,10 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
   } else if (name == "sleep") {
     wait_ = Wait::Until;
     deadline_ = Clock::now() + seconds(c.numbers[0]);
+  } else if (name == "model-up") {
+    host.setModelUp(c.args[0] == "z" ? ModelUpAxis::Z : ModelUpAxis::Y);
+    wait_ = Wait::Load;
+    deadline_ = Clock::now() + seconds(kDefaultLoadSeconds);
   } else if (name == "open" || name == "reload") {
     pathBeforeOpen_ = host.scenePath();
     serialBeforeOpen_ = host.sceneSerial();

@@ -10,6 +10,7 @@
 #include <optional>
 #include <string>
 
+#include "rayview/model_options.h"
 #include "automation_script.h"
 #include "display_mapping.h"
 #include "rayview/image_metrics.h"
@@ -32,6 +33,8 @@ class ScriptHost {
   virtual SceneSession* session() = 0;  // null until a scene has loaded
   virtual void open(const std::string& path) = 0;
   virtual void reload() = 0;
+  // Which axis of a model points up (--up): a model on screen is read again with it.
+  virtual void setModelUp(ModelUpAxis up) = 0;
   virtual bool loading() const = 0;
   virtual std::string loadError() const = 0;  // what the error panel shows ("" when nothing)
   virtual std::string scenePath() const = 0;  // the scene on screen ("" for the embedded default)

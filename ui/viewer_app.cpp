@@ -219,6 +219,11 @@ void ViewerApp::reload() {
   load_.reload();
 }
 
+void ViewerApp::setModelUp(ModelUpAxis up) {
+  if (isModelFile(scenePath()) && up != load_.modelUp()) stopTradeoff("cancelled: a scene is loading", true);
+  load_.setModelUp(up);
+}
+
 std::string ViewerApp::answerRecovery(bool restore) {
   framesToDraw_ = kSettleFrames;
   return recovery_.answer(restore, session());

@@ -58,6 +58,7 @@ class ViewerApp final : public ScriptHost {
   SceneSession* session() override { return load_.session(); }
   void open(const std::string& path) override;
   void reload() override;
+  void setModelUp(ModelUpAxis up) override;
   bool loading() const override { return load_.loading(); }
   std::string loadError() const override { return load_.loadError(); }
   std::string scenePath() const override { return load_.scenePath(); }

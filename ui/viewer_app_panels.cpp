@@ -39,7 +39,8 @@ void ViewerApp::drawPanelColumn(const ViewerLayout&, PanelActions& actions) {
   ImGui::PushItemWidth(-ImGui::GetFontSize() * 9.0f);  // room for the labels on the right
   SceneSession* s = session();
   const SceneInfo info{scenePath().empty() ? (s ? "default scene (embedded)" : "no scene yet") : scenePath(),
-                       load_.warnings()};
+                       load_.warnings(),
+                       isModelFile(scenePath()) ? std::optional(load_.modelUp()) : std::nullopt};
   drawScenePanel(filePanel_, load_.recent(), info, load_.progress(), actions);
   saves_.showProgress(s);
   drawSavePanel(filePanel_, render_.haveFrame(), actions);
@@ -66,6 +67,7 @@ void ViewerApp::apply(const PanelActions& actions, const Shortcuts& shortcuts) {
   SceneSession* s = session();
   if (actions.open) openFromUser(*actions.open);
   if (actions.reload || shortcuts.reload) reload();
+  if (actions.modelUp) setModelUp(*actions.modelUp);
   if (actions.saveFrame || shortcuts.saveFrame) saves_.saveFrameReporting(frameSaveContext());
   if (actions.saveView) saves_.requestViewSave({}, true);  // drawn and read back next frame
   if (actions.saveSceneNumbered || shortcuts.saveScene) saves_.saveSceneReporting(s, scenePath(), {});

@@ -50,6 +50,11 @@ class FakeHost : public ScriptHost {
     loadingFrames = 2;
   }
   void reload() override { loadingFrames = 1; }
+  void setModelUp(ModelUpAxis up) override {
+    modelUp = up;
+    loadingFrames = 1;
+  }
+  std::optional<ModelUpAxis> modelUp;
   bool loading() const override { return loadingFrames > 0; }
   std::string loadError() const override { return loadingFrames > 0 ? "" : error; }
   std::string scenePath() const override { return "scene.xml"; }

@@ -1,6 +1,7 @@
 """The `model` case of viewer_test.py, in a file of its own: the viewer opens a model (a binary PLY box) given on
 the command line, its final pass equals `rayview render` of the same model; opening a truncated model shows the
-error naming it and the box stays on screen.
+error naming it and the box stays on screen; the Scene panel's Up axis (the script's `model-up z`) reads it again
+as `rayview render --up z` frames it.
 """
 import os
 import struct
@@ -39,6 +40,10 @@ expect-error broken.ply:
 wait-final
 save-frame {work}/after_error.png
 print-state
+model-up z
+wait-final
+save-frame {work}/up_z.png
+print-state
 quit
 """)
     viewer = run_script(args.rayview, [model, "--threads", "2", "--script", script], work)
@@ -48,6 +53,12 @@ quit
     headless = render_headless(args.rayview, model, os.path.join(work, "headless.png"))
     expect_same(os.path.join(work, "viewer.png"), headless)
     expect_same(os.path.join(work, "after_error.png"), headless)
+    # The Scene panel's Up axis (the script's model-up): the model read again with z up, as `render --up z` frames it.
+    if len(state) < 2 or " up=0,0,1 " not in state[1]:
+        raise Failure("after model-up z the camera's up should be the model's z\n" + viewer.output())
+    up_z = render_headless(args.rayview, model, os.path.join(work, "headless_up_z.png"), ["--up", "z"])
+    expect_same(os.path.join(work, "up_z.png"), up_z)
+    expect_different(up_z, headless)
     # The box is on screen: the image is not the background alone.
     width, height, pixels = read_png(headless)
     centre = (height // 2 * width + width // 2) * 3
