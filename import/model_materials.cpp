@@ -140,6 +140,14 @@ std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDi
   return std::nullopt;
 }
 
+// The scene's name for the kept texture: a file outside the model's folder where it lies (absolute; `import` copies
+// it only when asked), else the name of import's copy beside the scene.
+std::string keptTextureName(const fs::path& model, const fs::path& file) {
+  std::error_code ec;
+  if (!file.empty() && outsideFolder(model.parent_path(), file)) return fs::absolute(file, ec).lexically_normal().string();
+  return model.stem().string() + "_texture.png";
+}
+
 Color averageOf(const Texture& t) {
   double sum[3] = {0.0, 0.0, 0.0};
   for (std::size_t i = 0; i + 2 < t.rgb.size(); i += 3)
@@ -230,11 +238,7 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
     if (name == chosen) {
       notes.texture = fileNamePart(name) + " (" + std::to_string(texture->width) + "x" +
                       std::to_string(texture->height) + ")";
-      // A file outside the model's folder is named where it lies: `import` copies it only when asked.
-      std::error_code ec;
-      out.textureImage = !file.empty() && outsideFolder(path.parent_path(), file)
-                             ? fs::absolute(file, ec).lexically_normal().string()
-                             : path.stem().string() + "_texture.png";
+      out.textureImage = keptTextureName(path, file);
       out.texture = std::move(texture);
     } else {
       averaged.push_back(fileNamePart(name));

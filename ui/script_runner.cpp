@@ -157,15 +157,12 @@ void ScriptRunner::start(const ScriptCommand& c, ScriptHost& host) {
   } else if (name == "sleep") {
     wait_ = Wait::Until;
     deadline_ = Clock::now() + seconds(c.numbers[0]);
-  } else if (name == "model-up") {
-    host.setModelUp(c.args[0] == "z" ? ModelUpAxis::Z : ModelUpAxis::Y);
-    wait_ = Wait::Load;
-    deadline_ = Clock::now() + seconds(kDefaultLoadSeconds);
-  } else if (name == "open" || name == "reload") {
+  } else if (name == "model-up" || name == "open" || name == "reload") {
     pathBeforeOpen_ = host.scenePath();
     serialBeforeOpen_ = host.sceneSerial();
     if (name == "open") host.open(c.args[0]);
-    else host.reload();
+    else if (name == "reload") host.reload();
+    else host.setModelUp(c.args[0] == "z" ? ModelUpAxis::Z : ModelUpAxis::Y);
     wait_ = Wait::Load;
     deadline_ = Clock::now() + seconds(kDefaultLoadSeconds);
   } else if (name == "expect-error") {

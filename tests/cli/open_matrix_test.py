@@ -157,7 +157,11 @@ class Rows:
             script = os.path.join(out, "save.rvs")
             with open(script, "w") as f:
                 f.write(f"expect-no-error\nwait-final 60\nsave-frame {os.path.join(out, 'shown.png')}\nquit\n")
-            return self.execute(["xvfb-run", "-a", "-s", "-screen 0 800x600x24", rv, source, "--script", script,
+            # Under ASan the viewer alone gets the sanitizer runtime and Mesa's driver preloaded, as the window tests
+            # give it (tests/viewer/viewer_harness.py, viewer_environment): Xvfb and xvfb-run never do.
+            preload = os.environ.get("RAYVIEW_VIEWER_PRELOAD")
+            viewer = ["env", "LD_PRELOAD=" + preload, rv] if preload else [rv]
+            return self.execute(["xvfb-run", "-a", "-s", "-screen 0 800x600x24", *viewer, source, "--script", script,
                                  "--threads", "1", *options], out, timeout=120)
         raise AssertionError(f"no runner for the row {row}")
 
