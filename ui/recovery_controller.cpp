@@ -67,8 +67,10 @@ std::string RecoveryController::keepNow(const SceneSession* session, const std::
 
 std::string RecoveryController::note(const SceneSession* session, const std::string& scenePath) const {
   if (offer_) return "the unsaved edits offered at the start are still kept in " + offer_->file.string();
+  // Asked once per loop: the common case (nothing unsaved) looks at no path.
+  if (!session || !session->unsaved()) return "there were no unsaved edits";
   const fs::path file = recoveryFileFor(scenePath);
-  if (!session || !session->unsaved() || file.empty()) return "there were no unsaved edits";
+  if (file.empty()) return "there were no unsaved edits";
   const std::optional<SceneParameters>& written = keeper_.written();
   if (!written) return "your unsaved edits could not be kept";
   // The file is written at most kRecoveryInterval after an edit: the last moment's edits may be missing.

@@ -100,25 +100,10 @@ def killed_worker(args, scene):
                 f"save-frame {out}\nsleep 3.5\nset samples 1\nwait-final\nprint-state\nquit\n")
     marker = f"rayview-killed-{os.getpid()}"
     env = dict(os.environ, RAYVIEW_TEST_JOB=marker, XDG_STATE_HOME=os.path.join(args.scratch, "state"))
-    job = subprocess.Popen(["xvfb-run", "-a", "mpirun", "--enable-recovery", "-n", "3", args.rayview, "--threads", "1",
-                            "--script", script, scene], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
-                           env=env)
-    seen = []
-    for line in job.stdout:  # the first final pass: the workers hold the geometry and trace
-        seen.append(line)
-        if line.startswith("state "):
-            break
-    victim = job_rank(marker, 1)
-    if victim is None:
-        job.kill()
-        return [f"killed worker: rank 1 not found:\n{''.join(seen)}"]
-    os.kill(victim, signal.SIGKILL)
-    try:
-        rest, _ = job.communicate(timeout=180)
-    except subprocess.TimeoutExpired:
-        job.kill()
-        return ["killed worker: the job did not end within 180 s"]
-    text = "".join(seen) + rest
+    job, text = kill_rank_one(["xvfb-run", "-a", "mpirun", "--enable-recovery", "-n", "3", args.rayview, "--threads",
+                               "1", "--script", script, scene], env, marker, "killed worker", 180)
+    if job is None:
+        return [text]
     states = [line for line in text.splitlines() if line.startswith("state ")]
     failures = []
     if job.returncode != 0 or len(states) != 3:
@@ -152,25 +137,11 @@ def killed_worker_plain(args, scene):
         f.write("view image\nwait-final\nset material floor diffuse 0.25 0.5 0.75\nwait-final\nprint-state\nsleep 60\n")
     marker = f"rayview-plain-{os.getpid()}"
     env = dict(os.environ, RAYVIEW_TEST_JOB=marker, XDG_STATE_HOME=state)
-    job = subprocess.Popen(["xvfb-run", "-a", "mpirun", "-n", "3", args.rayview, "--threads", "1", "--script", script,
-                            scene], stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
-    seen = []
-    for line in job.stdout:
-        seen.append(line)
-        if line.startswith("state "):
-            break
-    time.sleep(1.5)  # the recovery file is written at most 1 s after the edit; SIGTERM writes it anyway
-    victim = job_rank(marker, 1)
-    if victim is None:
-        job.kill()
-        return [f"plain mpirun: rank 1 not found:\n{''.join(seen)}"]
-    os.kill(victim, signal.SIGKILL)
-    try:
-        rest, _ = job.communicate(timeout=60)
-    except subprocess.TimeoutExpired:
-        job.kill()
-        return ["plain mpirun: the job did not end within 60 s of the kill"]
-    text = "".join(seen) + rest
+    # The recovery file is written at most 1 s after the edit; SIGTERM writes it anyway.
+    job, text = kill_rank_one(["xvfb-run", "-a", "mpirun", "-n", "3", args.rayview, "--threads", "1", "--script", script,
+                               scene], env, marker, "plain mpirun", 60, pause=1.5)
+    if job is None:
+        return [text]
     kept = re.search(r"your unsaved edits are kept in (\S+\.recovery\.xml)", text)
     if "mpirun is ending the job" not in text or not kept or not os.path.exists(kept.group(1)):
         return [f"plain mpirun: the window should say why it closes and where the edits are:\n{text}"]
@@ -185,6 +156,30 @@ def killed_worker_plain(args, scene):
     if not os.path.exists(restored) or "0.25 0.5 0.75" not in open(restored).read():
         return [f"plain mpirun: the restored scene {restored} lacks the edit"]
     return []
+
+
+def kill_rank_one(command, env, marker, name, timeout, pause=0.0):
+    """Starts `command` (the viewer under mpirun), reads its output up to the script's first state (the workers hold
+    the geometry and trace), kills rank 1 with SIGKILL `pause` seconds later and waits for the job to end.
+    Returns (job, all its output), or (None, the failure)."""
+    job = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True, env=env)
+    seen = []
+    for line in job.stdout:
+        seen.append(line)
+        if line.startswith("state "):
+            break
+    time.sleep(pause)
+    victim = job_rank(marker, 1)
+    if victim is None:
+        job.kill()
+        return None, f"{name}: rank 1 not found:\n{''.join(seen)}"
+    os.kill(victim, signal.SIGKILL)
+    try:
+        rest, _ = job.communicate(timeout=timeout)
+    except subprocess.TimeoutExpired:
+        job.kill()
+        return None, f"{name}: the job did not end within {timeout} s of the kill"
+    return job, "".join(seen) + rest
 
 
 def job_rank(marker, rank):
