@@ -123,7 +123,7 @@ void applyStatement(aiMaterial& m, std::string_view key, std::string_view rest) 
 }  // namespace
 
 unsigned ObjMaterials::named(const std::string& name) {
-  const auto [it, added] = byName.emplace(name, static_cast<unsigned>(list.size()));
+  const auto [it, added] = byName.try_emplace(name, static_cast<unsigned>(list.size()));
   if (added) list.push_back(ObjMaterial{name, {}});
   return it->second;
 }

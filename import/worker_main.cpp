@@ -18,8 +18,6 @@
 #include "rayview/input_files.h"
 #include "rayview/model_client.h"
 #include "rayview/model_import.h"
-#include "rayview/scene_loader.h"
-#include "rayview/scene_writer.h"
 #include "wire_format.h"
 
 namespace rayview {
@@ -69,8 +67,7 @@ int readCommand(int argc, char** argv) {
   }
   ModelScene model = readModel(argv[2], options);
   wire::SceneMessage message;
-  message.parametersXml = sceneToXml(model.scene.parameters(), SceneGeometry{}, model.scene.textureImage,
-                                     NumberText::FloatWhenExact);
+  message.parameters = std::move(model.scene.parameters());
   message.summary = std::move(model.summary);
   message.warnings = std::move(model.warnings);
   message.geometry = std::move(static_cast<SceneGeometry&>(model.scene));
@@ -78,8 +75,7 @@ int readCommand(int argc, char** argv) {
   return wire::writeScene(stdout, message) ? 0 : 1;
 }
 
-// The scene rayview opened, as its client handed it over: parameters as the handout's XML (checked again by the
-// loader), geometry in the scene codec.
+// The scene rayview opened, as its client handed it over in the scene codec (checked again here).
 int exportCommand(char** argv) {
   const int fd = ::open(argv[2], O_RDONLY | O_CLOEXEC);
   wire::Kind kind = wire::Kind::Error;
@@ -89,11 +85,12 @@ int exportCommand(char** argv) {
   if (fd >= 0) ::close(fd);
   if (!problem.empty() || kind != wire::Kind::Scene)
     throwSceneError({argv[2], 0}, "the scene handed to the exporter is unusable (" + problem + ")");
-  LoadOptions options;
-  options.loadTexture = false;
-  LoadedScene loaded = loadSceneText(message.parametersXml, argv[2], {}, options);
-  static_cast<SceneGeometry&>(loaded.scene) = std::move(message.geometry);
-  exportScene(loaded.scene, argv[3]);
+  Scene scene;
+  scene.parameters() = std::move(message.parameters);
+  static_cast<SceneGeometry&>(scene) = std::move(message.geometry);
+  if (std::string bad = parametersProblem(scene); !bad.empty() || !(bad = wholenessProblem(scene)).empty())
+    throwSceneError({argv[2], 0}, "the scene handed to the exporter is unusable (" + bad + ")");
+  exportScene(scene, argv[3]);
   return wire::writeDone(stdout, "") ? 0 : 1;
 }
 

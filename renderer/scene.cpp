@@ -1,8 +1,14 @@
 #include "rayview/scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
+#include <unordered_set>
+
+#include "rayview/accel.h"
+#include "rayview/camera_rays.h"
+#include "rayview/image_limits.h"
 
 namespace rayview {
 
@@ -41,6 +47,52 @@ std::string wholenessProblem(const Scene& s) {
       if (a.hasNormals() && static_cast<std::size_t>(a.normal[k]) >= s.normals.size())
         return "triangle " + std::to_string(i) + ": a normal out of range";
     }
+  }
+  return "";
+}
+
+namespace {
+
+bool finite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(const Color& c) { return std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z); }
+
+std::string cameraValuesProblem(const Camera& c) {
+  if (!finite(c.position) || !finite(c.gaze) || !finite(c.up) || !std::isfinite(c.left) || !std::isfinite(c.right) ||
+      !std::isfinite(c.bottom) || !std::isfinite(c.top) || !std::isfinite(c.nearDistance))
+    return "the camera has a value that is not finite";
+  if (std::string problem = cameraProblem(c); !problem.empty()) return "camera: " + problem;
+  return imageSizeProblem(c.width, c.height);
+}
+
+std::string materialProblem(const Material& m) {
+  if (!finite(m.ambient) || !finite(m.diffuse) || !finite(m.specular) || !finite(m.mirror) ||
+      !std::isfinite(m.phongExponent) || !std::isfinite(m.textureFactor))
+    return "material \"" + m.id + "\" has a value that is not finite";
+  if (m.phongExponent < 0.0f) return "material \"" + m.id + "\" has a negative Phong exponent";
+  return "";
+}
+
+}  // namespace
+
+std::string parametersProblem(const SceneParameters& p) {
+  if (p.maxRayDepth < 0 || p.maxRayDepth > kMaxRayDepth) return "the ray depth is out of range";
+  if (!finite(p.background) || !finite(p.ambientLight)) return "the background or ambient light is not finite";
+  if (p.shadowRayEpsilon && !(*p.shadowRayEpsilon >= 0.0 && *p.shadowRayEpsilon <= kEmbreeCoordinateLimit))
+    return "the shadow-ray epsilon is out of range";
+  if (std::string problem = cameraValuesProblem(p.camera); !problem.empty()) return problem;
+  std::string problem;
+  p.lights.forEachType([&](const auto& list) {
+    for (const auto& light : list)
+      for (const auto& field : std::remove_cvref_t<decltype(light)>::fields())
+        if (problem.empty() && ((field.point && !finite(light.*field.point)) ||
+                                (field.intensity && !finite(light.*field.intensity))))
+          problem = "light \"" + light.id + "\" has a value that is not finite";
+  });
+  if (!problem.empty()) return problem;
+  std::unordered_set<std::string_view> ids;
+  for (const Material& m : p.materials) {
+    if (std::string bad = materialProblem(m); !bad.empty()) return bad;
+    if (!ids.insert(m.id).second) return "material id \"" + m.id + "\" is used twice";
   }
   return "";
 }

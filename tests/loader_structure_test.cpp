@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -483,6 +484,33 @@ TEST(SceneGeometry, WholenessProblemNamesWhatIsBroken) {
               s.faceAttributes[0].texCoord[0] = s.faceAttributes[0].texCoord[1] = 0;
               s.faceAttributes[0].texCoord[2] = 1;
             }).find("triangle 0: a texture coordinate"),
+            std::string::npos);
+}
+
+// Parameters that come as bytes (the import worker's answer) are held to what the loader checks of each value: what
+// it loads passes, and each value it would refuse is named.
+TEST(SceneParameters, ParametersProblemRefusesWhatTheLoaderRefuses) {
+  const Scene loaded = load(kBase).scene;
+  EXPECT_EQ(parametersProblem(loaded), "");
+  auto broken = [&](auto&& edit) {
+    SceneParameters p = loaded;
+    edit(p);
+    return parametersProblem(p);
+  };
+  const double inf = std::numeric_limits<double>::infinity();
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  EXPECT_NE(broken([&](SceneParameters& p) { p.camera.position.x = inf; }).find("camera"), std::string::npos);
+  EXPECT_NE(broken([](SceneParameters& p) { p.camera.up = p.camera.gaze; }).find("parallel"), std::string::npos);
+  EXPECT_NE(broken([](SceneParameters& p) { p.camera.nearDistance = 0.0; }).find("near distance"), std::string::npos);
+  EXPECT_NE(broken([](SceneParameters& p) { p.camera.width = 0; }).find("resolution"), std::string::npos);
+  EXPECT_NE(broken([](SceneParameters& p) { p.maxRayDepth = -1; }).find("depth"), std::string::npos);
+  EXPECT_NE(broken([](SceneParameters& p) { p.shadowRayEpsilon = -1.0; }).find("epsilon"), std::string::npos);
+  EXPECT_NE(broken([&](SceneParameters& p) { p.ambientLight.y = nan; }).find("ambient"), std::string::npos);
+  EXPECT_NE(broken([&](SceneParameters& p) { p.lights.of<PointLight>()[0].intensity.x = nan; }).find("light \""),
+            std::string::npos);
+  EXPECT_NE(broken([&](SceneParameters& p) { p.materials[0].diffuse.z = nan; }).find("not finite"), std::string::npos);
+  EXPECT_NE(broken([](SceneParameters& p) { p.materials[0].phongExponent = -1.0f; }).find("Phong"), std::string::npos);
+  EXPECT_NE(broken([](SceneParameters& p) { p.materials.push_back(p.materials[0]); }).find("used twice"),
             std::string::npos);
 }
 

@@ -16,7 +16,6 @@
 #include <vector>
 
 #include "rayview/diagnostics.h"
-#include "rayview/scene_writer.h"
 #include "rayview/input_files.h"
 #include "wire_format.h"
 
@@ -105,19 +104,14 @@ std::vector<std::string> readArguments(const fs::path& path, const ModelImportOp
           "--camera", modelCameraWord(options.camera), "--lights", modelLightsWord(options.lights)};
 }
 
-// The worker's answer as the loader's result: its parameters through the XML loader (which checks them), its
-// geometry moved in and checked as every loaded scene is.
+// The worker's answer as the loader's result: its parameters and geometry moved in and checked as the loader checks
+// every value it reads (parametersProblem, wholenessProblem).
 LoadedScene toLoadedScene(const fs::path& path, wire::SceneMessage&& message) {
-  LoadOptions options;
-  options.loadTexture = false;
   LoadedScene loaded;
-  try {
-    loaded = loadSceneText(message.parametersXml, path.string(), path.parent_path(), options);
-  } catch (const SceneError& error) {
-    // The line is one of the XML the worker made up, which the user never sees: the model is named, without it.
-    fail(path, "has values rayview cannot use (" + error.diagnostic().message +
+  loaded.scene.parameters() = std::move(message.parameters);
+  if (const std::string problem = parametersProblem(loaded.scene); !problem.empty())
+    fail(path, "has values rayview cannot use (" + problem +
                    "; a value that is not finite or too large, in the model or in what is made up from it)");
-  }
   static_cast<SceneGeometry&>(loaded.scene) = std::move(message.geometry);
   loaded.scene.sourcePath = path;
   for (const glm::dvec3& v : loaded.scene.vertices)
@@ -194,7 +188,7 @@ class SceneHandoff {
 
   void write(const Scene& scene) {
     wire::SceneMessage message;
-    message.parametersXml = sceneToXml(scene.parameters(), SceneGeometry{}, scene.textureImage);
+    message.parameters = scene.parameters();
     message.geometry = scene.geometry();
     const bool written = wire::writeScene(file_, message);
     const bool closed = std::fclose(file_) == 0;

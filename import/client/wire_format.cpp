@@ -82,6 +82,18 @@ class Reader {
 };
 
 // The geometry as the one scene codec writes it (rayview/scene_codec.h), as a blob.
+bool readParameters(Reader& r, SceneParameters& parameters) {
+  std::vector<std::uint8_t> bytes;
+  if (!r.array(bytes)) return false;
+  try {
+    std::size_t at = 0;
+    parameters = decodeParameters(bytes.data(), bytes.size(), at);
+    return at == bytes.size();
+  } catch (const CodecError&) {
+    return false;
+  }
+}
+
 bool readGeometry(Reader& r, SceneGeometry& geometry) {
   std::vector<std::uint8_t> bytes;
   if (!r.array(bytes)) return false;
@@ -113,7 +125,9 @@ bool splitFilesRead(const std::string& text, std::vector<RememberedInput>& out) 
 bool writeScene(std::FILE* out, const SceneMessage& m) {
   Writer w(out);
   header(w, Kind::Scene);
-  w.text(m.parametersXml);
+  std::vector<std::uint8_t> parameters;
+  encodeParameters(m.parameters, parameters);
+  w.array(parameters);
   w.text(m.summary);
   std::string warnings;
   for (const std::string& warning : m.warnings) warnings.append(warning).push_back('\n');
@@ -156,7 +170,7 @@ std::string readMessage(int fd, Kind& kind, SceneMessage& m, std::string& error)
     if (!r.text(m.summary)) return "truncated answer";
   } else if (kind == Kind::Scene) {
     std::string warnings, files;
-    if (!r.text(m.parametersXml) || !r.text(m.summary) || !r.text(warnings) || !readGeometry(r, m.geometry) ||
+    if (!readParameters(r, m.parameters) || !r.text(m.summary) || !r.text(warnings) || !readGeometry(r, m.geometry) ||
         !r.text(files))
       return "truncated or malformed answer";
     if (!splitFilesRead(files, m.filesRead)) return "malformed list of files read";

@@ -21,7 +21,7 @@ enum class Kind : std::uint32_t { Scene = 1, Error = 2, Done = 3 };
 
 // The parts of an imported scene, in the order they are sent.
 struct SceneMessage {
-  std::string parametersXml;  // camera, lights, materials: the handout's XML with no geometry
+  SceneParameters parameters;  // camera, lights, materials, in the scene codec (checked by parametersProblem)
   std::string summary;
   std::vector<std::string> warnings;
   SceneGeometry geometry;     // textureImage names the texture; texture holds it decoded

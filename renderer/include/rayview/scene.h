@@ -166,4 +166,9 @@ struct Scene : SceneParameters, SceneGeometry {
 // One check for the tests and the fuzz targets.
 std::string wholenessProblem(const Scene& scene);
 
+// What the loader's checks of each value guarantee of parameters that come as bytes instead of XML (the import
+// worker's answer): every number finite, a camera that makes an image, depth, epsilon and exponents in range, unique
+// material ids. "" when it holds, else the first thing that breaks it.
+std::string parametersProblem(const SceneParameters& parameters);
+
 }  // namespace rayview
