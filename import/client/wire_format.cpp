@@ -81,7 +81,7 @@ class Reader {
   int fd_;
 };
 
-// The geometry as the one scene codec writes it (rayview/scene_codec.h), as a blob.
+// The parameters and the geometry as the one scene codec writes them (rayview/scene_codec.h), each as a blob.
 bool readParameters(Reader& r, SceneParameters& parameters) {
   std::vector<std::uint8_t> bytes;
   if (!r.array(bytes)) return false;
