@@ -81,25 +81,15 @@ class Reader {
   int fd_;
 };
 
-// The parameters and the geometry as the one scene codec writes them (rayview/scene_codec.h), each as a blob.
-bool readParameters(Reader& r, SceneParameters& parameters) {
+// One blob of the scene codec (rayview/scene_codec.h), decoded by `decode` (decodeParameters or decodeGeometry) into
+// `out`; false when it is cut short, malformed, or longer than what it decodes.
+template <class Value, class Decode>
+bool readCodecBlob(Reader& r, Decode decode, Value& out) {
   std::vector<std::uint8_t> bytes;
   if (!r.array(bytes)) return false;
   try {
     std::size_t at = 0;
-    parameters = decodeParameters(bytes.data(), bytes.size(), at);
-    return at == bytes.size();
-  } catch (const CodecError&) {
-    return false;
-  }
-}
-
-bool readGeometry(Reader& r, SceneGeometry& geometry) {
-  std::vector<std::uint8_t> bytes;
-  if (!r.array(bytes)) return false;
-  try {
-    std::size_t at = 0;
-    geometry = decodeGeometry(bytes.data(), bytes.size(), at);
+    out = decode(bytes.data(), bytes.size(), at);
     return at == bytes.size();
   } catch (const CodecError&) {
     return false;
@@ -170,8 +160,8 @@ std::string readMessage(int fd, Kind& kind, SceneMessage& m, std::string& error)
     if (!r.text(m.summary)) return "truncated answer";
   } else if (kind == Kind::Scene) {
     std::string warnings, files;
-    if (!readParameters(r, m.parameters) || !r.text(m.summary) || !r.text(warnings) || !readGeometry(r, m.geometry) ||
-        !r.text(files))
+    if (!readCodecBlob(r, decodeParameters, m.parameters) || !r.text(m.summary) || !r.text(warnings) ||
+        !readCodecBlob(r, decodeGeometry, m.geometry) || !r.text(files))
       return "truncated or malformed answer";
     if (!splitFilesRead(files, m.filesRead)) return "malformed list of files read";
     for (std::size_t at = 0; at < warnings.size();) {
