@@ -1,5 +1,7 @@
 #include "command_line.h"
 
+#include "rayview/build_features.h"
+
 #include <algorithm>
 #include <charconv>
 #include <cstdlib>

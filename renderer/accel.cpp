@@ -7,6 +7,7 @@
 #include <string>
 
 #include "accel_backends.h"
+#include "rayview/build_features.h"
 #ifdef RAYVIEW_HAVE_EMBREE
 #include "embree_library.h"
 #endif

@@ -1,5 +1,7 @@
 #include "rayview/render_settings.h"
 
+#include "rayview/build_features.h"
+
 namespace rayview {
 
 std::string_view toString(AccelKind kind) {

@@ -33,6 +33,7 @@
 
 #include "accel_backends.h"
 #include "rayview/accel.h"
+#include "rayview/build_features.h"
 #include "rayview/scene_loader.h"
 #include "support/image_compare.h"
 #include "support/conformance_scenes.h"

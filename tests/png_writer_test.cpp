@@ -12,6 +12,7 @@
 #include "rayview/texture_image.h"
 
 #include "rayview/image.h"
+#include "support/image_compare.h"
 
 namespace rayview {
 namespace {
@@ -84,7 +85,7 @@ TEST(PngWriter, SameBytesForTheSameOptions) {
 // The overload that takes the image (what `rayview render` uses, so that the write does not hold the pixels): the
 // same file as from a borrowed image.
 TEST(PngWriter, AnImageGivenAwayWritesTheSameFile) {
-  const std::filesystem::path dir = std::filesystem::path(RAYVIEW_TEST_OUTPUT_DIR) / "png_writer";
+  const std::filesystem::path dir = testing::testOutputDirectory() / "png_writer";
   std::filesystem::create_directories(dir);
   const Image image = testImage(333, 211, 12);
   for (const char* name : {"given.png", "given.ppm"}) {
@@ -96,7 +97,7 @@ TEST(PngWriter, AnImageGivenAwayWritesTheSameFile) {
 
 TEST(PngWriter, WrittenFileReadsBack) {
   const Image image = testImage(640, 480, 9);
-  const std::filesystem::path dir = std::filesystem::path(RAYVIEW_TEST_OUTPUT_DIR) / "png_writer";
+  const std::filesystem::path dir = testing::testOutputDirectory() / "png_writer";
   std::filesystem::create_directories(dir);
   const std::filesystem::path file = dir / "round_trip.png";
   writeImageFile(file, image);

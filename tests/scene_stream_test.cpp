@@ -193,7 +193,7 @@ TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
   ASSERT_GT(xml.size(), 3u << 20);
   expectSameText(xml, true, "long blocks");
 
-  const fs::path dir = fs::path(RAYVIEW_TEST_OUTPUT_DIR) / "scene_stream";
+  const fs::path dir = testing::testOutputDirectory() / "scene_stream";
   fs::create_directories(dir);
   const fs::path file = dir / "long.xml";
   std::ofstream(file, std::ios::binary) << xml;

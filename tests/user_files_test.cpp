@@ -19,6 +19,7 @@
 #include <thread>
 
 #include "rayview/scene_loader.h"
+#include "support/image_compare.h"
 
 namespace rayview {
 namespace {
@@ -29,7 +30,7 @@ namespace fs = std::filesystem;
 class UserFiles : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::path(RAYVIEW_TEST_OUTPUT_DIR) / "user_files" /
+    dir_ = testing::testOutputDirectory() / "user_files" /
            ::testing::UnitTest::GetInstance()->current_test_info()->name();
     fs::remove_all(dir_);
     fs::create_directories(dir_);
