@@ -30,7 +30,13 @@
 namespace rayview {
 namespace {
 
+// Under a sanitizer a quarter of the pixels: it checks memory use, which the pixel count does not change, and the
+// sweeps below render each scene 8 to 10 times.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr int kResolutionDivisor = 8;
+#else
 constexpr int kResolutionDivisor = 4;
+#endif
 constexpr double kMinWithinOnePercent = 99.9;
 
 AccelKind defaultAccel() { return availableAccel(AccelKind::Embree); }
