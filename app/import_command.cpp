@@ -9,6 +9,7 @@
 #include "rayview/model_client.h"
 #include "rayview/scene_open.h"
 #include "rayview/scene_writer.h"
+#include "texture_beside.h"
 
 namespace rayview {
 namespace {
@@ -27,28 +28,13 @@ bool sameFile(const fs::path& a, const fs::path& b) {
   return !ec && same;
 }
 
-// OUTPUT-STEM_texture.png, or when a file (the user's, perhaps the model's own texture) has that name, the first
-// free OUTPUT-STEM_texture-N.png: import never replaces a file it did not write, and says so.
-std::string freeTextureName(const fs::path& output) {
-  const std::string stem = output.stem().string() + "_texture";
-  std::error_code ec;
-  std::string name = stem + ".png";
-  for (int n = 2; fs::exists(output.parent_path() / name, ec) || fs::is_symlink(output.parent_path() / name, ec); ++n)
-    name = stem + "-" + std::to_string(n) + ".png";
-  if (name != stem + ".png")
-    std::fprintf(stderr, "rayview: note: %s is taken; the texture is written as %s\n",
-                 (output.parent_path() / (stem + ".png")).string().c_str(),
-                 (output.parent_path() / name).string().c_str());
-  return name;
-}
-
 // The texture as a PNG beside the scene; the scene then names it. One outside the model's folder (named by its
 // absolute path, model_materials.cpp) is copied only when asked, else the scene names it where it lies, relative to
-// the scene's folder. Returns false (having said why) when it cannot.
-bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, bool copyOutside, fs::path& written) {
+// the scene's folder. `written` gets the file written, if any.
+void writeTexture(Scene& scene, const fs::path& output, bool copyOutside, fs::path& written) {
   if (!scene.texture) {
     scene.textureImage.clear();
-    return true;
+    return;
   }
   const fs::path outside = fs::path(scene.textureImage).is_absolute() ? fs::path(scene.textureImage) : fs::path();
   if (!outside.empty() && !copyOutside) {
@@ -57,23 +43,13 @@ bool writeTexture(Scene& scene, const fs::path& output, const fs::path& model, b
     scene.textureImage = relative.empty() ? outside.string() : relative.string();
     std::fprintf(stderr, "rayview: note: the scene names the texture where it lies, %s; --copy-textures copies it "
                  "beside the scene\n", outside.string().c_str());
-    return true;
+    return;
   }
-  scene.textureImage = freeTextureName(output);
-  const fs::path target = output.parent_path() / scene.textureImage;
-  if (sameFile(target, model)) {
-    std::fprintf(stderr, "rayview: error: the texture %s would overwrite the model; choose another name\n",
-                 target.string().c_str());
-    return false;
-  }
-  Image image(scene.texture->width, scene.texture->height);
-  image.rgb = scene.texture->rgb;
-  writeImageFile(target, std::move(image));
-  written = target;  // only now is it ours to remove should the scene fail to be written
+  // The model is never replaced: freeTextureName passes over every name that exists.
+  written = writeTextureBeside(*scene.texture, output, scene.textureImage);
   if (!outside.empty())
     std::fprintf(stderr, "rayview: note: the texture %s is copied beside the scene as %s\n", outside.string().c_str(),
-                 target.string().c_str());
-  return true;
+                 written.string().c_str());
 }
 
 }  // namespace
@@ -99,7 +75,7 @@ int runImportCommand(const CommandLine& command) {
   Scene& scene = imported.loaded.scene;
   fs::path texture;
   try {
-    if (!writeTexture(scene, output, model, command.copyTextures, texture)) return kExitBadInput;
+    writeTexture(scene, output, command.copyTextures, texture);
     // Floats as floats (at most 9 significant digits): the handout's peers read them as float.
     writeFileAtomically(output, sceneToXml(scene.parameters(), scene.geometry(), scene.textureImage, NumberText::FloatWhenExact));
   } catch (const ImageIoError& error) {

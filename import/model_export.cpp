@@ -1,5 +1,5 @@
 // A scene as a model file through Assimp's exporters: one Assimp mesh per scene mesh, the handout's materials as
-// Phong colours and shininess.
+// Phong colours and shininess, the texture by the name the export command wrote it under (textureImage).
 
 #include <assimp/Exporter.hpp>
 #include <assimp/material.h>
@@ -10,6 +10,7 @@
 #include <cctype>
 #include <map>
 #include <memory>
+#include <optional>
 #include <system_error>
 
 #include "checked_write.h"
@@ -31,13 +32,33 @@ std::string formatFor(const fs::path& output) {
   return found == kFormats.end() ? std::string() : found->second;
 }
 
-aiMaterial* toAssimp(const Material& m) {
+// The diffuse colour a textured material is written with. The formats multiply it by the texture, and the importer
+// gives a textured material its colour times the texture's mean texel (model_materials.cpp): divided by that mean,
+// the model opens again with its colour. A wholly textured one (factor 1, the handout's 2025 files) is white, as the
+// formats mean by a plain texture.
+Color texturedDiffuse(const Material& m, const Texture& texture) {
+  if (m.textureFactor == 1.0f) return Color(1.0f);
+  const Color mean = model::averageOf(texture);
+  Color kd = m.diffuse;
+  for (int c = 0; c < 3; ++c)
+    if (mean[c] > 0.0f) kd[c] /= mean[c];
+  return kd;
+}
+
+// `texture`: the image file beside the model that a textured material names ("" for none).
+aiMaterial* toAssimp(const Material& m, const std::string& texture, const std::optional<Texture>& image) {
   auto* out = new aiMaterial;
   const aiString name(m.id);
   out->AddProperty(&name, AI_MATKEY_NAME);
-  const aiColor3D diffuse(m.diffuse.x, m.diffuse.y, m.diffuse.z), specular(m.specular.x, m.specular.y, m.specular.z),
+  const bool textured = !texture.empty() && image && m.textureFactor != 0.0f;
+  const Color kd = textured ? texturedDiffuse(m, *image) : m.diffuse;
+  const aiColor3D diffuse(kd.x, kd.y, kd.z), specular(m.specular.x, m.specular.y, m.specular.z),
       ambient(m.ambient.x, m.ambient.y, m.ambient.z), mirror(m.mirror.x, m.mirror.y, m.mirror.z);
   out->AddProperty(&diffuse, 1, AI_MATKEY_COLOR_DIFFUSE);
+  if (textured) {
+    const aiString file(texture);
+    out->AddProperty(&file, AI_MATKEY_TEXTURE_DIFFUSE(0));
+  }
   out->AddProperty(&specular, 1, AI_MATKEY_COLOR_SPECULAR);
   out->AddProperty(&ambient, 1, AI_MATKEY_COLOR_AMBIENT);
   out->AddProperty(&m.phongExponent, 1, AI_MATKEY_SHININESS);
@@ -114,7 +135,8 @@ std::unique_ptr<aiScene> toAssimp(const Scene& s) {
   out->mNumMaterials = static_cast<unsigned>(std::max<std::size_t>(s.materials.size(), 1));
   out->mMaterials = new aiMaterial*[out->mNumMaterials];
   for (unsigned i = 0; i < out->mNumMaterials; ++i)
-    out->mMaterials[i] = i < s.materials.size() ? toAssimp(s.materials[i]) : toAssimp(Material{"default", Color(0.8f), Color(0.8f)});
+    out->mMaterials[i] = i < s.materials.size() ? toAssimp(s.materials[i], s.textureImage, s.texture)
+                                                : toAssimp(Material{"default", Color(0.8f), Color(0.8f)}, "", {});
   std::vector<const Mesh*> meshes;
   for (const Mesh& mesh : s.meshes)
     if (s.meshEnd(mesh) > mesh.firstTriangle) meshes.push_back(&mesh);

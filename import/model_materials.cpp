@@ -148,14 +148,6 @@ std::string keptTextureName(const fs::path& model, const fs::path& file) {
   return model.stem().string() + "_texture.png";
 }
 
-Color averageOf(const Texture& t) {
-  double sum[3] = {0.0, 0.0, 0.0};
-  for (std::size_t i = 0; i + 2 < t.rgb.size(); i += 3)
-    for (int c = 0; c < 3; ++c) sum[c] += t.rgb[i + static_cast<std::size_t>(c)];
-  const double n = std::max<double>(1.0, static_cast<double>(t.rgb.size() / 3) * 255.0);
-  return Color(static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n), static_cast<float>(sum[2] / n));
-}
-
 // The metallic-roughness map a material names ("" when none): glTF's, which Assimp 5.2.5 files as UNKNOWN, or the
 // metalness map of other formats.
 std::string metalRoughTexture(const aiMaterial& m) {
@@ -190,6 +182,14 @@ std::string fileNamePart(const std::string& name) {
 }
 
 }  // namespace
+
+Color averageOf(const Texture& t) {
+  double sum[3] = {0.0, 0.0, 0.0};
+  for (std::size_t i = 0; i + 2 < t.rgb.size(); i += 3)
+    for (int c = 0; c < 3; ++c) sum[c] += t.rgb[i + static_cast<std::size_t>(c)];
+  const double n = std::max<double>(1.0, static_cast<double>(t.rgb.size() / 3) * 255.0);
+  return Color(static_cast<float>(sum[0] / n), static_cast<float>(sum[1] / n), static_cast<float>(sum[2] / n));
+}
 
 void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes& notes) {
   // Assimp's material index -> ours, in order of first use; triangles per base-colour texture.

@@ -52,4 +52,8 @@ bool readStl(const std::string& bytes, const std::filesystem::path& path, SceneG
 
 [[noreturn]] void fail(const std::filesystem::path& path, const std::string& message);
 
+// A texture's mean texel, each channel in [0, 1]: what the importer multiplies a textured material's colour by, and
+// the exporter divides it by again.
+Color averageOf(const Texture& texture);
+
 }  // namespace rayview::model

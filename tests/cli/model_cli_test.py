@@ -163,6 +163,7 @@ def main():
     check_texture_outside_the_folder(a.rayview, s)
     check_windows_texture_paths(a.rayview, s)
     check_export_on_full_disk(a.rayview, s)
+    check_export_keeps_the_texture(a.rayview, s)
     check_unusable_values_name_the_model(a.rayview, s)
 
 
@@ -249,6 +250,51 @@ def check_windows_texture_paths(rayview, s):
         check(r.returncode == 0 and "is not where the model says" in r.stderr and "wood2.png" in r.stderr and
               open(in_windows(name + ".png"), "rb").read() == open(in_windows("plain.png"), "rb").read(),
               f"the Windows path {written} finds the texture beside the model, with a warning: " + r.stderr.strip())
+
+
+def write_png8(path, pixels):
+    # An 8-bit RGB PNG of rows of (r, g, b) pixels.
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    raw = b"".join(b"\x00" + bytes(c for p in row for c in p) for row in pixels)
+    with open(path, "wb") as f:
+        f.write(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", len(pixels[0]), len(pixels), 8, 2, 0, 0, 0)) +
+                chunk(b"IDAT", zlib.compress(raw)) + chunk(b"IEND", b""))
+
+
+def check_export_keeps_the_texture(rayview, s):
+    # An exported model names its texture, written beside it as a PNG, and opens again looking as it did: the same
+    # image from .obj, the texture the right way up (four texels of four colours). PLY and STL carry no texture: none is written.
+    os.makedirs(s("painted/out"), exist_ok=True)
+    in_painted = lambda f: s("painted/" + f)
+    write_png8(in_painted("paint.png"), [[(255, 0, 0), (0, 255, 0)], [(0, 0, 255), (255, 255, 255)]])
+    textured_obj(in_painted, "paint", "paint.png")
+    r = run(["render", in_painted("paint.obj"), "-o", in_painted("original.png")], rayview)
+    check(r.returncode == 0, "the textured model renders: " + r.stderr.strip())
+    original = open(in_painted("original.png"), "rb").read()
+    for ext, companion in (("obj", "exported_obj.mtl"), ("gltf", "exported_gltf.gltf")):
+        model = in_painted(f"out/exported_{ext}.{ext}")
+        texture = in_painted(f"out/exported_{ext}_texture.png")
+        r = run(["export", in_painted("paint.obj"), "-o", model], rayview)
+        check(r.returncode == 0 and os.path.exists(texture) and texture in r.stdout and
+              os.path.basename(texture) in open(in_painted("out/" + companion)).read(),
+              f"export to .{ext} writes the texture beside the model and names it: " + r.stdout.strip() + r.stderr.strip())
+        back = in_painted(f"back_{ext}.png")
+        r = run(["render", model, "-o", back], rayview)
+        if ext == "obj":
+            check(r.returncode == 0 and open(back, "rb").read() == original,
+                  "the exported .obj renders as the model did, texture included: " + r.stderr.strip())
+        else:
+            # glTF has no Phong specular: the model opens again with a dielectric's 0.04, a highlight of at most 3
+            # levels; a texture upside down or a colour lost would differ by up to 255.
+            c = run(["compare", back, in_painted("original.png")], rayview)
+            m = re.search(r"maxdiff=(\d+)", c.stdout)
+            check(r.returncode == 0 and m and int(m.group(1)) <= 3,
+                  "the exported .gltf renders as the model did, texture included (largest difference at most 3): " +
+                  c.stdout.strip())
+    r = run(["export", in_painted("paint.obj"), "-o", in_painted("out/plain.ply")], rayview)
+    check(r.returncode == 0 and not os.path.exists(in_painted("out/plain_texture.png")),
+          "export to .ply writes no texture")
 
 
 def check_export_on_full_disk(rayview, s):
