@@ -1,10 +1,10 @@
 #include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
 
 #include "model_commands.h"
+#include "rayview/file_names.h"
 #include "rayview/image.h"
 #include "rayview/model_client.h"
 #include "rayview/scene_open.h"
@@ -17,8 +17,7 @@ namespace fs = std::filesystem;
 
 // The formats whose materials name image files (OBJ's MTL, glTF's images); PLY and STL carry none.
 bool takesTextures(const fs::path& output) {
-  std::string extension = output.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lowerExtension(output);
   return extension == ".obj" || extension == ".gltf" || extension == ".glb";
 }
 

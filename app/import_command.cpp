@@ -1,10 +1,9 @@
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <system_error>
 
 #include "model_commands.h"
+#include "rayview/file_names.h"
 #include "rayview/image.h"
 #include "rayview/model_client.h"
 #include "rayview/scene_open.h"
@@ -17,9 +16,7 @@ namespace {
 namespace fs = std::filesystem;
 
 bool endsInXml(const fs::path& path) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-  return extension == ".xml";
+  return lowerExtension(path) == ".xml";
 }
 
 bool sameFile(const fs::path& a, const fs::path& b) {

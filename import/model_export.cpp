@@ -7,7 +7,6 @@
 #include <unistd.h>
 
 #include <algorithm>
-#include <cctype>
 #include <map>
 #include <memory>
 #include <optional>
@@ -15,6 +14,7 @@
 
 #include "checked_write.h"
 #include "model_parts.h"
+#include "rayview/file_names.h"
 #include "rayview/model_client.h"
 #include "rayview/model_import.h"
 
@@ -24,8 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string formatFor(const fs::path& output) {
-  std::string extension = output.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lowerExtension(output);
   static const std::map<std::string, std::string> kFormats = {
       {".obj", "obj"}, {".ply", "plyb"}, {".stl", "stlb"}, {".gltf", "gltf2"}, {".glb", "glb2"}};
   const auto found = kFormats.find(extension);

@@ -3,12 +3,12 @@
 // and they take files Assimp refuses, such as a PLY header after a blank line).
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <string_view>
 
 #include "byte_input.h"
 #include "model_parts.h"
+#include "rayview/file_names.h"
 #include "rayview/ply_reader.h"
 
 namespace rayview::model {
@@ -53,8 +53,7 @@ void readPly(const std::string& bytes, const std::filesystem::path& path, SceneG
 }  // namespace
 
 bool readPlyOrStl(const std::filesystem::path& path, SceneGeometry& geometry, Notes& notes) {
-  std::string extension = path.extension().string();
-  std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+  const std::string extension = lowerExtension(path);
   if (extension != ".ply" && extension != ".stl") return false;
   std::string problem;
   const std::string bytes = readWholeFile(path, problem);

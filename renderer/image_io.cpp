@@ -1,6 +1,5 @@
 #include <algorithm>
 #include <atomic>
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -31,6 +30,7 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
 #include <stb_image_write.h>
 
 #include "rayview/image.h"
+#include "rayview/file_names.h"
 
 namespace rayview {
 namespace png_detail {
@@ -177,11 +177,6 @@ unsigned char* deflateForStb(unsigned char* data, int length, int* outLength, in
 
 namespace {
 
-std::string lowerExtension(const std::filesystem::path& path) {
-  std::string ext = path.extension().string();
-  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
-  return ext;
-}
 
 void appendBytes(void* context, void* data, int size) {
   static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
