@@ -142,9 +142,9 @@ class Rows:
             return self.execute([rv, *arguments, "--threads", "1"], out)
         source = self.inputs[kind]
         if row == "`bench tradeoff`":
-            # At a quarter of the size: the cell checks what is measured, not how well (41 s a run under ASan).
+            # At a tenth of the size: the cell checks what is measured, not how well.
             run = self.execute([rv, "bench", "tradeoff", source, "--out", out, "--quiet", "--threads", "1",
-                                "--scale", "0.25", *options], out)
+                                "--scale", "0.1", *options], out)
             # Times differ from run to run: keep what was rendered (knob, setting, rays).
             csv = run.files.get("tradeoff.csv", b"").decode().splitlines()
             kept = [",".join(l.split(",")[1:3] + l.split(",")[-1:]) for l in csv[1:]]
