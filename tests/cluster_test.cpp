@@ -1,4 +1,4 @@
-// The parts of a distributed render that need no MPI: the tile plan, the dealer that re-deals a lost rank's
+// The parts of a distributed render that need no MPI: the tile plan, the pile that re-deals a lost rank's
 // tiles, a tile's pixels against the whole frame's, the frames dealt whole or in tiles and put together, and the
 // scene hash, and a batch's scenes as runs and as the orders rank 0 sends.
 #include <gtest/gtest.h>
