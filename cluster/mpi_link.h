@@ -12,6 +12,8 @@
 #include <thread>
 #include <vector>
 
+#include "link_times.h"
+
 namespace rayview::cluster {
 
 enum Tag : int {
@@ -37,15 +39,6 @@ struct TileResultHeader {
   double busyMs = 0.0;
   std::uint64_t camera = 0, shadow = 0, reflection = 0;
 };
-
-// A worker rendering sends a heartbeat this often; rank 0 declares it lost after kLostAfter of silence while it
-// holds tiles. A worker declares rank 0 lost after kRankZeroLostAfter without a tile or the end.
-inline constexpr auto kAliveEvery = std::chrono::milliseconds(500);
-inline constexpr auto kLostAfter = std::chrono::milliseconds(3000);
-inline constexpr auto kRankZeroLostAfter = std::chrono::milliseconds(6000);
-// How long a waiting rank sleeps between probes: short next to a tile, long next to a probe's cost.
-inline constexpr auto kProbePause = std::chrono::microseconds(200);
-inline constexpr auto kLongestProbePause = std::chrono::microseconds(2000);
 
 // A message waiting from `source` (MPI_ANY_SOURCE) with `tag` (MPI_ANY_TAG)? Fills `status` when there is.
 inline bool messageWaiting(int source, int tag, MPI_Status& status) {

@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <utility>
 
 #include "rayview/exit_codes.h"
 #include "mpi_link.h"
@@ -18,8 +19,7 @@
 #include "scene_distribution.h"
 #include "scene_hash.h"
 #include "scene_render_thread.h"
-#include "tile_dealer.h"
-#include "worker_watch.h"
+#include "work_dealer.h"
 
 namespace rayview::cluster {
 namespace {
@@ -28,7 +28,6 @@ using Clock = std::chrono::steady_clock;
 
 // MPI counts are ints: a scene order goes in pieces.
 constexpr std::size_t kPiece = std::size_t{1} << 30;
-constexpr int kNobody = -1;
 
 // A scene between its load on rank 0 and its last frame written.
 struct SceneInFlight {
@@ -59,32 +58,22 @@ SceneLoad loadScene(const RenderJob& job) {
   return load;
 }
 
-class SceneCoordinator {
+// A rank holds one scene at a time: its frames come back one by one, and it is idle again after the last.
+constexpr DealRules kSceneRules{1, true};
+
+class SceneCoordinator final : public Dealing {
  public:
   SceneCoordinator(const RenderJob& job, const std::vector<FrameJob>& frames, const std::vector<SceneRun>& runs,
                    ThreadPool& pool, FrameProgress& progress, std::vector<RankTally>& tally)
-      : job_(job), frames_(frames), runs_(runs), progress_(progress), tally_(tally), pile_(runs.size()),
-        scenes_(runs.size()), held_(tally.size(), kNobody), heldLeft_(tally.size(), 0),
-        watch_(static_cast<int>(tally.size())), own_(pool) {}
+      : job_(job), frames_(frames), runs_(runs), progress_(progress), tally_(tally), scenes_(runs.size()),
+        holding_(tally.size()), watch_(static_cast<int>(tally.size())), dealer_(runs.size(), watch_, kSceneRules),
+        own_(pool) {}
 
   int run() {
-    auto pause = kProbePause;
-    for (;;) {
-      const bool worked = takeOwnResults() | receiveOne();
-      if (!stopped_) dealToIdleRanks();
-      if (!stopped_) loadAhead();
-      if (pile_.allFinished() || (stopped_ && nothingHeld())) break;
-      watchWorkers();  // every time round, so that a stream of messages never holds back the nudges
-      if (worked) {
-        pause = kProbePause;
-        continue;
-      }
-      std::this_thread::sleep_for(pause);
-      pause = std::min(pause * 2, kLongestProbePause);
-    }
+    dealer_.run(*this);
     const std::int32_t end[2] = {code_, peerLost() ? 1 : 0};
     for (int w = 1; w < ranks(); ++w)
-      send(w, kTagSceneEnd, Bytes(reinterpret_cast<const std::uint8_t*>(end),
+      post(w, kTagSceneEnd, Bytes(reinterpret_cast<const std::uint8_t*>(end),
                                   reinterpret_cast<const std::uint8_t*>(end) + sizeof end));
     // The end is small and goes eagerly; a lost rank's is not waited for.
     outbox_.drain(std::chrono::seconds(1));
@@ -93,14 +82,33 @@ class SceneCoordinator {
     return code_;
   }
 
+  // What the dealer asks of scenes: each is sent whole to one rank (rank 0's own render thread last), in the batch's
+  // order, once rank 0 has loaded it.
+  void send(int rank, std::size_t run) override {
+    holding_[static_cast<std::size_t>(rank)] = {run, framesOf(run)};
+    if (rank == 0) renderOwn(run);
+    else sendScene(rank, run);
+  }
+  bool receive() override { return takeOwnResults() | receiveOne(); }
+  void nudge(int worker) override { post(worker, kTagNudge, {}); }
+  void lost(int worker, int why, const std::vector<std::size_t>& runs) override;
+  Halt halt() override { return stopped_ ? Halt::AfterHeld : Halt::No; }
+  bool ready(std::size_t run) override;
+  void tick() override {
+    if (!stopped_) loadAhead();
+    outbox_.reap();
+  }
+
  private:
+  // The scene a rank renders and how many of its frames are still to come back.
+  struct Holding {
+    std::size_t run = 0;
+    std::size_t framesLeft = 0;
+  };
+
   int ranks() const { return static_cast<int>(tally_.size()); }
   std::size_t framesOf(std::size_t run) const { return runs_[run].end - runs_[run].first; }
   const FrameJob& frameOf(std::size_t run, std::size_t k) const { return frames_[runs_[run].first + k]; }
-
-  bool nothingHeld() const {
-    return std::all_of(held_.begin(), held_.end(), [](int run) { return run == kNobody; });
-  }
 
   void stop(int code, std::string message) {
     if (stopped_) return;
@@ -109,51 +117,16 @@ class SceneCoordinator {
     message_ = std::move(message);
   }
 
-  // Idle ranks get the next scene once it is loaded: scenes load in the batch's order, so a scene that fails to
-  // load stops the dealing with every scene before it dealt. Rank 0's own thread comes last: a worker's scene has
-  // further to go.
-  void dealToIdleRanks() {
-    for (int k = 1; k <= ranks() && !stopped_; ++k) {
-      const int r = k % ranks();
-      if (held_[r] != kNobody || watch_.lost(r)) continue;
-      const auto next = pile_.next();
-      if (!next || !ready(*next)) return;
-      const auto run = pile_.take(r);
-      held_[r] = static_cast<int>(*run);
-      heldLeft_[r] = framesOf(*run);
-      watch_.startedHolding(r);
-      if (r == 0) renderOwn(*run);
-      else sendScene(r, *run);
-    }
-  }
-
   // The next scene of the pile, loaded while the ranks render, so that the next idle rank does not wait for its
   // parse.
   void loadAhead() {
-    if (const auto next = pile_.next()) ready(*next);
+    if (const auto next = dealer_.pile().next()) ready(*next);
   }
 
-  // Whether `run` is loaded; if not, its load is started (one at a time, on a thread of its own, so that this
-  // thread keeps answering the ranks however long a parse takes). A load that failed stops the batch.
-  bool ready(std::size_t run) {
-    SceneInFlight& scene = scenes_[run];
-    if (scene.scene) return true;
-    if (!loading_.valid()) {
-      const RenderJob sceneJob = jobForFrame(job_, frameOf(run, 0));
-      loadingRun_ = run;
-      loading_ = std::async(std::launch::async, [sceneJob] { return loadScene(sceneJob); });
-      return false;
-    }
-    if (loadingRun_ != run || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
-    SceneLoad load = loading_.get();
-    if (load.code != kExitOk) {
-      stop(load.code, load.message);
-      return false;
-    }
-    scene.scene = std::move(load.scene);
-    scene.settings = load.settings;
-    scene.written.assign(framesOf(run), false);
-    return true;
+  // The held scene of `rank` is no more: it is idle.
+  void idle(int rank) {
+    holding_[static_cast<std::size_t>(rank)] = {};
+    dealer_.releaseAll(rank);
   }
 
   std::vector<std::int32_t> frameList(std::size_t run) const {
@@ -179,16 +152,13 @@ class SceneCoordinator {
     order.parameters = encodeSnapshot(scene.scene->parameters(), scene.settings);
     auto bytes = std::make_shared<const Bytes>(encodeSceneOrder(order));
     const auto size = static_cast<std::int64_t>(bytes->size());
-    send(worker, kTagScene, Bytes(reinterpret_cast<const std::uint8_t*>(&size),
+    post(worker, kTagScene, Bytes(reinterpret_cast<const std::uint8_t*>(&size),
                                   reinterpret_cast<const std::uint8_t*>(&size) + sizeof size));
     for (std::size_t at = 0; at < bytes->size(); at += kPiece)
       outbox_.sendPart(worker, kTagSceneBytes, bytes, at, std::min(kPiece, bytes->size() - at));
   }
 
-  void send(int worker, int tag, Bytes bytes) {
-    outbox_.send(worker, tag, std::move(bytes));
-    watch_.sent(worker);
-  }
+  void post(int worker, int tag, Bytes bytes) { outbox_.send(worker, tag, std::move(bytes)); }
 
   bool takeOwnResults() {
     bool any = false;
@@ -196,7 +166,7 @@ class SceneCoordinator {
       any = true;
       if (!done->error.empty()) {
         stop(kExitBadInput, "rayview: rank 0: " + done->error);
-        held_[0] = kNobody;
+        idle(0);
         continue;
       }
       frameDone(0, *done, done->image.rgb.data(), done->image.rgb.size());
@@ -209,10 +179,9 @@ class SceneCoordinator {
     if (!arrival) return false;
     const int worker = arrival->source;
     if (!arrival->whole) {
-      loseWorker(worker);
+      dealer_.lose(*this, worker, WorkerWatch::kSilent);
       return true;
     }
-    watch_.heard(worker);
     if (arrival->tag == kTagSceneResult && arrival->bytes >= sizeof(SceneResultHeader)) {
       SceneResultHeader header;
       std::memcpy(&header, inbox_.data(), sizeof header);
@@ -222,8 +191,9 @@ class SceneCoordinator {
     } else if (arrival->tag == kTagLoadError) {
       stop(kExitBadInput, "rayview: rank " + std::to_string(worker) + ": " +
                               std::string(reinterpret_cast<const char*>(inbox_.data()), arrival->bytes));
-      if (!watch_.lost(worker)) held_[worker] = kNobody;
+      if (!watch_.lost(worker)) idle(worker);
     }
+    dealer_.heard(worker);  // after what it said: a rank idle again owes nothing
     return true;
   }
 
@@ -236,7 +206,8 @@ class SceneCoordinator {
     tally.busyMs += done.busyMs;
     tally.rays += done.rays;
     ++tally.frames;
-    if (held_[rank] == static_cast<int>(run) && --heldLeft_[rank] == 0) held_[rank] = kNobody, ++tally.scenes;
+    Holding& holding = holding_[static_cast<std::size_t>(rank)];
+    if (holding.framesLeft > 0 && holding.run == run && --holding.framesLeft == 0) idle(rank), ++tally.scenes;
     SceneInFlight& scene = scenes_[run];
     if (!scene.scene || scene.written[static_cast<std::size_t>(done.frame)]) return;  // a late copy
     if (rank != 0 && done.hash != scene.hash) {
@@ -262,26 +233,8 @@ class SceneCoordinator {
     progress_.frameWritten(frame.output, job_.quiet);
     noteFrames(progress_.written(), frames_.size());
     if (std::find(scene.written.begin(), scene.written.end(), false) != scene.written.end()) return;
-    pile_.finish(run, rank);
+    dealer_.finish(run);
     scene = SceneInFlight();  // rank 0 holds only the scenes in flight
-  }
-
-  // Silent workers holding a scene are lost and their scene dealt again; idle ones get a nudge.
-  void watchWorkers() {
-    outbox_.reap();
-    watch_.watch([this](int w) { return held_[w] != kNobody; }, [this](int w) { loseWorker(w); },
-                 [this](int w) { send(w, kTagNudge, {}); });
-  }
-
-  void loseWorker(int worker) {
-    if (!watch_.lose(worker)) return;
-    const int run = held_[worker];
-    held_[worker] = kNobody;
-    pile_.reclaim(worker);
-    if (run == kNobody) return;
-    std::fprintf(stderr, "rayview: warning: rank %d fell silent for %.0f s holding the scene %s; dealing it to the "
-                 "other ranks\n", worker, std::chrono::duration<double>(kLostAfter).count(),
-                 frameOf(static_cast<std::size_t>(run), 0).scenePath.c_str());
   }
 
   const RenderJob& job_;
@@ -289,11 +242,10 @@ class SceneCoordinator {
   const std::vector<SceneRun>& runs_;
   FrameProgress& progress_;
   std::vector<RankTally>& tally_;
-  TileDealer pile_;  // the scenes, dealt in order; a lost rank's back to the front
   std::vector<SceneInFlight> scenes_;
-  std::vector<int> held_;                 // per rank: the run it renders
-  std::vector<std::size_t> heldLeft_;     // per rank: frames of that run not yet sent back
+  std::vector<Holding> holding_;  // per rank
   WorkerWatch watch_;
+  WorkDealer dealer_;  // the scenes, dealt in order; a lost rank's back to the front
   Outbox outbox_{[this](int rank) { return watch_.lost(rank); }};
   Bytes inbox_;
   std::future<SceneLoad> loading_;  // the scene being loaded, at most one
@@ -303,6 +255,40 @@ class SceneCoordinator {
   std::string message_;
   SceneRenderThread own_;  // last: its thread ends before the members it reports to
 };
+
+// A rank silent while it held a scene (or mid-message) is lost: the job ends without MPI_Finalize, and its scene
+// goes back to the pile.
+void SceneCoordinator::lost(int worker, int /*why*/, const std::vector<std::size_t>& /*runs*/) {
+  notePeerLost();
+  const Holding holding = std::exchange(holding_[static_cast<std::size_t>(worker)], {});
+  if (holding.framesLeft == 0) return;
+  std::fprintf(stderr, "rayview: warning: rank %d fell silent for %.0f s holding the scene %s; dealing it to the "
+               "other ranks\n", worker, std::chrono::duration<double>(kLostAfter).count(),
+               frameOf(holding.run, 0).scenePath.c_str());
+}
+
+// Whether `run` is loaded; if not, its load is started (one at a time, on a thread of its own, so that this
+// thread keeps answering the ranks however long a parse takes). A load that failed stops the batch.
+bool SceneCoordinator::ready(std::size_t run) {
+  SceneInFlight& scene = scenes_[run];
+  if (scene.scene) return true;
+  if (!loading_.valid()) {
+    const RenderJob sceneJob = jobForFrame(job_, frameOf(run, 0));
+    loadingRun_ = run;
+    loading_ = std::async(std::launch::async, [sceneJob] { return loadScene(sceneJob); });
+    return false;
+  }
+  if (loadingRun_ != run || loading_.wait_for(std::chrono::seconds(0)) != std::future_status::ready) return false;
+  SceneLoad load = loading_.get();
+  if (load.code != kExitOk) {
+    stop(load.code, load.message);
+    return false;
+  }
+  scene.scene = std::move(load.scene);
+  scene.settings = load.settings;
+  scene.written.assign(framesOf(run), false);
+  return true;
+}
 
 }  // namespace
 

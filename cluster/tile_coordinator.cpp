@@ -10,10 +10,9 @@
 #include <thread>
 
 #include "mpi_link.h"
-#include "tile_dealer.h"
 #include "tile_exchange.h"
 #include "tile_render.h"
-#include "worker_watch.h"
+#include "work_dealer.h"
 
 namespace rayview::cluster {
 namespace {
@@ -36,60 +35,55 @@ double msBetween(Clock::time_point a, Clock::time_point b) {
   return std::chrono::duration<double, std::milli>(b - a).count();
 }
 
-class Coordinator {
+class Coordinator final : public Dealing {
  public:
-  Coordinator(const std::vector<WorkUnit>& units, int ranks, FrameAssembly& assembly, int round)
-      : units_(units), assembly_(assembly), round_(round), dealer_(units.size()),
-        tally_(static_cast<std::size_t>(ranks)), held_(static_cast<std::size_t>(ranks), 0), watch_(ranks) {}
+  Coordinator(const std::vector<WorkUnit>& units, int ranks, FrameAssembly& assembly, int round,
+              const std::vector<bool>& lostBefore)
+      : units_(units), assembly_(assembly), round_(round), tally_(static_cast<std::size_t>(ranks)),
+        watch_(ranks, lostBefore), dealer_(units.size(), watch_, DealRules{kDepth}) {}
 
-  ExchangeResult run(const TracerFor& tracerFor, ThreadPool& pool, std::vector<bool>& lost) {
-    watch_ = WorkerWatch(ranks(), lost);
+  ExchangeResult run(const TracerFor& tracerFor, ThreadPool& pool, std::vector<bool>& lostRanks) {
     if (ranks() == 1) {  // nobody to deal to: no coordinator polling beside the render
       renderOwnShare(tracerFor, pool);
-      return {tally_, dealer_.allFinished()};
+      return {tally_, dealer_.pile().allFinished()};
     }
     std::thread local([&] { renderOwnShare(tracerFor, pool); });
-    for (int w = 1; w < ranks(); ++w) deal(w);
-    // Each probe runs MPI's progress engine (microseconds of a core): the pause grows while nothing arrives, up to
-    // where a worker, holding its next tile already, still never waits.
-    auto pause = kProbePause;
-    while (!dealer_.allFinished() && !assembly_.failed()) {
-      if (receiveOne()) {
-        pause = kProbePause;
-        continue;
-      }
-      watchWorkers();
-      std::this_thread::sleep_for(pause);
-      pause = std::min(pause * 2, kLongestProbePause);
-    }
+    dealer_.run(*this);
     // A frame not written ends the job here, and the workers, a step behind rank 0, end without MPI_Finalize.
     if (assembly_.failed()) notePeerLost();
     // Lost ranks too: one only slow (starved of CPU) then ends cleanly; to a dead one the send never completes.
-    for (int w = 1; w < ranks(); ++w) send(w, peerLost() ? kNoMoreTilesRankLost : kNoMoreTiles);
-    dealer_.stop();  // a frame that could not be written ends the round with units left
+    for (int w = 1; w < ranks(); ++w) sendValue(w, peerLost() ? kNoMoreTilesRankLost : kNoMoreTiles);
+    dealer_.pile().stop();  // a frame that could not be written ends the round with units left
     local.join();
     finishSends();
-    lost = watch_.lostRanks();
-    for (int w = 1; w < ranks(); ++w) tally_[w].lost = lost[w];
-    return {tally_, dealer_.allFinished()};
+    lostRanks = watch_.lostRanks();
+    for (int w = 1; w < ranks(); ++w) tally_[w].lost = lostRanks[w];
+    return {tally_, dealer_.pile().allFinished()};
   }
+
+  // What the dealer asks of tiles and whole frames:
+  void send(int worker, std::size_t unit) override { sendValue(worker, static_cast<std::int32_t>(unit)); }
+  bool receive() override;
+  void nudge(int worker) override { sendValue(worker, kStillWorking); }
+  void lost(int worker, int why, const std::vector<std::size_t>& units) override;
+  Halt halt() override { return assembly_.failed() ? Halt::Now : Halt::No; }
+  int weight(std::size_t unit) override { return units_[unit].whole ? kDepth : 1; }
 
  private:
   int ranks() const { return static_cast<int>(tally_.size()); }
-  int weight(std::size_t unit) const { return units_[unit].whole ? kDepth : 1; }
 
   // Rank 0's own share, on a thread of its own: the main thread stays free to deal.
   void renderOwnShare(const TracerFor& tracerFor, ThreadPool& pool) {
     Image pixels;
     while (!assembly_.failed()) {
-      const auto unit = dealer_.takeOrWait(0);
+      const auto unit = dealer_.pile().takeOrWait(0);
       if (!unit) break;
       const WorkUnit& u = units_[*unit];
       const auto start = Clock::now();
       RayCounts rays;
       renderTile(tracerFor(u.frame), u.tile, pool, pixels, rays);
       count(tally_[0], *unit, msBetween(start, Clock::now()), rays);
-      if (dealer_.finish(*unit, 0)) place(*unit, pixels.rgb.data());
+      if (dealer_.finish(*unit)) place(*unit, pixels.rgb.data());
     }
   }
 
@@ -104,10 +98,9 @@ class Coordinator {
     assembly_.place(unit, rgb);
   }
 
-  void send(int worker, std::int32_t value) {
+  void sendValue(int worker, std::int32_t value) {
     outbox_.push_back({value, MPI_REQUEST_NULL});
     MPI_Isend(&outbox_.back().value, 1, MPI_INT32_T, worker, kTagTile, MPI_COMM_WORLD, &outbox_.back().request);
-    watch_.sent(worker);
     // Completed sends leave the front; a send to a lost rank may never complete and is left alone.
     while (outbox_.size() > 64) {
       int done = 0;
@@ -115,29 +108,6 @@ class Coordinator {
       if (!done) break;
       outbox_.pop_front();
     }
-  }
-
-  void deal(int worker) {
-    while (!watch_.lost(worker) && held_[worker] < kDepth) {
-      const auto tile = dealer_.take(worker);
-      if (!tile) return;
-      if (held_[worker] == 0) watch_.startedHolding(worker);
-      held_[worker] += weight(*tile);
-      send(worker, static_cast<std::int32_t>(*tile));
-    }
-  }
-
-  bool receiveOne() {
-    const std::optional<Arrival> arrival = receiveAny(inbox_, kLostAfter);
-    if (!arrival) return false;
-    const int worker = arrival->source;
-    if (!arrival->whole) {
-      loseWorker(worker);
-      return true;
-    }
-    watch_.heard(worker);
-    if (arrival->tag == kTagResult && arrival->bytes >= sizeof(TileResultHeader)) takeResult(worker);
-    return true;
   }
 
   void takeResult(int worker) {
@@ -151,31 +121,8 @@ class Coordinator {
     if (inbox_.size() - 1 != expected) return;
     count(tally_[worker], unit, header.busyMs, RayCounts{header.camera, header.shadow, header.reflection});
     // A late result from a rank declared lost still counts, if no one else finished the unit first.
-    if (dealer_.finish(unit, worker)) place(unit, inbox_.data() + sizeof header);
-    held_[worker] = std::max(0, held_[worker] - weight(unit));
-    deal(worker);
-  }
-
-  // Silent workers holding tiles are lost and their tiles dealt again; idle ones get work or a nudge.
-  void watchWorkers() {
-    for (int w = 1; w < ranks(); ++w) deal(w);
-    watch_.watch([this](int w) { return held_[w] > 0; }, [this](int w) { loseWorker(w); },
-                 [this](int w) { send(w, kStillWorking); });
-  }
-
-  void loseWorker(int worker) {
-    if (!watch_.lose(worker)) return;
-    held_[worker] = 0;
-    const std::vector<std::size_t> back = dealer_.reclaim(worker);
-    std::size_t frames = 0;
-    for (std::size_t unit : back) frames += units_[unit].whole ? 1 : 0;
-    const std::size_t tiles = back.size() - frames;
-    auto counted = [](std::size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); };
-    std::string what = frames > 0 ? counted(frames, "unfinished frame") : counted(tiles, "unfinished tile");
-    if (frames > 0 && tiles > 0) what += " and " + counted(tiles, "tile");
-    std::fprintf(stderr, "rayview: warning: rank %d fell silent for %.0f s holding %s; dealing %s to the other "
-                 "ranks\n", worker, std::chrono::duration<double>(kLostAfter).count(), what.c_str(),
-                 back.size() == 1 ? "it" : "them");
+    if (dealer_.finish(unit)) place(unit, inbox_.data() + sizeof header);
+    dealer_.release(worker, weight(unit));
   }
 
   // The last sends (the end of the tiles) are small and go eagerly; a lost rank's are not waited for.
@@ -197,13 +144,40 @@ class Coordinator {
   const std::vector<WorkUnit>& units_;
   FrameAssembly& assembly_;
   int round_;
-  TileDealer dealer_;
   std::vector<RankTally> tally_;
-  std::vector<int> held_;
   WorkerWatch watch_;
+  WorkDealer dealer_;
   std::deque<Outgoing> outbox_;  // a deque: each value stays where its send reads it
   std::vector<std::uint8_t> inbox_;
 };
+
+bool Coordinator::receive() {
+  const std::optional<Arrival> arrival = receiveAny(inbox_, kLostAfter);
+  if (!arrival) return false;
+  const int worker = arrival->source;
+  if (!arrival->whole) {
+    dealer_.lose(*this, worker, WorkerWatch::kSilent);
+    return true;
+  }
+  if (arrival->tag == kTagResult && arrival->bytes >= sizeof(TileResultHeader)) takeResult(worker);
+  dealer_.heard(worker);
+  return true;
+}
+
+// A worker silent while it held units (or mid-message) is lost: the job ends without MPI_Finalize, and its units
+// go to the other ranks.
+void Coordinator::lost(int worker, int /*why*/, const std::vector<std::size_t>& back) {
+  notePeerLost();
+  std::size_t frames = 0;
+  for (std::size_t unit : back) frames += units_[unit].whole ? 1 : 0;
+  const std::size_t tiles = back.size() - frames;
+  auto counted = [](std::size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); };
+  std::string what = frames > 0 ? counted(frames, "unfinished frame") : counted(tiles, "unfinished tile");
+  if (frames > 0 && tiles > 0) what += " and " + counted(tiles, "tile");
+  std::fprintf(stderr, "rayview: warning: rank %d fell silent for %.0f s holding %s; dealing %s to the other "
+               "ranks\n", worker, std::chrono::duration<double>(kLostAfter).count(), what.c_str(),
+               back.size() == 1 ? "it" : "them");
+}
 
 }  // namespace
 
@@ -211,7 +185,7 @@ ExchangeResult coordinateUnits(const std::vector<WorkUnit>& units, FrameAssembly
                                ThreadPool& pool, const TracerFor& tracerFor, int round, std::vector<bool>& lost) {
   gPlanned.store(units.size());
   gPlaced.store(0);
-  Coordinator coordinator(units, ranks, assembly, round);
+  Coordinator coordinator(units, ranks, assembly, round, lost);
   return coordinator.run(tracerFor, pool, lost);
 }
 

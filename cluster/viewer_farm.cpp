@@ -14,22 +14,22 @@
 
 #include "mpi_link.h"
 #include "rayview/grid_render.h"
-#include "tile_dealer.h"
 #include "tile_exchange.h"
 #include "tile_plan.h"
 #include "view_codec.h"
 #include "view_messages.h"
+#include "work_dealer.h"
 
 namespace rayview::cluster {
 namespace {
 
 using Clock = std::chrono::steady_clock;
 
-// Tiles a worker holds at once: one to trace, one on its way.
-constexpr int kDepth = 2;
-// A worker holding tiles and silent this long is left out, its tiles dealt to the others: it says it is alive every
-// kAliveEvery while it builds or traces, so this is a rank that stopped, not a slow one.
-constexpr auto kSilentFor = kLostAfter;
+// Tiles a worker holds at once (one to trace, one on its way), rank 0's own thread taking its own; no nudges (a
+// worker waits for rank 0 however long the window is idle). A worker holding tiles and silent kLostAfter is left
+// out, its tiles dealt to the others: it says it is alive every kAliveEvery while it builds or traces, so this is
+// a rank that stopped, not a slow one.
+constexpr DealRules kPassRules{2, false, false, kLostAfter};
 // A tile owed this long at the end of a pass is dealt again to a free rank (see Pass::patience).
 constexpr auto kLatePatience = std::chrono::milliseconds(40);
 
@@ -43,43 +43,46 @@ std::vector<std::uint8_t> bytesOf(const T& value) {
 }  // namespace
 
 // One pass: its tiles dealt to the workers and to rank 0's own thread, their pixels handed to the sink as they come.
-class ViewerFarm::Pass {
+class ViewerFarm::Pass final : public Dealing {
  public:
-  Pass(ViewerFarm& farm, const PixelSource& source, const FarmPass& pass, const FarmSink& sink)
-      : farm_(farm), source_(source), pass_(pass), sink_(sink),
+  Pass(ViewerFarm& farm, const PixelSource& source, const FarmPass& pass, const FarmSink& sink,
+       const std::function<bool()>& stopped, RayCounts& rays)
+      : farm_(farm), source_(source), pass_(pass), sink_(sink), stopped_(stopped), rays_(rays),
         tiles_(clusterTiles((source.width() + pass.stride - 1) / pass.stride,
                             (source.height() + pass.stride - 1) / pass.stride, farm.ranks_)),
-        dealer_(tiles_.size()), held_(static_cast<std::size_t>(farm.ranks_), 0), dealtAt_(tiles_.size()) {}
+        dealer_(tiles_.size(), farm.watch_, kPassRules), dealtAt_(tiles_.size()) {}
 
-  bool run(const std::function<bool()>& stopped, RayCounts& rays) {
+  bool run() {
     // What the workers sent while no pass listened (late results, heartbeats) speaks for them before any silence is
     // judged: a rank idle between passes is silent only from rank 0's side.
-    while (receiveOne(rays)) {
+    while (receiveOne()) {
     }
     std::thread local([this] { traceOwnShare(); });
-    for (int w = 1; w < farm_.ranks_; ++w) deal(w);
-    auto pause = kProbePause;
-    bool complete = false;
-    for (;;) {
-      bool progressed = takeLocal(rays);
-      progressed = receiveOne(rays) || progressed;
-      if (dealer_.allFinished()) {
-        complete = true;
-        break;
-      }
-      if (stopped()) break;
-      if (progressed) {
-        pause = kProbePause;
-        continue;
-      }
-      watchWorkers();
-      std::this_thread::sleep_for(pause);
-      pause = std::min(pause * 2, kLongestProbePause);
-    }
-    dealer_.stop();
+    const bool complete = dealer_.run(*this);
+    dealer_.pile().stop();
     local.join();
-    takeLocal(rays);
+    takeLocal();
     return complete;
+  }
+
+  // What the dealer asks of a pass's tiles:
+  void send(int worker, std::size_t tile) override {
+    dealtAt_[tile] = Clock::now();
+    const Tile& t = tiles_[tile];
+    const ViewTileRequest request{farm_.passSerial_, pass_.generation, static_cast<std::int32_t>(tile),
+                                  pass_.stride, pass_.skipStride, pass_.sample, t.x0, t.y0, t.x1, t.y1};
+    farm_.sendTo(worker, kTagViewTile, bytesOf(request));
+  }
+  bool receive() override { return takeLocal() | receiveOne(); }
+  void lost(int worker, int why, const std::vector<std::size_t>& /*tiles*/) override {
+    if (why == static_cast<int>(Loss::Silent))
+      std::fprintf(stderr, "rayview: warning: rank %d fell silent; the other ranks go on without it\n", worker);
+  }
+  Halt halt() override { return stopped_() ? Halt::Now : Halt::No; }
+  // How long a rank may owe a tile before it counts as late: twice the slowest tile of this pass so far, and never
+  // less than kLatePatience (a tile's round trip on a busy machine). A rank that is only slow may still win.
+  std::optional<Clock::duration> patience() override {
+    return std::max<Clock::duration>(kLatePatience, 2 * slowestTile_);
   }
 
  private:
@@ -93,7 +96,7 @@ class ViewerFarm::Pass {
 
   // Rank 0's own share, on a thread of its own: the calling thread stays free to deal and receive.
   void traceOwnShare() {
-    while (const auto tile = dealer_.takeOrWait(0)) {
+    while (const auto tile = dealer_.pile().takeOrWait(0)) {
       LocalTile done{*tile, {}, {}, {}, 0};
       gridTilePixels(tiles_[*tile], pass_.stride, pass_.skipStride, done.pixels);
       const auto start = Clock::now();
@@ -105,15 +108,15 @@ class ViewerFarm::Pass {
     }
   }
 
-  bool takeLocal(RayCounts& rays) {
+  bool takeLocal() {
     std::deque<LocalTile> done;
     {
       std::lock_guard lock(localMutex_);
       done.swap(local_);
     }
     for (LocalTile& t : done) {
-      rays += t.rays;
-      if (!dealer_.finish(t.tile, 0)) continue;
+      rays_ += t.rays;
+      if (!dealer_.finish(t.tile)) continue;
       ++farm_.tilesTraced_[0];
       farm_.busyMicroseconds_[0] += t.busyMicroseconds;
       sink_(t.pixels.data(), t.colors.data(), static_cast<int>(t.pixels.size()));
@@ -121,105 +124,60 @@ class ViewerFarm::Pass {
     return !done.empty();
   }
 
-  void deal(int worker) {
-    const auto now = Clock::now();
-    while (!farm_.lost(worker) && !farm_.suspect(worker, now, patience()) && held_[worker] < kDepth) {
-      const auto tile = dealer_.take(worker);
-      if (!tile) return;
-      if (!farm_.owedSince_[worker]) farm_.owedSince_[worker] = now;
-      dealtAt_[*tile] = now;
-      ++held_[worker];
-      const Tile& t = tiles_[*tile];
-      const ViewTileRequest request{farm_.passSerial_, pass_.generation, static_cast<std::int32_t>(*tile),
-                                    pass_.stride, pass_.skipStride, pass_.sample, t.x0, t.y0, t.x1, t.y1};
-      farm_.sendTo(worker, kTagViewTile, bytesOf(request));
-    }
-  }
-
-  bool receiveOne(RayCounts& rays) {
+  bool receiveOne() {
     // Never a blocking receive: a worker that died mid-message would hold the window's renderer for ever.
-    const std::optional<Arrival> arrival = receiveAny(inbox_, kSilentFor);
+    const std::optional<Arrival> arrival = receiveAny(inbox_, kLostAfter);
     if (!arrival) return false;
     const int worker = arrival->source;
     if (!arrival->whole) {
       std::fprintf(stderr, "rayview: warning: rank %d fell silent mid-message; the other ranks go on without it\n",
                    worker);
-      lose(worker, Loss::SilentMidMessage);
+      dealer_.lose(*this, worker, static_cast<int>(Loss::SilentMidMessage));
       return true;
     }
     if (arrival->tag == kTagViewProblem) {
       std::fprintf(stderr, "rayview: error: rank %d cannot trace: %.*s; the other ranks go on without it\n", worker,
                    static_cast<int>(arrival->bytes), reinterpret_cast<const char*>(inbox_.data()));
-      lose(worker, Loss::CannotTrace);
+      dealer_.lose(*this, worker, static_cast<int>(Loss::CannotTrace));
     } else if (arrival->tag == kTagViewResult && arrival->bytes >= sizeof(ViewTileResultHeader)) {
-      takeResult(worker, arrival->bytes, rays);
+      takeResult(worker, arrival->bytes);
     }
     // Any word from it (a result, a heartbeat) says it is alive: what it still holds is owed from now on.
-    if (!farm_.lost(worker))
-      farm_.owedSince_[worker] = held_[worker] > 0 ? std::optional(Clock::now()) : std::nullopt;
+    dealer_.heard(worker);
     return true;
   }
 
-  void takeResult(int worker, std::size_t bytes, RayCounts& rays) {
+  void takeResult(int worker, std::size_t bytes) {
     ViewTileResultHeader header;
     std::memcpy(&header, inbox_.data(), sizeof header);
     if (header.pass != farm_.passSerial_) return;  // a late result of an earlier pass
-    if (held_[worker] > 0) --held_[worker];
+    dealer_.release(worker);
     const auto tile = static_cast<std::size_t>(header.tile);
-    if (tile < tiles_.size()) {
-      gridTilePixels(tiles_[tile], pass_.stride, pass_.skipStride, pixels_);
-      const std::size_t expected = sizeof header + pixels_.size() * sizeof(Color);
-      const bool whole = bytes == expected && static_cast<std::size_t>(header.pixels) == pixels_.size();
-      if (whole) slowestTile_ = std::max(slowestTile_, Clock::now() - dealtAt_[tile]);
-      if (whole && dealer_.finish(tile, worker)) {
-        colors_.resize(pixels_.size());
-        // A tile may hold no pixel of the pass (all on the coarser grid), and memcpy must not see a null pointer.
-        if (!pixels_.empty())
-          std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
-        rays += RayCounts{header.camera, header.shadow, header.reflection};
-        ++farm_.tilesTraced_[worker];
-        farm_.busyMicroseconds_[worker] += static_cast<std::uint64_t>(header.busyMs * 1000.0);
-        sink_(pixels_.data(), colors_.data(), static_cast<int>(pixels_.size()));
-      }
-    }
-    deal(worker);
+    if (tile >= tiles_.size()) return;
+    gridTilePixels(tiles_[tile], pass_.stride, pass_.skipStride, pixels_);
+    const std::size_t expected = sizeof header + pixels_.size() * sizeof(Color);
+    const bool whole = bytes == expected && static_cast<std::size_t>(header.pixels) == pixels_.size();
+    if (whole) slowestTile_ = std::max(slowestTile_, Clock::now() - dealtAt_[tile]);
+    // The first result of a tile dealt twice (to a late rank, then to a free one) gives its pixels.
+    if (!whole || !dealer_.finish(tile)) return;
+    colors_.resize(pixels_.size());
+    // A tile may hold no pixel of the pass (all on the coarser grid), and memcpy must not see a null pointer.
+    if (!pixels_.empty()) std::memcpy(colors_.data(), inbox_.data() + sizeof header, pixels_.size() * sizeof(Color));
+    rays_ += RayCounts{header.camera, header.shadow, header.reflection};
+    ++farm_.tilesTraced_[worker];
+    farm_.busyMicroseconds_[worker] += static_cast<std::uint64_t>(header.busyMs * 1000.0);
+    sink_(pixels_.data(), colors_.data(), static_cast<int>(pixels_.size()));
   }
-
-  void watchWorkers() {
-    const auto now = Clock::now();
-    const bool noneToDeal = !dealer_.next();
-    for (int w = 1; w < farm_.ranks_; ++w) {
-      if (farm_.lost(w)) continue;
-      if (farm_.suspect(w, now, kSilentFor)) {
-        std::fprintf(stderr, "rayview: warning: rank %d fell silent; the other ranks go on without it\n", w);
-        lose(w, Loss::Silent);
-        continue;
-      }
-      // The pass waits only for a rank that is late: its tiles go to whoever is free (rank 0's own thread first), and
-      // the first to finish a tile gives its pixels. A rank that is only slow keeps its tiles and may still win.
-      if (noneToDeal && farm_.suspect(w, now, patience())) dealer_.reclaim(w);
-    }
-    for (int w = 1; w < farm_.ranks_; ++w) deal(w);
-  }
-
-  void lose(int worker, Loss why) {
-    farm_.markLost(worker, why);
-    held_[worker] = 0;
-    dealer_.reclaim(worker);
-  }
-
-  // How long a rank may owe a tile before it counts as late: twice the slowest tile of this pass so far, and never
-  // less than kLatePatience (a tile's round trip on a busy machine).
-  Clock::duration patience() const { return std::max<Clock::duration>(kLatePatience, 2 * slowestTile_); }
 
   using Loss = ViewerFarm::Loss;
   ViewerFarm& farm_;
   const PixelSource& source_;
   FarmPass pass_;
   const FarmSink& sink_;
+  const std::function<bool()>& stopped_;
+  RayCounts& rays_;
   std::vector<Tile> tiles_;
-  TileDealer dealer_;
-  std::vector<int> held_;
+  WorkDealer dealer_;
   std::vector<Clock::time_point> dealtAt_;  // per tile: when it was last dealt
   Clock::duration slowestTile_{};  // the longest a tile of this pass took from dealt to its result
   std::mutex localMutex_;
@@ -231,8 +189,7 @@ class ViewerFarm::Pass {
 
 ViewerFarm::ViewerFarm(int ranks, int threads)
     : ranks_(std::max(ranks, 1)), pool_(threads),
-      lost_(std::make_unique<std::atomic<int>[]>(static_cast<std::size_t>(ranks_))),
-      owedSince_(static_cast<std::size_t>(ranks_)),
+      watch_(ranks_),
       tilesTraced_(std::make_unique<std::atomic<std::size_t>[]>(static_cast<std::size_t>(ranks_))),
       busyMicroseconds_(std::make_unique<std::atomic<std::uint64_t>[]>(static_cast<std::size_t>(ranks_))) {}
 
@@ -266,14 +223,8 @@ const char* lossText(ViewerFarm::Loss why) {
 std::vector<std::string> ViewerFarm::lostRanks() const {
   std::vector<std::string> lostOnes;
   for (int r = 1; r < ranks_; ++r)
-    if (lost(r)) lostOnes.push_back("rank " + std::to_string(r) + ": " + lossText(static_cast<Loss>(lost_[r].load())));
+    if (lost(r)) lostOnes.push_back("rank " + std::to_string(r) + ": " + lossText(loss(r)));
   return lostOnes;
-}
-
-void ViewerFarm::markLost(int rank, Loss why) {
-  int none = static_cast<int>(Loss::None);
-  lost_[rank].compare_exchange_strong(none, static_cast<int>(why));
-  owedSince_[rank].reset();
 }
 
 ViewerFarm::~ViewerFarm() = default;
@@ -286,8 +237,8 @@ bool ViewerFarm::renderPass(const PixelSource& source, const FarmPass& pass, con
                             const std::function<bool()>& stopped, RayCounts& rays) {
   ship(dynamic_cast<const TracedImage&>(source), pass.generation);
   ++passSerial_;
-  Pass running(*this, source, pass, sink);
-  const bool complete = running.run(stopped, rays);
+  Pass running(*this, source, pass, sink, stopped, rays);
+  const bool complete = running.run();
   outbox_.reap();
   return complete;
 }
@@ -320,7 +271,7 @@ void ViewerFarm::sendToAll(int tag, std::vector<std::uint8_t> bytes) {
   if (bytes.size() > static_cast<std::size_t>(INT_MAX)) {
     std::fprintf(stderr, "rayview: error: the scene is too large to send to the other ranks (over 2 GB); this window "
                  "traces it alone\n");
-    for (int w = 1; w < ranks_; ++w) markLost(w, Loss::SceneTooLarge);
+    for (int w = 1; w < ranks_; ++w) watch_.lose(w, static_cast<int>(Loss::SceneTooLarge));
     return;
   }
   const auto shared = std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes));
@@ -336,16 +287,16 @@ void ViewerFarm::settleOwed() {
   for (;;) {
     // Everything that arrived since the last pass is read before any rank is judged silent: nobody listened then.
     while (const std::optional<Arrival> arrival = receiveAny(inbox, std::chrono::milliseconds(kLostAfter))) {
-      if (arrival->whole) owedSince_[arrival->source].reset();
-      else markLost(arrival->source, Loss::SilentMidMessage);
+      if (arrival->whole) watch_.heard(arrival->source, false);
+      else watch_.lose(arrival->source, static_cast<int>(Loss::SilentMidMessage));
     }
     const auto now = Clock::now();
     bool owing = false;
     for (int w = 1; w < ranks_; ++w) {
-      if (lost(w) || !owedSince_[w]) continue;
-      if (now - *owedSince_[w] > kLostAfter) {
+      if (lost(w) || !watch_.owes(w)) continue;
+      if (watch_.owedLongerThan(w, now, kLostAfter)) {
         std::fprintf(stderr, "rayview: warning: rank %d fell silent; the other ranks end without it\n", w);
-        markLost(w, Loss::Silent);
+        watch_.lose(w, static_cast<int>(Loss::Silent));
       } else {
         owing = true;
       }
@@ -392,7 +343,7 @@ void ViewerFarm::shutdown() {
   // lost, not listed as working: what it traced before counts for nothing now.
   std::printf("tiles traced:");
   for (int r = 0; r < ranks_; ++r) {
-    if (lost(r)) std::printf(" rank %d lost: %s", r, lossText(static_cast<Loss>(lost_[r].load())));
+    if (lost(r)) std::printf(" rank %d lost: %s", r, lossText(loss(r)));
     else std::printf(" rank %d %zu (busy %.0f ms)", r, tilesTraced_[r].load(),
                      static_cast<double>(busyMicroseconds_[r].load()) / 1000.0);
     std::printf("%s", r + 1 < ranks_ ? "," : "\n");

@@ -18,6 +18,7 @@
 #include "rayview/pass_farm.h"
 #include "rayview/prepared_scene.h"
 #include "rayview/thread_pool.h"
+#include "worker_watch.h"
 
 namespace rayview::cluster {
 
@@ -38,9 +39,10 @@ class ViewerFarm final : public ViewerPassFarm {
   std::vector<std::string> lostRanks() const override;
   int ranks() const { return ranks_; }
 
-  // Why a rank traces no more: it fell silent holding tiles (died, or stopped), mid-message, said it cannot trace
-  // the scene, or the scene is too large to send.
-  enum class Loss : int { None = 0, Silent, SilentMidMessage, CannotTrace, SceneTooLarge };
+  // Why a rank traces no more (its WorkerWatch::loss): it fell silent holding tiles (died, or stopped),
+  // mid-message, said it cannot trace the scene, or the scene is too large to send.
+  enum class Loss : int { None = WorkerWatch::kNotLost, Silent = WorkerWatch::kSilent, SilentMidMessage, CannotTrace,
+                          SceneTooLarge };
 
  private:
   class Pass;
@@ -49,22 +51,16 @@ class ViewerFarm final : public ViewerPassFarm {
   void sendToAll(int tag, std::vector<std::uint8_t> bytes);
 
   using Clock = std::chrono::steady_clock;
-  bool lost(int rank) const { return lost_[rank].load() != static_cast<int>(Loss::None); }
-  void markLost(int rank, Loss why);
+  bool lost(int rank) const { return watch_.lost(rank); }
+  Loss loss(int rank) const { return static_cast<Loss>(watch_.loss(rank)); }
   void settleOwed();
-  // A rank that has owed an answer for longer than `patience`: dealt nothing new, and its tiles dealt again to the
-  // others once none is left to deal, so that a dead rank costs a pass little (it is left out after kLostAfter).
-  bool suspect(int rank, Clock::time_point now, Clock::duration patience) const {
-    return owedSince_[rank] && now - *owedSince_[rank] > patience;
-  }
 
   int ranks_;
   ThreadPool pool_;  // rank 0's own share of each pass
-  // Per rank: why it is dealt no more tiles (Loss). Atomic: the viewer's stats read them while a pass runs.
-  std::unique_ptr<std::atomic<int>[]> lost_;
-  // Per rank: since when it has owed an answer (it holds tiles and has said nothing since); nullopt: it owes none.
-  // Kept from pass to pass, so that a rank that died between two passes is waited for once, not at every pass.
-  std::vector<std::optional<Clock::time_point>> owedSince_;
+  // Per rank: why it is dealt no more tiles (Loss; the viewer's stats read it while a pass runs) and since when it
+  // has owed an answer. Kept from pass to pass, so that a rank that died between two passes is waited for once, not
+  // at every pass.
+  WorkerWatch watch_;
   // Per rank: tiles whose pixels were used. Atomic: the viewer's stats read them while a pass runs.
   std::unique_ptr<std::atomic<std::size_t>[]> tilesTraced_;
   std::unique_ptr<std::atomic<std::uint64_t>[]> busyMicroseconds_;  // per rank: time spent tracing them

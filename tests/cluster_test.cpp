@@ -1,4 +1,4 @@
-// The parts of a distributed render that need no MPI: the tile plan, the dealer that re-deals a lost rank's
+// The parts of a distributed render that need no MPI: the tile plan, the pile that re-deals a lost rank's
 // tiles, a tile's pixels against the whole frame's, the frames dealt whole or in tiles and put together, and the
 // scene hash, and a batch's scenes as runs and as the orders rank 0 sends.
 #include <gtest/gtest.h>
@@ -11,7 +11,7 @@
 #include "frame_units.h"
 #include "scene_hash.h"
 #include "scene_orders.h"
-#include "tile_dealer.h"
+#include "unit_pile.h"
 #include "tile_plan.h"
 #include "tile_render.h"
 
@@ -34,24 +34,24 @@ TEST(ClusterTiles, CoverTheImageOnceWithEdgesOfWholePackets) {
   EXPECT_EQ(clusterTileEdge(1920, 1080, 10000), kMinTileEdge);
 }
 
-TEST(TileDealer, ALostRanksTilesGoToTheOthersAndEveryTileIsFinishedOnce) {
-  TileDealer dealer(5);
+TEST(UnitPile, ALostRanksUnitsGoToTheOthersAndEveryUnitIsFinishedOnce) {
+  UnitPile dealer(5);
   const auto a = dealer.take(1), b = dealer.take(1), c = dealer.take(2);
   ASSERT_TRUE(a && b && c);
-  EXPECT_TRUE(dealer.finish(*a, 1));
+  EXPECT_TRUE(dealer.finish(*a));
   EXPECT_EQ(dealer.reclaim(1), std::vector<std::size_t>{*b});
   // The reclaimed tile comes first, before the ones never dealt.
   EXPECT_EQ(dealer.next(), b);
   EXPECT_EQ(dealer.take(0), b);
   // A late result from the lost rank counts once; the other copy is not kept.
-  EXPECT_TRUE(dealer.finish(*b, 1));
-  EXPECT_FALSE(dealer.finish(*b, 0));
+  EXPECT_TRUE(dealer.finish(*b));
+  EXPECT_FALSE(dealer.finish(*b));
   std::set<std::size_t> rest;
   while (const auto t = dealer.take(0)) rest.insert(*t);
   EXPECT_EQ(rest.size(), 2u);
-  for (std::size_t t : rest) dealer.finish(t, 0);
+  for (std::size_t t : rest) dealer.finish(t);
   EXPECT_FALSE(dealer.allFinished());  // rank 2 still holds one
-  EXPECT_TRUE(dealer.finish(*c, 2));
+  EXPECT_TRUE(dealer.finish(*c));
   EXPECT_TRUE(dealer.allFinished());
   EXPECT_FALSE(dealer.takeOrWait(0));
 }
