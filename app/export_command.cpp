@@ -21,9 +21,11 @@ bool takesTextures(const fs::path& output) {
   return extension == ".obj" || extension == ".gltf" || extension == ".glb";
 }
 
-bool usesTexture(const Scene& scene) {
-  return scene.texture && std::any_of(scene.materials.begin(), scene.materials.end(),
-                                      [](const Material& m) { return m.textureFactor != 0.0f; });
+// Whether a material shows the texture named `name` (the scene's own when `sceneTexture`).
+bool shown(const Scene& scene, const std::string& name, bool sceneTexture) {
+  return std::any_of(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
+    return m.textureFactor != 0.0f && (sceneTexture ? m.textureImage.empty() : m.textureImage == name);
+  });
 }
 
 }  // namespace
@@ -39,31 +41,36 @@ int runExportCommand(const CommandLine& command) {
     std::fprintf(stderr, "rayview: error: the output %s is the scene file; choose another name\n", output.c_str());
     return kExitBadInput;
   }
-  fs::path texture;
+  TexturesBeside beside(output);
   try {
     LoadedScene loaded = openScene(input, command.job.open);
     for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
     Scene& scene = loaded.scene;
-    // The name the exported materials give the texture, relative to the model; none when there is no file to name.
-    if (takesTextures(output) && usesTexture(scene))
-      texture = writeTextureBeside(*scene.texture, output, scene.textureImage);
-    else
-      scene.textureImage.clear();
+    // The names the exported materials give their textures, relative to the model; none when there is no file to
+    // name, or no material shows it.
+    const std::string sceneTexture = scene.textureImage;
+    renameTextures(scene, [&](const std::string& name, const Texture& texture) {
+      return takesTextures(output) && shown(scene, name, name == sceneTexture) ? beside.write(texture) : "";
+    });
     exportOpenedScene(scene, output);
   } catch (const SceneError& error) {
-    if (!texture.empty()) fs::remove(texture, ec);
+    beside.removeAll();
     std::fprintf(stderr, "%s\n", error.what());
     return kExitBadInput;
   } catch (const ModelWriteError& error) {
-    if (!texture.empty()) fs::remove(texture, ec);
+    beside.removeAll();
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
     return kExitIoFailure;
   } catch (const ImageIoError& error) {
+    beside.removeAll();
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
     return kExitIoFailure;
   }
+  std::string written;
+  for (const fs::path& file : beside.written()) written += (written.empty() ? "" : ", ") + file.string();
   std::printf("%s: written from %s%s\n", output.c_str(), input.c_str(),
-              texture.empty() ? "" : (", its texture as " + texture.string()).c_str());
+              written.empty() ? ""
+              : (beside.written().size() == 1 ? ", its texture as " + written : ", its textures as " + written).c_str());
   return kExitOk;
 }
 

@@ -25,28 +25,26 @@ bool sameFile(const fs::path& a, const fs::path& b) {
   return !ec && same;
 }
 
-// The texture as a PNG beside the scene; the scene then names it. One outside the model's folder (named by its
-// absolute path, model_materials.cpp) is copied only when asked, else the scene names it where it lies, relative to
-// the scene's folder. `written` gets the file written, if any.
-void writeTexture(Scene& scene, const fs::path& output, bool copyOutside, fs::path& written) {
-  if (!scene.texture) {
-    scene.textureImage.clear();
-    return;
-  }
-  const fs::path outside = fs::path(scene.textureImage).is_absolute() ? fs::path(scene.textureImage) : fs::path();
-  if (!outside.empty() && !copyOutside) {
-    std::error_code ec;
-    const fs::path relative = outside.lexically_relative(fs::absolute(output.parent_path(), ec).lexically_normal());
-    scene.textureImage = relative.empty() ? outside.string() : relative.string();
-    std::fprintf(stderr, "rayview: note: the scene names the texture where it lies, %s; --copy-textures copies it "
-                 "beside the scene\n", outside.string().c_str());
-    return;
-  }
-  // The model is never replaced: freeTextureName passes over every name that exists.
-  written = writeTextureBeside(*scene.texture, output, scene.textureImage);
-  if (!outside.empty())
-    std::fprintf(stderr, "rayview: note: the texture %s is copied beside the scene as %s\n", outside.string().c_str(),
-                 written.string().c_str());
+// Each texture as a PNG beside the scene, which then names it. One outside the model's folder (named by its absolute
+// path, model_materials.cpp) is copied only when asked, else the scene names it where it lies, relative to the
+// scene's folder.
+void writeTextures(Scene& scene, const fs::path& output, bool copyOutside, TexturesBeside& beside) {
+  renameTextures(scene, [&](const std::string& name, const Texture& texture) {
+    const fs::path outside = fs::path(name).is_absolute() ? fs::path(name) : fs::path();
+    if (!outside.empty() && !copyOutside) {
+      std::error_code ec;
+      const fs::path relative = outside.lexically_relative(fs::absolute(output.parent_path(), ec).lexically_normal());
+      std::fprintf(stderr, "rayview: note: the scene names the texture where it lies, %s; --copy-textures copies it "
+                   "beside the scene\n", outside.string().c_str());
+      return relative.empty() ? outside.string() : relative.string();
+    }
+    // The model is never replaced: TexturesBeside passes over every name that exists.
+    std::string written = beside.write(texture);
+    if (!outside.empty())
+      std::fprintf(stderr, "rayview: note: the texture %s is copied beside the scene as %s\n",
+                   outside.string().c_str(), beside.written().back().string().c_str());
+    return written;
+  });
 }
 
 }  // namespace
@@ -70,14 +68,13 @@ int runImportCommand(const CommandLine& command) {
   }
   for (const Diagnostic& warning : imported.loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
   Scene& scene = imported.loaded.scene;
-  fs::path texture;
+  TexturesBeside beside(output);
   try {
-    writeTexture(scene, output, command.copyTextures, texture);
+    writeTextures(scene, output, command.copyTextures, beside);
     // Floats as floats (at most 9 significant digits): the handout's peers read them as float.
     writeFileAtomically(output, sceneToXml(scene.parameters(), scene.geometry(), scene.textureImage, NumberText::FloatWhenExact));
   } catch (const ImageIoError& error) {
-    std::error_code ec;
-    if (!texture.empty()) fs::remove(texture, ec);
+    beside.removeAll();
     std::fprintf(stderr, "rayview: error: %s\n", error.what());
     return kExitIoFailure;
   }

@@ -1,19 +1,38 @@
 #pragma once
-// The texture a written scene or model names, as a PNG beside it (`import`, `export`).
+// The textures a written scene or model names, as PNGs beside it (`import`, `export`).
 
 #include <filesystem>
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "rayview/scene.h"
 
 namespace rayview {
 
-// OUTPUT-STEM_texture.png, or when a file (the user's, perhaps the model's own texture) has that name, the first
-// free OUTPUT-STEM_texture-N.png: a command never replaces a file it did not write, and says which name it took.
-std::string freeTextureName(const std::filesystem::path& output);
+// Writes textures as PNGs beside one output file, each whole under a name no file has: OUTPUT-STEM_texture.png,
+// then OUTPUT-STEM_texture-N.png. A command never replaces a file it did not write; when a user's file holds a name,
+// it says which name it took instead.
+class TexturesBeside {
+ public:
+  explicit TexturesBeside(std::filesystem::path output) : output_(std::move(output)) {}
 
-// Writes `texture` whole under freeTextureName(output) (ImageIoError when it cannot); `name` gets the file's name
-// as the written file should name it, and the path is returned, for removal should the rest fail.
-std::filesystem::path writeTextureBeside(const Texture& texture, const std::filesystem::path& output, std::string& name);
+  // Writes `texture` (ImageIoError when it cannot); returns its name as the written file names it.
+  std::string write(const Texture& texture);
+  const std::vector<std::filesystem::path>& written() const { return written_; }
+  // Removes every file written, when the rest of the command failed.
+  void removeAll();
+
+ private:
+  std::string freeName() const;
+
+  std::filesystem::path output_;
+  std::vector<std::filesystem::path> written_;
+};
+
+// Gives each texture of the scene a new name, `place(name, image)`: the scene's own and each material's, the
+// materials renamed to match. A texture that was never read, or that `place` names "", is dropped, and with it the
+// texture of the materials that showed it.
+void renameTextures(Scene& scene, const std::function<std::string(const std::string&, const Texture&)>& place);
 
 }  // namespace rayview

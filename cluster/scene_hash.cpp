@@ -1,6 +1,7 @@
 #include "scene_hash.h"
 
 #include <cstring>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,13 @@ class Hasher {
   std::uint64_t state_ = 0xCBF29CE484222325ull;
 };
 
+void addTexture(Hasher& hasher, const std::optional<Texture>& texture) {
+  if (!texture) return hasher.addText("no texture");
+  const int size[2] = {texture->width, texture->height};
+  hasher.add(size, sizeof size);
+  hasher.add(texture->rgb.data(), texture->rgb.size());
+}
+
 }  // namespace
 
 std::uint64_t parametersHash(const SceneParameters& parameters) {
@@ -62,12 +70,10 @@ std::uint64_t sceneHash(const Scene& scene) {
     const std::uint32_t fields[3] = {mesh.material, mesh.firstTriangle, mesh.triangleCount};
     hasher.add(fields, sizeof fields);
   }
-  if (scene.texture) {
-    const int size[2] = {scene.texture->width, scene.texture->height};
-    hasher.add(size, sizeof size);
-    hasher.add(scene.texture->rgb.data(), scene.texture->rgb.size());
-  } else {
-    hasher.addText("no texture");
+  addTexture(hasher, scene.texture);
+  for (const NamedTexture& named : scene.materialTextures) {
+    hasher.addText(named.name);
+    addTexture(hasher, named.image);
   }
   return hasher.value();
 }

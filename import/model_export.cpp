@@ -1,5 +1,5 @@
 // A scene as a model file through Assimp's exporters: one Assimp mesh per scene mesh, the handout's materials as
-// Phong colours and shininess, the texture by the name the export command wrote it under (textureImage).
+// Phong colours and shininess, each material's texture by the name the export command wrote it under.
 
 #include <assimp/Exporter.hpp>
 #include <assimp/material.h>
@@ -44,8 +44,8 @@ Color texturedDiffuse(const Material& m, const Texture& texture) {
   return kd;
 }
 
-// `texture`: the image file beside the model that a textured material names ("" for none).
-aiMaterial* toAssimp(const Material& m, const std::string& texture, const std::optional<Texture>& image) {
+// `texture`: the image file beside the model that a textured material names ("" for none), `image` what it holds.
+aiMaterial* toAssimp(const Material& m, const std::string& texture, const Texture* image) {
   auto* out = new aiMaterial;
   const aiString name(m.id);
   out->AddProperty(&name, AI_MATKEY_NAME);
@@ -128,14 +128,20 @@ aiMesh* toAssimp(const Scene& s, const Mesh& mesh, std::vector<std::uint32_t>& l
   return out;
 }
 
+// The file a material's texture is written as: its own, else the scene's.
+const std::string& textureName(const Scene& s, const Material& m) {
+  return m.textureImage.empty() ? s.textureImage : m.textureImage;
+}
+
 std::unique_ptr<aiScene> toAssimp(const Scene& s) {
   auto out = std::make_unique<aiScene>();
   out->mRootNode = new aiNode("rayview");
   out->mNumMaterials = static_cast<unsigned>(std::max<std::size_t>(s.materials.size(), 1));
   out->mMaterials = new aiMaterial*[out->mNumMaterials];
   for (unsigned i = 0; i < out->mNumMaterials; ++i)
-    out->mMaterials[i] = i < s.materials.size() ? toAssimp(s.materials[i], s.textureImage, s.texture)
-                                                : toAssimp(Material{"default", Color(0.8f), Color(0.8f)}, "", {});
+    out->mMaterials[i] = i < s.materials.size() ? toAssimp(s.materials[i], textureName(s, s.materials[i]),
+                                                           s.textureOf(s.materials[i]))
+                                                : toAssimp(Material{"default", Color(0.8f), Color(0.8f)}, "", nullptr);
   std::vector<const Mesh*> meshes;
   for (const Mesh& mesh : s.meshes)
     if (s.meshEnd(mesh) > mesh.firstTriangle) meshes.push_back(&mesh);

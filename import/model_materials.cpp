@@ -1,5 +1,5 @@
 // Assimp's materials as the handout's Blinn-Phong materials (the formula is in docs/scene-format.md, "Opening
-// models"), and the one texture the format keeps.
+// models"), each with its own texture.
 
 #include <assimp/material.h>
 #include <assimp/scene.h>
@@ -8,6 +8,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 
 #include "model_parts.h"
@@ -140,12 +141,12 @@ std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDi
   return std::nullopt;
 }
 
-// The scene's name for the kept texture: a file outside the model's folder where it lies (absolute; `import` copies
-// it only when asked), else the name of import's copy beside the scene.
-std::string keptTextureName(const fs::path& model, const fs::path& file) {
+// The scene's name for a texture: a file outside the model's folder where it lies (absolute; `import` copies it only
+// when asked), else the name of import's copy beside the scene, numbered from the second on.
+std::string keptTextureName(const fs::path& model, const fs::path& file, std::size_t number) {
   std::error_code ec;
   if (!file.empty() && outsideFolder(model.parent_path(), file)) return fs::absolute(file, ec).lexically_normal().string();
-  return model.stem().string() + "_texture.png";
+  return model.stem().string() + "_texture" + (number > 1 ? "-" + std::to_string(number) : "") + ".png";
 }
 
 // The metallic-roughness map a material names ("" when none): glTF's, which Assimp 5.2.5 files as UNKNOWN, or the
@@ -181,6 +182,41 @@ std::string fileNamePart(const std::string& name) {
   return base.empty() || base[0] == '*' ? "embedded" : base;
 }
 
+// Each base-colour texture the meshes use, kept as its materials' own texture: the texture blended in at
+// kTextureFactor, the material's colour times the texture's mean. Without texture coordinates none can be shown.
+void keepTextures(const aiScene& scene, const fs::path& path, const std::set<std::string>& textureUse,
+                  const std::map<unsigned, std::uint32_t>& ours, Scene& out, Notes& notes) {
+  if (!textureUse.empty() && out.texCoords.empty()) {
+    notes.warnings.push_back("the model has textures but no texture coordinates; they are left out");
+    return;
+  }
+  std::map<std::string, std::pair<std::string, Color>> kept;  // the model's name -> the scene's name, mean texel
+  for (const std::string& name : textureUse) {
+    std::string reason;
+    fs::path file;
+    std::optional<Texture> texture = loadTexture(scene, path.parent_path(), name, reason, notes, &file);
+    if (!texture) {
+      notes.warnings.push_back("texture \"" + name + "\" cannot be used (" + reason + "); its material keeps its colour");
+      continue;
+    }
+    notes.textures.push_back(fileNamePart(name) + " (" + std::to_string(texture->width) + "x" +
+                             std::to_string(texture->height) + ")");
+    const std::string sceneName = keptTextureName(path, file, kept.size() + 1);
+    kept[name] = {sceneName, averageOf(*texture)};
+    out.materialTextures.push_back({sceneName, std::move(texture)});
+  }
+  for (const auto& [index, our] : ours) {
+    if (index >= scene.mNumMaterials || !scene.mMaterials[index]) continue;
+    const auto found = kept.find(baseColorTexture(*scene.mMaterials[index]));
+    if (found == kept.end()) continue;
+    Material& material = out.materials[our];
+    material.diffuse *= found->second.second;
+    material.ambient = material.diffuse;
+    material.textureFactor = kTextureFactor;
+    material.textureImage = found->second.first;
+  }
+}
+
 }  // namespace
 
 Color averageOf(const Texture& t) {
@@ -192,9 +228,9 @@ Color averageOf(const Texture& t) {
 }
 
 void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes& notes) {
-  // Assimp's material index -> ours, in order of first use; triangles per base-colour texture.
+  // Assimp's material index -> ours, in order of first use; the base-colour textures the meshes use.
   std::map<unsigned, std::uint32_t> ours;
-  std::map<std::string, std::size_t> textureUse;
+  std::set<std::string> textureUse;
   std::map<std::string, int> taken;
   std::map<std::string, std::optional<MetalRough>> metalRough;
   bool madeUpColor = false;
@@ -217,56 +253,11 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
     mesh.material = it->second;
     if (index < scene.mNumMaterials && scene.mMaterials[index])
       if (std::string texture = baseColorTexture(*scene.mMaterials[index]); !texture.empty())
-        textureUse[texture] += mesh.triangleCount;
+        textureUse.insert(texture);
   }
   if (madeUpColor) notes.madeUp.push_back("material colours");
 
-  std::string chosen;
-  for (const auto& [name, triangles] : textureUse)
-    if (chosen.empty() || triangles > textureUse[chosen]) chosen = name;
-  std::vector<std::string> averaged;
-  std::map<std::string, std::optional<Color>> averageByName;
-  for (const auto& [name, triangles] : textureUse) {
-    std::string reason;
-    fs::path file;
-    std::optional<Texture> texture = loadTexture(scene, path.parent_path(), name, reason, notes, &file);
-    if (!texture) {
-      notes.warnings.push_back("texture \"" + name + "\" cannot be used (" + reason + "); its material keeps its colour");
-      continue;
-    }
-    averageByName[name] = averageOf(*texture);
-    if (name == chosen) {
-      notes.texture = fileNamePart(name) + " (" + std::to_string(texture->width) + "x" +
-                      std::to_string(texture->height) + ")";
-      out.textureImage = keptTextureName(path, file);
-      out.texture = std::move(texture);
-    } else {
-      averaged.push_back(fileNamePart(name));
-    }
-  }
-  if (!averaged.empty()) {
-    std::string list;
-    for (const std::string& name : averaged) list += (list.empty() ? "" : ", ") + name;
-    notes.warnings.push_back(std::to_string(averaged.size()) +
-                             " more textures averaged to a colour each (the scene format keeps one texture): " + list);
-  }
-  // Each textured material: its colour times its texture's average; the kept texture blended in.
-  for (const auto& [index, our] : ours) {
-    if (index >= scene.mNumMaterials || !scene.mMaterials[index]) continue;
-    const std::string name = baseColorTexture(*scene.mMaterials[index]);
-    const auto average = averageByName.find(name);
-    if (name.empty() || average == averageByName.end() || !average->second) continue;
-    Material& material = out.materials[our];
-    material.diffuse *= *average->second;
-    material.ambient = material.diffuse;
-    if (name == chosen && out.texture) material.textureFactor = kTextureFactor;
-  }
-  if (out.texture && out.texCoords.empty()) {
-    notes.warnings.push_back("the model has a texture but no texture coordinates; it is left out");
-    out.texture.reset();
-    out.textureImage.clear();
-    notes.texture = "none";
-  }
+  keepTextures(scene, path, textureUse, ours, out, notes);
 }
 
 }  // namespace rayview::model

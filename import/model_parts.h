@@ -19,7 +19,7 @@ struct Notes {
   std::vector<std::string> madeUp;
   std::vector<std::string> dropped;
   std::vector<std::string> warnings;
-  std::string texture = "none";
+  std::vector<std::string> textures;  // each kept texture: its file name and size
 };
 
 struct Bounds {
@@ -32,7 +32,7 @@ Bounds boundsOf(const std::vector<glm::dvec3>& vertices);
 // material index until mapMaterials renumbers it. Throws SceneError for non-finite vertices, bad indices, too much.
 void gatherGeometry(const aiScene& scene, const std::filesystem::path& path, SceneGeometry& geometry, Notes& notes);
 
-// Each material the meshes use, in order of first use (mesh indices renumbered), with the chosen texture.
+// Each material the meshes use, in order of first use (mesh indices renumbered), each with its texture.
 void mapMaterials(const aiScene& scene, const std::filesystem::path& path, Scene& out, Notes& notes);
 
 // The file's own camera and lights when it has them (glTF, FBX, COLLADA), else made up from the bounds.

@@ -64,9 +64,15 @@ std::string counted(std::size_t count, const char* one, const char* many) {
   return std::to_string(count) + " " + (count == 1 ? one : many);
 }
 
+// ", texture NAME (WxH)", ", textures A (WxH), B (WxH)" or ", texture none".
+std::string textures(const model::Notes& notes) {
+  if (notes.textures.empty()) return ", texture none";
+  return (notes.textures.size() == 1 ? ", texture " : ", textures ") + joined(notes.textures);
+}
+
 std::string summaryOf(const Scene& scene, const model::Notes& notes) {
   return counted(scene.triangles.size(), "triangle", "triangles") + ", " + counted(scene.meshes.size(), "mesh", "meshes") +
-         ", " + counted(scene.materials.size(), "material", "materials") + ", texture " + notes.texture +
+         ", " + counted(scene.materials.size(), "material", "materials") + textures(notes) +
          "; made up: " + joined(notes.madeUp) + "; dropped: " + joined(notes.dropped);
 }
 

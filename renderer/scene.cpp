@@ -114,4 +114,21 @@ void SceneGeometry::addFace(const Triangle& triangle, const FaceAttributes& attr
   appendFace(triangles, faceAttributes, triangle, attributes);
 }
 
+const Texture* SceneGeometry::textureOf(const Material& material) const {
+  const std::optional<Texture>* image = &texture;
+  if (!material.textureImage.empty()) {
+    const auto named = std::find_if(materialTextures.begin(), materialTextures.end(),
+                                    [&](const NamedTexture& t) { return t.name == material.textureImage; });
+    if (named == materialTextures.end()) return nullptr;
+    image = &named->image;
+  }
+  return *image && !(*image)->rgb.empty() ? &**image : nullptr;
+}
+
+bool SceneGeometry::hasAnyTexture() const {
+  return (texture && !texture->rgb.empty()) ||
+         std::any_of(materialTextures.begin(), materialTextures.end(),
+                     [](const NamedTexture& t) { return t.image && !t.image->rgb.empty(); });
+}
+
 }  // namespace rayview

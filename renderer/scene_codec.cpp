@@ -113,6 +113,7 @@ void writeMaterial(Writer& w, const Material& m) {
   w.pod(m.mirror);
   w.pod(m.textureFactor);
   w.pod(static_cast<std::uint8_t>(m.twoSided));
+  w.text(m.textureImage);
 }
 
 Material readMaterial(Reader& r) {
@@ -125,7 +126,28 @@ Material readMaterial(Reader& r) {
   m.mirror = r.pod<Color>();
   m.textureFactor = r.pod<float>();
   m.twoSided = r.pod<std::uint8_t>() != 0;
+  m.textureImage = r.text();
   return m;
+}
+
+void writeTexture(Writer& w, const std::optional<Texture>& texture) {
+  w.pod(static_cast<std::uint8_t>(texture.has_value()));
+  if (!texture) return;
+  w.pod(texture->width);
+  w.pod(texture->height);
+  w.array(texture->rgb);
+}
+
+std::optional<Texture> readTexture(Reader& r) {
+  if (r.pod<std::uint8_t>() == 0) return std::nullopt;
+  Texture texture;
+  texture.width = r.pod<int>();
+  texture.height = r.pod<int>();
+  texture.rgb = r.array<std::uint8_t>();
+  if (texture.width < 0 || texture.height < 0 ||
+      texture.rgb.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 3)
+    throw CodecError("texture size does not match its pixels");
+  return texture;
 }
 
 }  // namespace
@@ -145,11 +167,11 @@ void encodeGeometry(const SceneGeometry& g, Bytes& out) {
     w.pod(mesh.triangleCount);
   }
   w.text(g.textureImage);
-  w.pod(static_cast<std::uint8_t>(g.texture.has_value()));
-  if (g.texture) {
-    w.pod(g.texture->width);
-    w.pod(g.texture->height);
-    w.array(g.texture->rgb);
+  writeTexture(w, g.texture);
+  w.pod(static_cast<std::uint64_t>(g.materialTextures.size()));
+  for (const NamedTexture& named : g.materialTextures) {
+    w.text(named.name);
+    writeTexture(w, named.image);
   }
 }
 
@@ -169,15 +191,11 @@ SceneGeometry decodeGeometry(const std::uint8_t* data, std::size_t size, std::si
     mesh.triangleCount = r.pod<std::uint32_t>();
   }
   g.textureImage = r.text();
-  if (r.pod<std::uint8_t>() != 0) {
-    Texture texture;
-    texture.width = r.pod<int>();
-    texture.height = r.pod<int>();
-    texture.rgb = r.array<std::uint8_t>();
-    if (texture.width < 0 || texture.height < 0 ||
-        texture.rgb.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 3)
-      throw CodecError("texture size does not match its pixels");
-    g.texture = std::move(texture);
+  g.texture = readTexture(r);
+  g.materialTextures.resize(r.items(sizeof(std::uint64_t)));
+  for (NamedTexture& named : g.materialTextures) {
+    named.name = r.text();
+    named.image = readTexture(r);
   }
   at = r.at();
   return g;

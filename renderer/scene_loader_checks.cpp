@@ -186,20 +186,25 @@ found:
 
 void Loader::loadTexture() {
   Scene& scene = result_.scene;
+  for (const auto& [name, line] : materialTextureLines_)
+    scene.materialTextures.push_back(
+        {name, options_.loadTexture ? readTextureNamed(name, line, kMaterialTextureRole) : std::nullopt});
   if (scene.textureImage.empty() || !options_.loadTexture) return;
+  scene.texture = readTextureNamed(scene.textureImage, textureImageLine_, kTextureRole);
+}
+
+std::optional<Texture> Loader::readTextureNamed(const std::string& name, int line, std::string_view role) {
   std::string tried;
   std::string lastReason;
-  for (const fs::path& candidate : detail::textureCandidates(baseDirectory_, scene.textureImage)) {
+  for (const fs::path& candidate : detail::textureCandidates(baseDirectory_, name)) {
     std::string reason;
-    if (auto texture = detail::readTextureImage(candidate, reason, kTextureRole)) {
-      scene.texture = std::move(*texture);
-      return;
-    }
+    if (auto texture = detail::readTextureImage(candidate, reason, role)) return texture;
     if (reason != "not found") lastReason = candidate.string() + ": " + reason + "; ";
     tried += (tried.empty() ? "" : ", ") + candidate.string();
   }
-  warn(textureImageLine_, "texture image \"" + scene.textureImage + "\" could not be read (" + lastReason +
-                              "tried " + tried + "); rendering without the texture");
+  warn(line, "texture image \"" + name + "\" could not be read (" + lastReason + "tried " + tried +
+                 "); rendering without the texture");
+  return std::nullopt;
 }
 
 }  // namespace rayview::scene_loading

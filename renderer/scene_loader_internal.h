@@ -43,6 +43,7 @@ constexpr std::uintmax_t kMaxFileBytes = (1ULL << 31) - 1;  // tinyxml2 and line
 // What the files a scene reads are recorded as (rayview/input_files.h), for the messages refusing an output.
 inline constexpr std::string_view kSceneFileRole = "the scene file";
 inline constexpr std::string_view kTextureRole = "the scene's texture image";
+inline constexpr std::string_view kMaterialTextureRole = "a material's texture image";
 
 // --- element names ---
 enum class Tag {
@@ -395,6 +396,7 @@ class Loader {
   std::string describe(const XMLElement* e);
 
   void readMaterials(const XMLElement* materials);
+  void readMaterialTexture(const XMLElement* e, Material& material);
 
   // ---------------------------------------------------------------- geometry
   // The numbers of a big block, `Stride` per item, each item handed to `item(const double*)` as soon as it is
@@ -453,7 +455,10 @@ class Loader {
   [[noreturn]] void indexOutOfRange(const PendingMesh& mesh, std::size_t corner, const char* kind, std::int64_t raw,
                                     std::int64_t base, std::int64_t count);
 
+  // The scene's texture and each image a material names, read relative to the file; one that cannot be read is a
+  // warning at the line naming it, and the scene renders without it.
   void loadTexture();
+  std::optional<Texture> readTextureNamed(const std::string& name, int line, std::string_view role);
 
   const std::string& file_;
   fs::path baseDirectory_;
@@ -464,6 +469,7 @@ class Loader {
   bool haveDepth_ = false, haveBackground_ = false, haveAmbient_ = false;
   int cameraLine_ = 0;
   int textureImageLine_ = 0;
+  std::vector<std::pair<std::string, int>> materialTextureLines_;  // each name a material gives, first line
   std::unordered_map<std::string, int> materialLines_;
   std::unordered_map<std::string, std::uint32_t> materialIndex_;
   std::vector<PendingMesh> meshes_;

@@ -202,6 +202,7 @@ void Loader::readMaterials(const XMLElement* materials) {
         }
         case Tag::MirrorReflectance: material.mirror = readColor(c), have |= 16; break;
         case Tag::TextureFactor: material.textureFactor = static_cast<float>(readScalar(c, true)); break;
+        case Tag::TextureImage: readMaterialTexture(c, material); break;
         case Tag::TwoSided: {
           std::int64_t flag = 0;
           readIntegers(c, 1, &flag, 0, "0 or 1");
@@ -223,6 +224,14 @@ void Loader::readMaterials(const XMLElement* materials) {
     scene.materials.push_back(std::move(material));
     return true;
   });
+}
+
+void Loader::readMaterialTexture(const XMLElement* e, Material& material) {
+  material.textureImage = trimmedText(e);
+  if (material.textureImage.empty()) return;  // as at the scene's level: no name, no texture of its own
+  const auto named = [&](const auto& entry) { return entry.first == material.textureImage; };
+  if (std::none_of(materialTextureLines_.begin(), materialTextureLines_.end(), named))
+    materialTextureLines_.emplace_back(material.textureImage, e->GetLineNum());
 }
 
 std::size_t Loader::estimatedBlockItems(const XMLElement* e, std::size_t tokensPerItem) {

@@ -22,13 +22,18 @@ std::string outputOverwritesInput(const std::filesystem::path& output, const std
   if (std::string problem = outputReplacesInput(output); !problem.empty()) return problem;
   const Scene& scene = *loaded;
   // A texture the load did not look for (LoadOptions::loadTexture off) is the scene's all the same.
-  if (!scene.textureImage.empty()) {
-    const std::filesystem::path dir = scene.sourcePath.parent_path();
-    for (const std::filesystem::path& candidate : detail::textureCandidates(dir.empty() ? "." : dir, scene.textureImage))
+  const std::filesystem::path dir = scene.sourcePath.parent_path();
+  auto isTexture = [&](const std::string& name) -> std::string {
+    if (name.empty()) return {};
+    for (const std::filesystem::path& candidate : detail::textureCandidates(dir.empty() ? "." : dir, name))
       if (detail::sameFile(output, candidate))
         return "the output " + output.string() + " is the scene's texture image " + candidate.string() +
                "; choose another name";
-  }
+    return {};
+  };
+  if (std::string problem = isTexture(scene.textureImage); !problem.empty()) return problem;
+  for (const Material& material : scene.materials)
+    if (std::string problem = isTexture(material.textureImage); !problem.empty()) return problem;
   return {};
 }
 

@@ -191,6 +191,7 @@ void writeParameters(XmlWriter& xml, const SceneParameters& parameters) {
     // A 2025 element: written only when it matters, so 2024 scenes stay 2024 files.
     if (m.textureFactor != 0.0f) xml.element(3, "texturefactor", m.textureFactor);
     if (m.twoSided) xml.element(3, "twosided", 1);
+    if (!m.textureImage.empty()) xml.text(3, "textureimage", m.textureImage);
     xml.close(2, "material");
   }
   xml.close(1, "materials");
@@ -259,14 +260,14 @@ std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& g
   return out;
 }
 
-std::string textureReferenceFor(const Scene& scene, const fs::path& outputPath) {
-  // Only the geometry's texture name and the file the scene came from matter here.
-  if (scene.textureImage.empty()) return {};
+std::string textureReferenceFor(const Scene& scene, const std::string& name, const fs::path& outputPath) {
+  // Only the name and the file the scene came from matter here.
+  if (name.empty()) return {};
   const fs::path sourceDirectory = scene.sourcePath.parent_path();
   const fs::path outputDirectory = outputPath.parent_path().empty() ? fs::path(".") : outputPath.parent_path();
-  if (sameFile(sourceDirectory.empty() ? fs::path(".") : sourceDirectory, outputDirectory)) return scene.textureImage;
+  if (sameFile(sourceDirectory.empty() ? fs::path(".") : sourceDirectory, outputDirectory)) return name;
   std::error_code ec;
-  for (const fs::path& candidate : detail::textureCandidates(sourceDirectory, scene.textureImage)) {
+  for (const fs::path& candidate : detail::textureCandidates(sourceDirectory, name)) {
     if (!fs::is_regular_file(candidate, ec)) continue;
     const fs::path found = fs::weakly_canonical(fs::absolute(candidate, ec), ec);
     // Relative when the two directories share a root, so the pair can be moved together.
@@ -274,7 +275,11 @@ std::string textureReferenceFor(const Scene& scene, const fs::path& outputPath) 
     if (!ec && !relative.empty()) return relative.generic_string();
     return found.generic_string();
   }
-  return scene.textureImage;  // never found: keep what the author wrote (it stays a warning on load)
+  return name;  // never found: keep what the author wrote (it stays a warning on load)
+}
+
+std::string textureReferenceFor(const Scene& scene, const fs::path& outputPath) {
+  return textureReferenceFor(scene, scene.textureImage, outputPath);
 }
 
 void writeSceneFile(const fs::path& outputPath, const SceneParameters& parameters, const Scene& loaded) {
@@ -286,7 +291,10 @@ void writeSceneFile(const fs::path& outputPath, const SceneParameters& parameter
                        (extension.empty() ? std::string("a name without an extension") : "'" + extension + "'"));
   if (const std::string problem = outputOverwritesInput(outputPath, loaded.sourcePath.string(), &loaded); !problem.empty())
     throw ImageIoError(problem);
-  writeFileAtomically(outputPath, sceneToXml(parameters, loaded.geometry(), textureReferenceFor(loaded, outputPath)));
+  // The materials' own textures are found as the scene's is, from the file the scene came from.
+  SceneParameters written = parameters;
+  for (Material& m : written.materials) m.textureImage = textureReferenceFor(loaded, m.textureImage, outputPath);
+  writeFileAtomically(outputPath, sceneToXml(written, loaded.geometry(), textureReferenceFor(loaded, outputPath)));
 }
 
 void writeSceneFile(const fs::path& outputPath, const Scene& scene) {

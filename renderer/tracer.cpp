@@ -179,7 +179,7 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   eyeRelative_ = parameters.camera.position - accel.origin();
   lights_ = parameters.lights.prepare(accel.origin(), settings);
   pointLightsOnly_ = std::get<std::vector<TriangularLightShading>>(lights_).empty();
-  useTexture_ = meshes.texture.has_value() && !meshes.texture->rgb.empty();
+  for (const Material& material : parameters.materials) textures_.push_back(meshes.textureOf(material));
   for (const Mesh& mesh : meshes.meshes) {
     meshStarts_.push_back(mesh.firstTriangle);
     meshMaterials_.push_back(mesh.material);
@@ -537,17 +537,21 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
     std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);
   }
 
-  if (useTexture_ && material.textureFactor != 0.0f && attributes.hasTexCoords()) {
-    v.textured = true;
-    v.textureFactor = material.textureFactor;
-    v.texel = sampleTexture(attributes, hit);
-  }
+  if (material.textureFactor != 0.0f && attributes.hasTexCoords()) applyTexture(material, attributes, hit, v);
+}
+
+void Tracer::applyTexture(const Material& material, const FaceAttributes& attributes, const Hit& hit,
+                          PathVertex& v) const {
+  const Texture* texture = textures_[static_cast<std::size_t>(&material - parameters_.materials.data())];
+  if (!texture) return;
+  v.textured = true;
+  v.textureFactor = material.textureFactor;
+  v.texel = sampleTexture(*texture, attributes, hit);
 }
 
 // Texture lookup: uv interpolated from the face's <texturedata> entries; u to the right, v up (OBJ
 // convention: v = 0 is the bottom row of the image); repeat wrap; nearest texel.
-Color Tracer::sampleTexture(const FaceAttributes& face, const Hit& hit) const {
-  const Texture& texture = *meshes_.texture;
+Color Tracer::sampleTexture(const Texture& texture, const FaceAttributes& face, const Hit& hit) const {
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
   const glm::vec2 uv = b0 * meshes_.texCoords[face.texCoord[0]] + b1 * meshes_.texCoords[face.texCoord[1]] +

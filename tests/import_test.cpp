@@ -312,9 +312,10 @@ std::string texturedGlb(bool metalRoughMap = false) {
 TEST(ImportModel, GlbWithAnEmbeddedPngTextureShowsIt) {
   const ImportedModel model = importModel(writeFile("quad.glb", texturedGlb()), small());
   const Scene& scene = model.loaded.scene;
-  ASSERT_TRUE(scene.texture.has_value()) << model.summary;
-  EXPECT_EQ(scene.texture->width, 4);
   ASSERT_EQ(scene.materials.size(), 1u);
+  const Texture* texture = scene.textureOf(scene.materials[0]);
+  ASSERT_TRUE(texture) << model.summary;
+  EXPECT_EQ(texture->width, 4);
   EXPECT_GT(scene.materials[0].textureFactor, 0.0f);
   const Image image = render(scene);
   writeImageFile(modelDirectory() / "quad_glb.png", image);

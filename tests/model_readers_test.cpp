@@ -187,9 +187,10 @@ TEST(ObjReader, TgaTextureFromTheMtlIsKept) {
   const ModelScene model = read(writeFile("textured.obj", "mtllib textured.mtl\n" + kSquare +
                                                               "vt 0 0\nvt 1 0\nvt 1 1\nusemtl wood\nf 1/1 2/2 3/3\n"));
   EXPECT_NE(model.summary.find("texture wood.tga (2x2)"), std::string::npos) << model.summary;
-  ASSERT_TRUE(model.scene.texture);
-  EXPECT_EQ(model.scene.texture->rgb[0], 0x40);
   EXPECT_EQ(model.scene.materials.at(0).id, "wood");
+  const Texture* texture = model.scene.textureOf(model.scene.materials.at(0));
+  ASSERT_TRUE(texture);
+  EXPECT_EQ(texture->rgb[0], 0x40);
 }
 
 }  // namespace

@@ -96,6 +96,7 @@ void expectSameScene(const Scene& a, const Scene& b) {
     expectVecEq(ma.mirror, mb.mirror, "mirror of " + ma.id);
     EXPECT_EQ(ma.textureFactor, mb.textureFactor);
     EXPECT_EQ(ma.twoSided, mb.twoSided);
+    EXPECT_EQ(ma.textureImage.empty(), mb.textureImage.empty());
   }
 
   // The texture is found again from the new file's directory, with the same pixels.

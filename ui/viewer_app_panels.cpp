@@ -50,7 +50,7 @@ void ViewerApp::drawPanelColumn(const ViewerLayout&, PanelActions& actions) {
     drawLightsPanel(s->edits(), s->bounds().radius());
     const std::optional<std::size_t> picked =
         s->selection() ? std::optional<std::size_t>(s->selection()->material) : std::nullopt;
-    drawMaterialsPanel(s->edits(), s->loaded().texture.has_value(), picked, s->takeMaterialReveal());
+    drawMaterialsPanel(s->edits(), s->loaded().hasAnyTexture(), picked, s->takeMaterialReveal());
     const std::string why = whyNoTradeoff();
     drawTradeoffPanel(tradeoff_.panel(), s->edits(), s->settings(), why.empty(), why, actions);
   }

@@ -164,6 +164,7 @@ def main():
     check_windows_texture_paths(a.rayview, s)
     check_export_on_full_disk(a.rayview, s)
     check_export_keeps_the_texture(a.rayview, s)
+    check_every_material_keeps_its_texture(a.rayview, s)
     check_unusable_values_name_the_model(a.rayview, s)
 
 
@@ -295,6 +296,51 @@ def check_export_keeps_the_texture(rayview, s):
     r = run(["export", in_painted("paint.obj"), "-o", in_painted("out/plain.ply")], rayview)
     check(r.returncode == 0 and not os.path.exists(in_painted("out/plain_texture.png")),
           "export to .ply writes no texture")
+
+
+def read_ppm(path):
+    # The pixels of a binary PPM that rayview wrote, as (r, g, b) tuples.
+    data = open(path, "rb").read()
+    fields = data.split(maxsplit=4)
+    width, height = int(fields[1]), int(fields[2])
+    pixels = fields[4][:width * height * 3]
+    return [tuple(pixels[i:i + 3]) for i in range(0, len(pixels), 3)]
+
+
+def check_every_material_keeps_its_texture(rayview, s):
+    # Two materials, two textures of two colours each (red|green, blue|yellow): every material shows its own texels,
+    # where one texture per scene would average the other to grey; import writes both beside the scene, and the scene
+    # and an exported OBJ render as the model does.
+    os.makedirs(s("two/out"), exist_ok=True)
+    in_two = lambda f: s("two/" + f)
+    write_png8(in_two("ab.png"), [[(255, 0, 0), (0, 255, 0)]])
+    write_png8(in_two("cd.png"), [[(0, 0, 255), (255, 255, 0)]])
+    with open(in_two("two.mtl"), "w") as f:
+        f.write("newmtl a\nKd 1 1 1\nmap_Kd ab.png\nnewmtl b\nKd 1 1 1\nmap_Kd cd.png\n")
+    with open(in_two("two.obj"), "w") as f:
+        f.write("mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1.2 0 0\nv 2.2 0 0\nv 2.2 1 0\nv 1.2 1 0\n"
+                "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3 4/4\nusemtl b\nf 5/1 6/2 7/3 8/4\n")
+    r = run(["render", in_two("two.obj"), "-o", in_two("model.ppm")], rayview)
+    check(r.returncode == 0 and "averaged" not in r.stderr, "a model with two textures renders: " + r.stderr.strip())
+    pixels = read_ppm(in_two("model.ppm"))
+    hues = {"red": lambda p: p[0] > p[1] + 40 and p[0] > p[2] + 40, "green": lambda p: p[1] > p[0] + 40 and p[1] > p[2] + 40,
+            "blue": lambda p: p[2] > p[0] + 40 and p[2] > p[1] + 40, "yellow": lambda p: min(p[0], p[1]) > p[2] + 40}
+    shown = {name: sum(1 for p in pixels if test(p)) for name, test in hues.items()}
+    check(all(n > 1000 for n in shown.values()), f"each material shows its own texels: {shown}")
+    r = run(["import", in_two("two.obj"), "-o", in_two("out/two.xml")], rayview)
+    xml = open(in_two("out/two.xml")).read() if r.returncode == 0 else ""
+    check(r.returncode == 0 and "textures ab.png (2x1), cd.png (2x1)" in r.stdout and
+          xml.count("<textureimage>") == 2 and os.path.exists(in_two("out/two_texture.png")) and
+          os.path.exists(in_two("out/two_texture-2.png")),
+          "import keeps both, written beside the scene and named by their materials: " + r.stdout.strip())
+    for made, args in (("scene", ["render", in_two("out/two.xml")]),
+                       ("exported OBJ", ["export", in_two("two.obj"), "-o", in_two("out/again.obj")])):
+        r = run(args + ["-o", in_two("again.ppm")] if made == "scene" else args, rayview)
+        if made != "scene":
+            check(r.returncode == 0 and "its textures as" in r.stdout, "export writes both textures: " + r.stdout.strip())
+            r = run(["render", in_two("out/again.obj"), "-o", in_two("again.ppm")], rayview)
+        check(r.returncode == 0 and read_ppm(in_two("again.ppm")) == pixels,
+              f"the {made} renders as the model does, both textures included: " + r.stderr.strip())
 
 
 def check_export_on_full_disk(rayview, s):

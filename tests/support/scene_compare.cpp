@@ -36,6 +36,10 @@ void expectSameGeometry(const SceneGeometry& a, const SceneGeometry& b) {
     EXPECT_EQ(a.texture->height, b.texture->height);
     EXPECT_TRUE(a.texture->rgb == b.texture->rgb);
   }
+  // The materials' own images, in order; their names may differ (a file written elsewhere names them from there).
+  ASSERT_EQ(a.materialTextures.size(), b.materialTextures.size());
+  for (std::size_t i = 0; i < a.materialTextures.size(); ++i)
+    EXPECT_TRUE(a.materialTextures[i].image == b.materialTextures[i].image) << a.materialTextures[i].name;
 }
 
 }  // namespace rayview::testing

@@ -43,6 +43,9 @@ struct Material {
   // <twosided>1</twosided>, rayview's extension for imported models: a face seen from behind is shaded as if seen
   // from the front (its normals flipped toward the viewer), as model viewers do; the handout's faces are one-sided.
   bool twoSided = false;
+  // <textureimage> inside a <material>, rayview's extension for models with several textures: this material's
+  // texture in place of the scene's ("" for the scene's, as in the handout's files).
+  std::string textureImage{};
 
   bool isMirror() const { return mirror.x != 0.0f || mirror.y != 0.0f || mirror.z != 0.0f; }
   bool operator==(const Material&) const = default;
@@ -115,6 +118,16 @@ struct Texture {
   int width = 0;
   int height = 0;
   std::vector<std::uint8_t> rgb;
+
+  bool operator==(const Texture&) const = default;
+};
+
+// An image a material names by its own <textureimage>, once per name.
+struct NamedTexture {
+  std::string name;               // as written in the file
+  std::optional<Texture> image;   // loaded, when it could be read
+
+  bool operator==(const NamedTexture&) const = default;
 };
 
 struct SceneGeometry {
@@ -129,6 +142,13 @@ struct SceneGeometry {
 
   std::string textureImage;           // <textureimage> as written in the file ("" when absent)
   std::optional<Texture> texture;     // loaded image, when it could be read
+  std::vector<NamedTexture> materialTextures;  // the images materials name themselves, in order of first mention
+
+  // The texture a material shows: its own (by name) or else the scene's; null when there is none to show (never
+  // named, not read, or empty).
+  const Texture* textureOf(const Material& material) const;
+  // Whether any material can show a texture: the scene's or one of its own.
+  bool hasAnyTexture() const;
 
   // The mesh a triangle belongs to (a binary search of the ranges; 0 when there are no meshes), and so its material.
   std::uint32_t meshOf(std::uint32_t triangle) const;

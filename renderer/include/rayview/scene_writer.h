@@ -25,7 +25,9 @@ std::string sceneToXml(const Scene& scene, const std::string& textureImage);
 
 // What <textureimage> must say in a file written to `outputPath` so that it still finds the image the
 // scene was loaded with: unchanged in the scene's own directory, else a path to the file that was found.
+// The same for any image name the scene's file gives (a material's own <textureimage>).
 std::string textureReferenceFor(const Scene& scene, const std::filesystem::path& outputPath);
+std::string textureReferenceFor(const Scene& scene, const std::string& name, const std::filesystem::path& outputPath);
 
 // Writes the file whole (temporary file + rename). Throws ImageIoError (the file-writing error type) when the name
 // does not end in .xml, or is a file the scene or the process read (outputOverwritesInput): the scene, its texture.

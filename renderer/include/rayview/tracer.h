@@ -126,7 +126,9 @@ class Tracer {
   // The point lights' light directions at `count` hits (a block's, point_light_lanes.h), four hits at a time.
   void shadePointLights(const LitPoint* points, int count, RayCounts& counts, QueuedShadows& shadows) const;
   SecondaryStart secondaryStart() const;
-  Color sampleTexture(const FaceAttributes& face, const Hit& hit) const;
+  // The material's texture at the hit, when it has one to show, blended into `v` by its texture factor.
+  void applyTexture(const Material& material, const FaceAttributes& attributes, const Hit& hit, PathVertex& v) const;
+  Color sampleTexture(const Texture& texture, const FaceAttributes& face, const Hit& hit) const;
   // SceneGeometry::materialOf, on arrays of the mesh ranges' starts and materials alone: once per hit.
   const Material& materialOf(std::uint32_t triangle) const;
 
@@ -140,7 +142,7 @@ class Tracer {
   glm::dvec3 eyeRelative_{0.0};
   SceneLights::Prepared lights_;  // by type, in the order of light_types.h
   bool pointLightsOnly_ = false;  // so a block's hits are lit four at a time (shadePointLights)
-  bool useTexture_ = false;
+  std::vector<const Texture*> textures_;  // per material: SceneGeometry::textureOf, once per render
   std::vector<std::uint32_t> meshStarts_;     // each mesh's first triangle, in order
   std::vector<std::uint32_t> meshMaterials_;  // and its material
 };

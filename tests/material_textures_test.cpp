@@ -1,0 +1,155 @@
+// Textures per material (rayview's <textureimage> inside a <material>): any number in a scene, each material shown
+// with its own, read back exactly by the loader, the writer, the codec and the hash, and no change to a scene that
+// names only the handout's one texture.
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "rayview/scene_codec.h"
+#include "rayview/scene_loader.h"
+#include "rayview/scene_writer.h"
+#include "support/image_compare.h"
+#include "support/numerics_scenes.h"
+#include "support/scene_compare.h"
+
+namespace rayview {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 1x1 binary PPM of one colour.
+void writePixel(const fs::path& path, unsigned char r, unsigned char g, unsigned char b) {
+  std::ofstream(path, std::ios::binary) << "P6\n1 1\n255\n" << r << g << b;
+}
+
+// Three side-by-side quads seen face on, materials 1, 2 and 3 left to right, each shown wholly by its texture
+// (factor 1); `ownTextures` are the <textureimage> lines inside materials 1 and 2, `sceneTexture` the scene's.
+std::string threeQuads(const std::string& own1, const std::string& own2, const std::string& sceneTexture) {
+  std::string xml = R"(<scene>
+  <maxraytracedepth>0</maxraytracedepth>
+  <background>0 0 0</background>
+  <camera><position>0 0 0</position><gaze>0 0 -1</gaze><up>0 1 0</up>
+    <nearplane>-1 1 -1 1</nearplane><neardistance>1</neardistance><imageresolution>6 2</imageresolution></camera>
+  <lights><ambientlight>0 0 0</ambientlight></lights>
+  <materials>
+)";
+  const std::string own[3] = {own1, own2, ""};
+  for (int m = 0; m < 3; ++m)
+    xml += "    <material id=\"" + std::to_string(m + 1) +
+           "\"><ambient>0 0 0</ambient><diffuse>0 0 0</diffuse><specular>0 0 0</specular>"
+           "<phongexponent>1</phongexponent><mirrorreflectance>0 0 0</mirrorreflectance>"
+           "<texturefactor>1</texturefactor>" +
+           (own[m].empty() ? "" : "<textureimage>" + own[m] + "</textureimage>") + "</material>\n";
+  xml += "  </materials>\n  <vertexdata>\n";
+  for (double x : {-2.0, -2.0 / 3.0, 2.0 / 3.0, 2.0})
+    xml += "    " + std::to_string(x) + " -2 -2\n    " + std::to_string(x) + " 2 -2\n";
+  xml += "  </vertexdata>\n  <texturedata>0 0 1 0 1 1 0 1</texturedata>\n";
+  if (!sceneTexture.empty()) xml += "  <textureimage>" + sceneTexture + "</textureimage>\n";
+  xml += "  <objects>\n";
+  for (int m = 0; m < 3; ++m) {
+    const int a = 2 * m + 1, b = a + 1, c = a + 2, d = a + 3;  // bottom-left, top-left, bottom-right, top-right
+    xml += "    <mesh id=\"" + std::to_string(m + 1) + "\"><materialid>" + std::to_string(m + 1) + "</materialid><faces>" +
+           std::to_string(a) + "/1 " + std::to_string(c) + "/2 " + std::to_string(d) + "/3 " + std::to_string(a) + "/1 " +
+           std::to_string(d) + "/3 " + std::to_string(b) + "/4</faces></mesh>\n";
+  }
+  return xml + "  </objects>\n</scene>\n";
+}
+
+class MaterialTextures : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("rayview_material_textures_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_ / "scene" / "maps");
+    writePixel(dir_ / "scene" / "maps" / "red.ppm", 255, 0, 0);
+    writePixel(dir_ / "scene" / "maps" / "blue.ppm", 0, 0, 255);
+    writePixel(dir_ / "scene" / "green.ppm", 0, 255, 0);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  LoadedScene loadWritten(const std::string& xml) {
+    const fs::path path = dir_ / "scene" / "s.xml";
+    std::ofstream(path) << xml;
+    return loadSceneFile(path);
+  }
+  fs::path dir_;
+};
+
+// The colour of pixel (i, j) of a render.
+Color pixel(const Image& image, int i, int j) {
+  const std::size_t at = (static_cast<std::size_t>(j) * image.width + i) * 3;
+  return Color(image.rgb[at], image.rgb[at + 1], image.rgb[at + 2]);
+}
+
+TEST_F(MaterialTextures, EachMaterialShowsItsOwnAndTheRestTheScenes) {
+  const LoadedScene loaded = loadWritten(threeQuads("maps/red.ppm", "maps/blue.ppm", "green.ppm"));
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front().format();
+  const Scene& scene = loaded.scene;
+  ASSERT_EQ(scene.materialTextures.size(), 2u);
+  EXPECT_EQ(scene.materials[0].textureImage, "maps/red.ppm");
+  EXPECT_EQ(scene.materials[2].textureImage, "");
+  for (AccelKind accel : {AccelKind::Reference, AccelKind::Packet}) {
+    const Image image = testing::renderChecked(scene, accel).image;
+    for (int j = 0; j < 2; ++j) {
+      EXPECT_EQ(pixel(image, 0, j), Color(255, 0, 0));
+      EXPECT_EQ(pixel(image, 1, j), Color(255, 0, 0));
+      EXPECT_EQ(pixel(image, 2, j), Color(0, 0, 255));
+      EXPECT_EQ(pixel(image, 3, j), Color(0, 0, 255));
+      EXPECT_EQ(pixel(image, 4, j), Color(0, 255, 0));
+      EXPECT_EQ(pixel(image, 5, j), Color(0, 255, 0));
+    }
+  }
+}
+
+TEST_F(MaterialTextures, OneImageNamedTwiceIsReadOnce) {
+  const Scene scene = loadWritten(threeQuads("maps/red.ppm", "maps/red.ppm", "")).scene;
+  ASSERT_EQ(scene.materialTextures.size(), 1u);
+  EXPECT_EQ(scene.textureOf(scene.materials[0]), scene.textureOf(scene.materials[1]));
+  EXPECT_EQ(scene.textureOf(scene.materials[2]), nullptr);  // no texture of the scene's to fall back on
+}
+
+TEST_F(MaterialTextures, AMissingOneIsAWarningAtItsLineAndTheOthersStay) {
+  const LoadedScene loaded = loadWritten(threeQuads("maps/red.ppm", "maps/nowhere.png", ""));
+  ASSERT_EQ(loaded.warnings.size(), 1u);
+  EXPECT_EQ(loaded.warnings[0].where.line, 9);  // material 2's line
+  EXPECT_NE(loaded.warnings[0].message.find("texture image \"maps/nowhere.png\" could not be read"), std::string::npos)
+      << loaded.warnings[0].message;
+  EXPECT_NE(loaded.scene.textureOf(loaded.scene.materials[0]), nullptr);
+  EXPECT_EQ(loaded.scene.textureOf(loaded.scene.materials[1]), nullptr);
+}
+
+TEST_F(MaterialTextures, SavedElsewhereTheFileStillFindsEveryImage) {
+  const LoadedScene original = loadWritten(threeQuads("maps/red.ppm", "maps/blue.ppm", "green.ppm"));
+  fs::create_directories(dir_ / "elsewhere" / "deeper");
+  const fs::path saved = dir_ / "elsewhere" / "deeper" / "copy.xml";
+  writeSceneFile(saved, original.scene);
+  const LoadedScene again = loadSceneFile(saved);
+  EXPECT_TRUE(again.warnings.empty()) << again.warnings.front().format();
+  EXPECT_EQ(again.scene.materials[1].textureImage, "../../scene/maps/blue.ppm");
+  testing::expectSameGeometry(original.scene, again.scene);
+  const Image a = testing::renderChecked(original.scene, AccelKind::Packet).image;
+  const Image b = testing::renderChecked(again.scene, AccelKind::Packet).image;
+  EXPECT_EQ(a.rgb, b.rgb);
+}
+
+TEST_F(MaterialTextures, TheCodecCarriesNamesAndImages) {
+  const Scene scene = loadWritten(threeQuads("maps/red.ppm", "maps/blue.ppm", "green.ppm")).scene;
+  Bytes bytes;
+  encodeParameters(scene.parameters(), bytes);
+  encodeGeometry(scene.geometry(), bytes);
+  std::size_t at = 0;
+  const SceneParameters parameters = decodeParameters(bytes.data(), bytes.size(), at);
+  const SceneGeometry geometry = decodeGeometry(bytes.data(), bytes.size(), at);
+  EXPECT_EQ(at, bytes.size());
+  EXPECT_TRUE(parameters == scene.parameters());
+  EXPECT_TRUE(geometry.materialTextures == scene.materialTextures);
+  EXPECT_EQ(geometry.textureImage, scene.textureImage);
+}
+
+}  // namespace
+}  // namespace rayview
