@@ -24,6 +24,7 @@ bool takesTextures(const fs::path& output) {
 // Whether a material shows the texture named `name` (the scene's own when `sceneTexture`).
 bool shown(const Scene& scene, const std::string& name, bool sceneTexture) {
   return std::any_of(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
+    if (!sceneTexture && m.emits() && m.emissionImage == name) return true;
     return m.textureFactor != 0.0f && (sceneTexture ? m.textureImage.empty() : m.textureImage == name);
   });
 }

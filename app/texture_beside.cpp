@@ -55,6 +55,7 @@ void renameTextures(Scene& scene, const std::function<std::string(const std::str
   }
   scene.materialTextures = std::move(kept);
   for (Material& material : scene.materials) {
+    if (!material.emissionImage.empty()) material.emissionImage = renamed[material.emissionImage];
     if (material.textureImage.empty()) continue;
     material.textureImage = renamed[material.textureImage];
     if (material.textureImage.empty()) material.textureFactor = 0.0f;  // nothing left to show

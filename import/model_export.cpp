@@ -66,6 +66,15 @@ aiMaterial* toAssimp(const Material& m, const std::string& texture, const Textur
     out->AddProperty(&mirror, 1, AI_MATKEY_COLOR_REFLECTIVE);
     out->AddProperty(&reflectivity, 1, AI_MATKEY_REFLECTIVITY);
   }
+  if (m.emits()) {
+    const Color e = glm::clamp(m.emission / 255.0f, Color(0.0f), Color(1.0f));
+    const aiColor3D emissive(e.x, e.y, e.z);
+    out->AddProperty(&emissive, 1, AI_MATKEY_COLOR_EMISSIVE);
+  }
+  if (!m.emissionImage.empty()) {
+    const aiString file(m.emissionImage);
+    out->AddProperty(&file, AI_MATKEY_TEXTURE_EMISSIVE(0));
+  }
   if (m.twoSided) {
     const int twoSided = 1;
     out->AddProperty(&twoSided, 1, AI_MATKEY_TWOSIDED);

@@ -149,18 +149,10 @@ namespace {
 
 // What the scene format cannot hold is named in the summary's "dropped", never silently lost.
 void noteUnkeptParts(const aiScene& scene, Notes& notes) {
-  std::size_t colored = 0, emissive = 0;
+  std::size_t colored = 0;
   for (unsigned i = 0; i < scene.mNumMeshes && scene.mMeshes; ++i)
     colored += scene.mMeshes[i] && scene.mMeshes[i]->HasVertexColors(0);
-  for (unsigned i = 0; i < scene.mNumMaterials && scene.mMaterials; ++i) {
-    if (!scene.mMaterials[i]) continue;
-    aiColor4D color(0.0f, 0.0f, 0.0f, 0.0f);
-    const bool glows = scene.mMaterials[i]->Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS &&
-                       (color.r > 0.0f || color.g > 0.0f || color.b > 0.0f);
-    emissive += glows || scene.mMaterials[i]->GetTextureCount(aiTextureType_EMISSIVE) > 0;
-  }
   if (colored > 0) notes.dropped.push_back("the vertex colours of " + std::to_string(colored) + " meshes");
-  if (emissive > 0) notes.dropped.push_back("the emission of " + std::to_string(emissive) + " materials");
 }
 
 }  // namespace

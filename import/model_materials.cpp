@@ -8,7 +8,6 @@
 #include <cmath>
 #include <map>
 #include <optional>
-#include <set>
 #include <string>
 
 #include "model_parts.h"
@@ -80,6 +79,8 @@ Material phongOf(const aiMaterial& m, bool& madeUpColor, MetalRough scale) {
     }
   }
   out.ambient = out.diffuse;
+  // Emission as radiance on the image's scale: an emissive factor of 1 shows at full brightness, lit or not.
+  if (m.Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) out.emission = clamp01(rgb(color)) * 255.0f;
   return out;
 }
 
@@ -182,39 +183,57 @@ std::string fileNamePart(const std::string& name) {
   return base.empty() || base[0] == '*' ? "embedded" : base;
 }
 
-// Each base-colour texture the meshes use, kept as its materials' own texture: the texture blended in at
-// kTextureFactor, the material's colour times the texture's mean. Without texture coordinates none can be shown.
-void keepTextures(const aiScene& scene, const fs::path& path, const std::set<std::string>& textureUse,
-                  const std::map<unsigned, std::uint32_t>& ours, Scene& out, Notes& notes) {
-  if (!textureUse.empty() && out.texCoords.empty()) {
-    notes.warnings.push_back("the model has textures but no texture coordinates; they are left out");
-    return;
-  }
-  std::map<std::string, std::pair<std::string, Color>> kept;  // the model's name -> the scene's name, mean texel
-  for (const std::string& name : textureUse) {
+// The emission map a material names ("" when none).
+std::string emissionTexture(const aiMaterial& m) {
+  aiString path;
+  if (m.GetTextureCount(aiTextureType_EMISSIVE) > 0 && m.GetTexture(aiTextureType_EMISSIVE, 0, &path) == AI_SUCCESS)
+    return path.C_Str();
+  return {};
+}
+
+// Each material's base-colour texture and emission map, kept as its own: the texture blended in at kTextureFactor,
+// the material's colour times the texture's mean; the map scaling its emission (a map alone: emission 255). Each
+// image is read once. Without texture coordinates none can be shown.
+void keepTextures(const aiScene& scene, const fs::path& path, const std::map<unsigned, std::uint32_t>& ours,
+                  Scene& out, Notes& notes) {
+  std::map<std::string, std::optional<std::pair<std::string, Color>>> kept;  // the model's name -> ours, mean texel
+  auto keep = [&](const std::string& name) -> const std::optional<std::pair<std::string, Color>>& {
+    auto [it, added] = kept.emplace(name, std::nullopt);
+    if (!added) return it->second;
     std::string reason;
     fs::path file;
     std::optional<Texture> texture = loadTexture(scene, path.parent_path(), name, reason, notes, &file);
     if (!texture) {
       notes.warnings.push_back("texture \"" + name + "\" cannot be used (" + reason + "); its material keeps its colour");
-      continue;
+      return it->second;
     }
     notes.textures.push_back(fileNamePart(name) + " (" + std::to_string(texture->width) + "x" +
                              std::to_string(texture->height) + ")");
-    const std::string sceneName = keptTextureName(path, file, kept.size() + 1);
-    kept[name] = {sceneName, averageOf(*texture)};
-    out.materialTextures.push_back({sceneName, std::move(texture)});
-  }
+    it->second = std::pair{keptTextureName(path, file, out.materialTextures.size() + 1), averageOf(*texture)};
+    out.materialTextures.push_back({it->second->first, std::move(texture)});
+    return it->second;
+  };
+  bool withoutCoordinates = false;
   for (const auto& [index, our] : ours) {
     if (index >= scene.mNumMaterials || !scene.mMaterials[index]) continue;
-    const auto found = kept.find(baseColorTexture(*scene.mMaterials[index]));
-    if (found == kept.end()) continue;
+    const std::string base = baseColorTexture(*scene.mMaterials[index]);
+    const std::string glow = emissionTexture(*scene.mMaterials[index]);
+    withoutCoordinates |= (!base.empty() || !glow.empty()) && out.texCoords.empty();
+    if (out.texCoords.empty()) continue;
     Material& material = out.materials[our];
-    material.diffuse *= found->second.second;
-    material.ambient = material.diffuse;
-    material.textureFactor = kTextureFactor;
-    material.textureImage = found->second.first;
+    if (const auto& image = base.empty() ? std::nullopt : keep(base)) {
+      material.diffuse *= image->second;
+      material.ambient = material.diffuse;
+      material.textureFactor = kTextureFactor;
+      material.textureImage = image->first;
+    }
+    if (const auto& image = glow.empty() ? std::nullopt : keep(glow)) {
+      material.emissionImage = image->first;
+      if (!material.emits()) material.emission = Color(255.0f);
+    }
   }
+  if (withoutCoordinates)
+    notes.warnings.push_back("the model has textures but no texture coordinates; they are left out");
 }
 
 }  // namespace
@@ -228,9 +247,8 @@ Color averageOf(const Texture& t) {
 }
 
 void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes& notes) {
-  // Assimp's material index -> ours, in order of first use; the base-colour textures the meshes use.
+  // Assimp's material index -> ours, numbered in order of first use.
   std::map<unsigned, std::uint32_t> ours;
-  std::set<std::string> textureUse;
   std::map<std::string, int> taken;
   std::map<std::string, std::optional<MetalRough>> metalRough;
   bool madeUpColor = false;
@@ -251,13 +269,10 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
       out.materials.push_back(std::move(material));
     }
     mesh.material = it->second;
-    if (index < scene.mNumMaterials && scene.mMaterials[index])
-      if (std::string texture = baseColorTexture(*scene.mMaterials[index]); !texture.empty())
-        textureUse.insert(texture);
   }
   if (madeUpColor) notes.madeUp.push_back("material colours");
 
-  keepTextures(scene, path, textureUse, ours, out, notes);
+  keepTextures(scene, path, ours, out, notes);
 }
 
 }  // namespace rayview::model

@@ -115,14 +115,15 @@ void SceneGeometry::addFace(const Triangle& triangle, const FaceAttributes& attr
 }
 
 const Texture* SceneGeometry::textureOf(const Material& material) const {
-  const std::optional<Texture>* image = &texture;
-  if (!material.textureImage.empty()) {
-    const auto named = std::find_if(materialTextures.begin(), materialTextures.end(),
-                                    [&](const NamedTexture& t) { return t.name == material.textureImage; });
-    if (named == materialTextures.end()) return nullptr;
-    image = &named->image;
-  }
-  return *image && !(*image)->rgb.empty() ? &**image : nullptr;
+  if (!material.textureImage.empty()) return textureNamed(material.textureImage);
+  return texture && !texture->rgb.empty() ? &*texture : nullptr;
+}
+
+const Texture* SceneGeometry::textureNamed(const std::string& name) const {
+  const auto named = std::find_if(materialTextures.begin(), materialTextures.end(),
+                                  [&](const NamedTexture& t) { return t.name == name; });
+  if (name.empty() || named == materialTextures.end() || !named->image || named->image->rgb.empty()) return nullptr;
+  return &*named->image;
 }
 
 bool SceneGeometry::hasAnyTexture() const {

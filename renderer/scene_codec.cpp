@@ -114,6 +114,8 @@ void writeMaterial(Writer& w, const Material& m) {
   w.pod(m.textureFactor);
   w.pod(static_cast<std::uint8_t>(m.twoSided));
   w.text(m.textureImage);
+  w.pod(m.emission);
+  w.text(m.emissionImage);
 }
 
 Material readMaterial(Reader& r) {
@@ -127,6 +129,8 @@ Material readMaterial(Reader& r) {
   m.textureFactor = r.pod<float>();
   m.twoSided = r.pod<std::uint8_t>() != 0;
   m.textureImage = r.text();
+  m.emission = r.pod<Color>();
+  m.emissionImage = r.text();
   return m;
 }
 

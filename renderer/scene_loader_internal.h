@@ -51,7 +51,7 @@ enum class Tag {
   NearDistance, ImageResolution, Lights, AmbientLight,
   Light,  // the element of a light type (light_types.h); its own fields are read from the type's table
   Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
-  TextureFactor, TwoSided, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
+  TextureFactor, TwoSided, Emission, EmissionImage, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
   Count
 };
 
@@ -68,7 +68,7 @@ inline constexpr TagName kTagNames[] = {
     {"materials", Tag::Materials}, {"material", Tag::Material}, {"ambient", Tag::Ambient},
     {"diffuse", Tag::Diffuse}, {"specular", Tag::Specular}, {"phongexponent", Tag::PhongExponent},
     {"mirrorreflectance", Tag::MirrorReflectance}, {"texturefactor", Tag::TextureFactor},
-    {"twosided", Tag::TwoSided},
+    {"twosided", Tag::TwoSided}, {"emission", Tag::Emission}, {"emissionimage", Tag::EmissionImage},
     {"vertexdata", Tag::VertexData}, {"texturedata", Tag::TextureData}, {"normaldata", Tag::NormalData},
     {"textureimage", Tag::TextureImage}, {"objects", Tag::Objects}, {"mesh", Tag::Mesh},
     {"materialid", Tag::MaterialId}, {"faces", Tag::Faces},
@@ -396,7 +396,8 @@ class Loader {
   std::string describe(const XMLElement* e);
 
   void readMaterials(const XMLElement* materials);
-  void readMaterialTexture(const XMLElement* e, Material& material);
+  // A material's own image (its <textureimage> or <emissionimage>) into `name`, remembered for loadTexture.
+  void readMaterialTexture(const XMLElement* e, std::string& name);
 
   // ---------------------------------------------------------------- geometry
   // The numbers of a big block, `Stride` per item, each item handed to `item(const double*)` as soon as it is

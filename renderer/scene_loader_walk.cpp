@@ -202,7 +202,9 @@ void Loader::readMaterials(const XMLElement* materials) {
         }
         case Tag::MirrorReflectance: material.mirror = readColor(c), have |= 16; break;
         case Tag::TextureFactor: material.textureFactor = static_cast<float>(readScalar(c, true)); break;
-        case Tag::TextureImage: readMaterialTexture(c, material); break;
+        case Tag::TextureImage: readMaterialTexture(c, material.textureImage); break;
+        case Tag::Emission: material.emission = readColor(c); break;
+        case Tag::EmissionImage: readMaterialTexture(c, material.emissionImage); break;
         case Tag::TwoSided: {
           std::int64_t flag = 0;
           readIntegers(c, 1, &flag, 0, "0 or 1");
@@ -226,12 +228,12 @@ void Loader::readMaterials(const XMLElement* materials) {
   });
 }
 
-void Loader::readMaterialTexture(const XMLElement* e, Material& material) {
-  material.textureImage = trimmedText(e);
-  if (material.textureImage.empty()) return;  // as at the scene's level: no name, no texture of its own
-  const auto named = [&](const auto& entry) { return entry.first == material.textureImage; };
+void Loader::readMaterialTexture(const XMLElement* e, std::string& name) {
+  name = trimmedText(e);
+  if (name.empty()) return;  // as at the scene's level: no name, no image of its own
+  const auto named = [&](const auto& entry) { return entry.first == name; };
   if (std::none_of(materialTextureLines_.begin(), materialTextureLines_.end(), named))
-    materialTextureLines_.emplace_back(material.textureImage, e->GetLineNum());
+    materialTextureLines_.emplace_back(name, e->GetLineNum());
 }
 
 std::size_t Loader::estimatedBlockItems(const XMLElement* e, std::size_t tokensPerItem) {

@@ -33,7 +33,8 @@ std::string outputOverwritesInput(const std::filesystem::path& output, const std
   };
   if (std::string problem = isTexture(scene.textureImage); !problem.empty()) return problem;
   for (const Material& material : scene.materials)
-    if (std::string problem = isTexture(material.textureImage); !problem.empty()) return problem;
+    for (const std::string* name : {&material.textureImage, &material.emissionImage})
+      if (std::string problem = isTexture(*name); !problem.empty()) return problem;
   return {};
 }
 

@@ -192,6 +192,8 @@ void writeParameters(XmlWriter& xml, const SceneParameters& parameters) {
     if (m.textureFactor != 0.0f) xml.element(3, "texturefactor", m.textureFactor);
     if (m.twoSided) xml.element(3, "twosided", 1);
     if (!m.textureImage.empty()) xml.text(3, "textureimage", m.textureImage);
+    if (m.emits()) xml.element(3, "emission", m.emission);
+    if (!m.emissionImage.empty()) xml.text(3, "emissionimage", m.emissionImage);
     xml.close(2, "material");
   }
   xml.close(1, "materials");
@@ -293,7 +295,10 @@ void writeSceneFile(const fs::path& outputPath, const SceneParameters& parameter
     throw ImageIoError(problem);
   // The materials' own textures are found as the scene's is, from the file the scene came from.
   SceneParameters written = parameters;
-  for (Material& m : written.materials) m.textureImage = textureReferenceFor(loaded, m.textureImage, outputPath);
+  for (Material& m : written.materials) {
+    m.textureImage = textureReferenceFor(loaded, m.textureImage, outputPath);
+    m.emissionImage = textureReferenceFor(loaded, m.emissionImage, outputPath);
+  }
   writeFileAtomically(outputPath, sceneToXml(written, loaded.geometry(), textureReferenceFor(loaded, outputPath)));
 }
 

@@ -179,7 +179,10 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   eyeRelative_ = parameters.camera.position - accel.origin();
   lights_ = parameters.lights.prepare(accel.origin(), settings);
   pointLightsOnly_ = std::get<std::vector<TriangularLightShading>>(lights_).empty();
-  for (const Material& material : parameters.materials) textures_.push_back(meshes.textureOf(material));
+  for (const Material& material : parameters.materials) {
+    textures_.push_back(meshes.textureOf(material));
+    emissionMaps_.push_back(meshes.textureNamed(material.emissionImage));
+  }
   for (const Mesh& mesh : meshes.meshes) {
     meshStarts_.push_back(mesh.firstTriangle);
     meshMaterials_.push_back(mesh.material);
@@ -502,6 +505,7 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
 
   Color& color = v.local;
   color = material.ambient * parameters_.ambientLight;
+  if (material.emits()) color += emissionAt(material, attributes, hit);
 
   // One light direction: its Blinn-Phong terms, then (when they add anything) the shadow ray toward `target`
   // (stopping just before it), or along `l` without end.
@@ -538,6 +542,12 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
   }
 
   if (material.textureFactor != 0.0f && attributes.hasTexCoords()) applyTexture(material, attributes, hit, v);
+}
+
+Color Tracer::emissionAt(const Material& material, const FaceAttributes& attributes, const Hit& hit) const {
+  const Texture* map = emissionMaps_[static_cast<std::size_t>(&material - parameters_.materials.data())];
+  if (!map || !attributes.hasTexCoords()) return material.emission;
+  return material.emission * (sampleTexture(*map, attributes, hit) / 255.0f);
 }
 
 void Tracer::applyTexture(const Material& material, const FaceAttributes& attributes, const Hit& hit,

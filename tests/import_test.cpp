@@ -488,14 +488,28 @@ TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
   EXPECT_NE(framed.summary.find("made up: camera, key/fill/back lights"), std::string::npos) << framed.summary;
 }
 
-// What the format cannot keep is named in the summary, not dropped silently.
-TEST(ImportModel, EmissionAndVertexColoursAreReportedAsDropped) {
+// Emission is kept: the surface shows its own light with no light on it. What the format cannot keep (vertex
+// colours) is named in the summary, not dropped silently.
+TEST(ImportModel, EmissionIsKeptAndVertexColoursAreReportedAsDropped) {
   std::string gltf = triangleGltf(5.0, 10.0);
   const std::string mesh = R"("attributes":{"POSITION":0})";
   gltf.replace(gltf.find(mesh), mesh.size(), mesh + R"(,"material":0)");
   gltf.insert(gltf.rfind('}'), R"(,"materials":[{"emissiveFactor":[1,0.5,0]}])");
   const ImportedModel model = importModel(writeFile("glow.gltf", gltf), small());
-  EXPECT_NE(model.summary.find("dropped: the emission of 1 materials"), std::string::npos) << model.summary;
+  EXPECT_NE(model.summary.find("dropped: nothing"), std::string::npos) << model.summary;
+  Scene dark = model.loaded.scene;
+  ASSERT_EQ(dark.materials.size(), 1u);
+  EXPECT_EQ(dark.materials[0].emission, Color(255.0f, 127.5f, 0.0f));
+  dark.lights = SceneLights{};
+  dark.ambientLight = Color(0.0f);
+  const Image image = render(dark);
+  bool glows = false;
+  for (int y = 0; y < image.height; ++y)
+    for (int x = 0; x < image.width; ++x) {
+      const std::uint8_t* p = image.pixel(x, y);
+      glows |= p[0] == 255 && p[1] == 128 && p[2] == 0;
+    }
+  EXPECT_TRUE(glows) << "no pixel shows the emission (255, 128, 0) in the dark";
   const ImportedModel colours = importModel(
       writeFile("colours.ply", "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                                "property float z\nproperty uchar red\nproperty uchar green\nproperty uchar blue\n"

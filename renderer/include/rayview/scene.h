@@ -46,7 +46,13 @@ struct Material {
   // <textureimage> inside a <material>, rayview's extension for models with several textures: this material's
   // texture in place of the scene's ("" for the scene's, as in the handout's files).
   std::string textureImage{};
+  // <emission>r g b</emission>, rayview's extension for models' emissive surfaces: light the surface gives off
+  // itself, unlit and unshadowed, on the image's 0-255 scale, before the texture blend; <emissionimage> scales it by
+  // a texel (each channel 0..1), for a model's emission map.
+  Color emission{0.0f};
+  std::string emissionImage{};
 
+  bool emits() const { return emission.x != 0.0f || emission.y != 0.0f || emission.z != 0.0f; }
   bool isMirror() const { return mirror.x != 0.0f || mirror.y != 0.0f || mirror.z != 0.0f; }
   bool operator==(const Material&) const = default;
 };
@@ -147,6 +153,8 @@ struct SceneGeometry {
   // The texture a material shows: its own (by name) or else the scene's; null when there is none to show (never
   // named, not read, or empty).
   const Texture* textureOf(const Material& material) const;
+  // The image a material names itself (its texture or emission map); null when none was read under that name.
+  const Texture* textureNamed(const std::string& name) const;
   // Whether any material can show a texture: the scene's or one of its own.
   bool hasAnyTexture() const;
 

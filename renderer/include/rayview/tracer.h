@@ -129,6 +129,8 @@ class Tracer {
   // The material's texture at the hit, when it has one to show, blended into `v` by its texture factor.
   void applyTexture(const Material& material, const FaceAttributes& attributes, const Hit& hit, PathVertex& v) const;
   Color sampleTexture(const Texture& texture, const FaceAttributes& face, const Hit& hit) const;
+  // The light a material gives off at the hit: its emission, times its emission map's texel when it has one.
+  Color emissionAt(const Material& material, const FaceAttributes& attributes, const Hit& hit) const;
   // SceneGeometry::materialOf, on arrays of the mesh ranges' starts and materials alone: once per hit.
   const Material& materialOf(std::uint32_t triangle) const;
 
@@ -143,6 +145,7 @@ class Tracer {
   SceneLights::Prepared lights_;  // by type, in the order of light_types.h
   bool pointLightsOnly_ = false;  // so a block's hits are lit four at a time (shadePointLights)
   std::vector<const Texture*> textures_;  // per material: SceneGeometry::textureOf, once per render
+  std::vector<const Texture*> emissionMaps_;  // per material: its <emissionimage>, or null
   std::vector<std::uint32_t> meshStarts_;     // each mesh's first triangle, in order
   std::vector<std::uint32_t> meshMaterials_;  // and its material
 };
