@@ -142,9 +142,13 @@ class Rows:
             return self.execute([rv, *arguments, "--threads", "1"], out)
         source = self.inputs[kind]
         if row == "`bench tradeoff`":
-            # At a tenth of the size: the cell checks what is measured, not how well.
+            # Small: the cell checks what is measured, not how well. The scenes' 32x24 at a tenth; a model's
+            # default 1280x720 at a fortieth (32x18), where each render is quick enough to be timed in turn: at
+            # 128x72 a sanitizer build's renders are timed alone and repeated, with pauses, whenever the other
+            # tests hold the cores (50 s a cell under ASan, against 3 s).
+            scale = "0.025" if kind in ("model", "lit model") and "--resolution" not in options else "0.1"
             run = self.execute([rv, "bench", "tradeoff", source, "--out", out, "--quiet", "--threads", "1",
-                                "--scale", "0.1", *options], out)
+                                "--scale", scale, *options], out)
             # Times differ from run to run: keep what was rendered (knob, setting, rays).
             csv = run.files.get("tradeoff.csv", b"").decode().splitlines()
             kept = [",".join(l.split(",")[1:3] + l.split(",")[-1:]) for l in csv[1:]]
