@@ -628,6 +628,8 @@ def main():
     parser.add_argument("case", choices=sorted(CASES))
     parser.add_argument("--rayview", required=True)
     parser.add_argument("--output", required=True)
+    # The sanitizers the build has ("" for none): there a case may render less where the time buys nothing.
+    parser.add_argument("--sanitizers", default="")
     args = parser.parse_args()
     args.rayview = os.path.abspath(args.rayview)
 
