@@ -101,7 +101,8 @@ def soak_script(count, seed, scene, broken, work):
     ]
     weights = [w for w, _ in makers]
     # The window at 800x600, the smallest the overlays case checks: every frame draws and renders a 400x600 image
-    # area instead of the initial window's 880x800, a third of the pixels, and the commands are the same.
+    # area instead of the initial window's 880x800, a third of the pixels; the commands are the same seeded sequence
+    # (the resize takes the place of its last one).
     lines = [f"# stress_test.py soak: {count} commands, seed {seed}", "resize 800 600", "wait-final 300"]
     warmup_mark = int(count * WARMUP_FRACTION)
     while len(lines) - 1 < count - 4:  # the first line is a comment
