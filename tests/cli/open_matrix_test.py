@@ -8,6 +8,7 @@ byte, the same first message.
 Usage: open_matrix_test.py --rayview PATH --source DIR --scratch DIR
 """
 import argparse
+import atexit
 import base64
 import json
 import os
@@ -99,7 +100,33 @@ class Rows:
         libexec = os.path.join(os.path.dirname(args.rayview), "libexec")
         # A build without MPI or without the viewer has no row to check there.
         self.mpirun = shutil.which("mpirun") and os.path.exists(os.path.join(libexec, "rayview-mpi"))
-        self.viewer = shutil.which("xvfb-run") and os.path.exists(os.path.join(libexec, "rayview-viewer"))
+        self.viewer = shutil.which("Xvfb") and os.path.exists(os.path.join(libexec, "rayview-viewer"))
+        self.xvfb, self.display = None, None
+
+    def shared_display(self):
+        """One virtual display for the viewer's row, started at its first cell: an X server per cell (xvfb-run)
+        took about a second of each of its 16 runs. -displayfd picks a free display number and tells it when ready."""
+        if self.display is None:
+            ready, tell = os.pipe()
+            self.xvfb = subprocess.Popen(["Xvfb", "-displayfd", str(tell), "-screen", "0", "800x600x24", "-nolisten",
+                                          "tcp"], pass_fds=(tell,), stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+            os.close(tell)
+            atexit.register(self.close)  # also when a cell raises
+            number = b""
+            while not number.endswith(b"\n"):
+                chunk = os.read(ready, 16)
+                if not chunk:
+                    raise RuntimeError(f"Xvfb exited ({self.xvfb.wait()}) before it named its display")
+                number += chunk
+            os.close(ready)
+            self.display = ":" + number.decode().strip()
+        return self.display
+
+    def close(self):
+        if self.xvfb is not None:
+            self.xvfb.terminate()
+            self.xvfb.wait()
+            self.xvfb = None
 
     def fresh(self):
         self.count += 1
@@ -142,9 +169,13 @@ class Rows:
             return self.execute([rv, *arguments, "--threads", "1"], out)
         source = self.inputs[kind]
         if row == "`bench tradeoff`":
-            # At a tenth of the size: the cell checks what is measured, not how well.
+            # Small: the cell checks what is measured, not how well. The scenes' 32x24 at a tenth; a model's
+            # default 1280x720 at a fortieth (32x18), where each render is quick enough to be timed in turn: at
+            # 128x72 a sanitizer build's renders are timed alone and repeated, with pauses, whenever the other
+            # tests hold the cores (50 s a cell under ASan, against 3 s).
+            scale = "0.025" if kind in ("model", "lit model") and "--resolution" not in options else "0.1"
             run = self.execute([rv, "bench", "tradeoff", source, "--out", out, "--quiet", "--threads", "1",
-                                "--scale", "0.1", *options], out)
+                                "--scale", scale, *options], out)
             # Times differ from run to run: keep what was rendered (knob, setting, rays).
             csv = run.files.get("tradeoff.csv", b"").decode().splitlines()
             kept = [",".join(l.split(",")[1:3] + l.split(",")[-1:]) for l in csv[1:]]
@@ -162,8 +193,8 @@ class Rows:
             # give it (tests/viewer/viewer_harness.py, viewer_environment): Xvfb and xvfb-run never do.
             preload = os.environ.get("RAYVIEW_VIEWER_PRELOAD")
             viewer = ["env", "LD_PRELOAD=" + preload, rv] if preload else [rv]
-            return self.execute(["xvfb-run", "-a", "-s", "-screen 0 800x600x24", *viewer, source, "--script", script,
-                                 "--threads", "1", *options], out, timeout=120)
+            return self.execute([*viewer, source, "--script", script, "--threads", "1", *options], out, timeout=120,
+                                env=dict(os.environ, DISPLAY=self.shared_display()))
         raise AssertionError(f"no runner for the row {row}")
 
 
@@ -320,8 +351,9 @@ def main():
                                         f"files {sorted(s.files)} '{s.first_message()}'")
             else:
                 singles[(row, column)] = runs[start:]
+    rows.close()
     for row in skipped:
-        why = "mpirun or rayview's MPI program" if row.startswith("`mpirun") else "xvfb-run or the viewer"
+        why = "mpirun or rayview's MPI program" if row.startswith("`mpirun") else "Xvfb or the viewer"
         print(f"  skipped: {row} ({why} not found in this build)")
     for failure in failures:
         print(f"FAILED: {failure}")

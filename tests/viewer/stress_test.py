@@ -4,10 +4,11 @@
     stress_test.py CASE --rayview PATH --output DIR [--commands N] [--seed S]
 
 Cases:
-  soak     a deterministic (seeded) script of N automation commands (default 10000): material, light and depth
-           edits, orbits and dollies, resolutions from 16 to 700 pixels, failed loads checked by expect-error,
-           reloads; it ends with wait-final and must exit 0. The resident memory (VmRSS, read from /proc while
-           the viewer runs) after the warm-up and at the end must agree within RSS_TOLERANCE_MB.
+  soak     a deterministic (seeded) script of N automation commands (default 10000) in an 800x600 window:
+           material, light and depth edits, orbits and dollies, resolutions from 16 to 700 pixels, failed loads
+           checked by expect-error, reloads; it ends with wait-final and must exit 0. The resident memory
+           (VmRSS, read from /proc while the viewer runs) after the warm-up and at the end must agree within
+           RSS_TOLERANCE_MB.
   threads  edits while the other threads work: the file on disk is rewritten again and again (the file watch
            reloads it on the loader task while the script goes on editing and the mouse drags the camera),
            a measure-tradeoff, then a measurement cancelled by a reload and the exit right after. Built with
@@ -99,7 +100,10 @@ def soak_script(count, seed, scene, broken, work):
         (1, lambda: ["reload", "expect-no-error"]),
     ]
     weights = [w for w, _ in makers]
-    lines = [f"# stress_test.py soak: {count} commands, seed {seed}", "wait-final 300"]
+    # The window at 800x600, the smallest the overlays case checks: every frame draws and renders a 400x600 image
+    # area instead of the initial window's 880x800, a third of the pixels; the commands are the same seeded sequence
+    # (the resize takes the place of its last one).
+    lines = [f"# stress_test.py soak: {count} commands, seed {seed}", "resize 800 600", "wait-final 300"]
     warmup_mark = int(count * WARMUP_FRACTION)
     while len(lines) - 1 < count - 4:  # the first line is a comment
         if len(lines) >= warmup_mark and "print-state" not in lines:

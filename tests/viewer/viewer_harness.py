@@ -55,7 +55,9 @@ def read_png(path):
     for y in range(height):
         start = y * (stride + 1)
         kind, line = raw[start], bytearray(raw[start + 1:start + 1 + stride])
-        for x in range(stride):
+        # Filter 0 (none), what the viewer's screenshots use on every row: the bytes as they are, without the
+        # per-byte loop below (0.75 s of a 1280x800 screenshot's decoding).
+        for x in range(stride) if kind else ():
             a = line[x - channels] if x >= channels else 0
             b = previous[x]
             c = previous[x - channels] if x >= channels else 0
@@ -73,7 +75,10 @@ def read_png(path):
         previous = line
     pixels = b"".join(rows)
     if channels == 4:
-        pixels = bytes(v for i, v in enumerate(pixels) if i % 4 != 3)
+        rgb = bytearray(width * height * 3)
+        for c in range(3):
+            rgb[c::3] = pixels[c::4]
+        pixels = bytes(rgb)
     return width, height, pixels
 
 
@@ -83,6 +88,8 @@ def compare_png(a_path, b_path):
     wb, hb, b = read_png(b_path)
     if (wa, ha) != (wb, hb):
         raise Failure(f"{a_path} is {wa}x{ha} but {b_path} is {wb}x{hb}")
+    if a == b:
+        return 0, 0.0  # the usual answer, without a loop over every pixel
     worst, differing = 0, 0
     for i in range(0, len(a), 3):
         d = max(abs(a[i] - b[i]), abs(a[i + 1] - b[i + 1]), abs(a[i + 2] - b[i + 2]))

@@ -487,7 +487,7 @@ def case_tradeoff(args, work):
     shot = os.path.join(work, "tradeoff.png")
     script = os.path.join(work, "tradeoff.rvs")
     with open(script, "w") as f:
-        f.write(f"resize 1280 800\nopen {scene}\nwait-final\nmeasure-tradeoff 0.25 240\nscreenshot {shot}\n"
+        f.write(f"resize 1280 800\nopen {scene}\nwait-final\nmeasure-tradeoff 0.1 240\nscreenshot {shot}\n"
                 "wait-final\ntradeoff-apply light-samples 4\nwait-final\nprint-state\nundo\nwait-final\n"
                 "print-state\nquit\n")
     # The embedded default scene first: `open` replaces it with the small test scene.
@@ -628,6 +628,8 @@ def main():
     parser.add_argument("case", choices=sorted(CASES))
     parser.add_argument("--rayview", required=True)
     parser.add_argument("--output", required=True)
+    # The sanitizers the build has ("" for none): there a case may render less where the time buys nothing.
+    parser.add_argument("--sanitizers", default="")
     args = parser.parse_args()
     args.rayview = os.path.abspath(args.rayview)
 
