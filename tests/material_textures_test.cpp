@@ -151,5 +151,30 @@ TEST_F(MaterialTextures, TheCodecCarriesNamesAndImages) {
   EXPECT_EQ(geometry.textureImage, scene.textureImage);
 }
 
+// Emission shows with no light at all, scaled per texel by its map; it survives the writer and the codec.
+TEST_F(MaterialTextures, EmissionGlowsInTheDarkScaledByItsMap) {
+  writePixel(dir_ / "scene" / "maps" / "glow.ppm", 255, 0, 51);
+  std::string xml = threeQuads("", "", "");
+  const std::string factor = "<texturefactor>1</texturefactor>";
+  std::size_t first = xml.find(factor), second = xml.find(factor, first + 1);
+  xml.replace(second, factor.size(), "<emission>200 200 200</emission><emissionimage>maps/glow.ppm</emissionimage>");
+  xml.replace(first, factor.size(), "<emission>10 20 30</emission>");
+  const LoadedScene loaded = loadWritten(xml);
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front().format();
+  const Image image = testing::renderChecked(loaded.scene, AccelKind::Packet).image;
+  EXPECT_EQ(pixel(image, 0, 0), Color(10, 20, 30));   // emission alone
+  EXPECT_EQ(pixel(image, 2, 0), Color(200, 0, 40));   // times the map's texel
+  EXPECT_EQ(pixel(image, 4, 0), Color(0, 0, 0));      // no light, no emission
+  fs::create_directories(dir_ / "elsewhere");
+  writeSceneFile(dir_ / "elsewhere" / "copy.xml", loaded.scene);
+  const LoadedScene again = loadSceneFile(dir_ / "elsewhere" / "copy.xml");
+  EXPECT_EQ(again.scene.materials[1].emission, Color(200.0f));
+  EXPECT_EQ(testing::renderChecked(again.scene, AccelKind::Packet).image.rgb, image.rgb);
+  Bytes bytes;
+  encodeParameters(loaded.scene.parameters(), bytes);
+  std::size_t at = 0;
+  EXPECT_TRUE(decodeParameters(bytes.data(), bytes.size(), at) == loaded.scene.parameters());
+}
+
 }  // namespace
 }  // namespace rayview
