@@ -63,6 +63,7 @@ std::uint64_t sceneHash(const Scene& scene) {
   hasher.addArray(scene.vertices);
   hasher.addArray(scene.texCoords);
   hasher.addArray(scene.normals);
+  hasher.addArray(scene.vertexColors);
   hasher.add(scene.triangles.data(), scene.triangles.size() * sizeof(Triangle));
   hasher.add(scene.faceAttributes.data(), scene.faceAttributes.size() * sizeof(FaceAttributes));
   for (const Mesh& mesh : scene.meshes) {

@@ -93,6 +93,7 @@ aiMesh* toAssimp(const Scene& s, const Mesh& mesh, std::vector<std::uint32_t>& l
   const std::size_t first = mesh.firstTriangle, end = s.meshEnd(mesh);
   const bool perCorner = !s.faceAttributes.empty();
   std::vector<aiVector3D> positions, normals, uvs;
+  std::vector<aiColor4D> colors;
   bool anyNormal = false, anyUv = false;
   out->mNumFaces = static_cast<unsigned>(end - first);
   out->mFaces = new aiFace[out->mNumFaces];
@@ -112,6 +113,7 @@ aiMesh* toAssimp(const Scene& s, const Mesh& mesh, std::vector<std::uint32_t>& l
       localOf[v] = face.mIndices[k];
       const glm::dvec3& p = s.vertices[v];
       positions.emplace_back(static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z));
+      if (!s.vertexColors.empty()) colors.emplace_back(s.vertexColors[v].x, s.vertexColors[v].y, s.vertexColors[v].z, 1.0f);
       if (perCorner) {
         const glm::vec3 n = a.normal[k] != kNoIndex ? s.normals[a.normal[k]] : glm::vec3(0.0f);
         const glm::vec2 uv = a.texCoord[k] != kNoIndex ? s.texCoords[a.texCoord[k]] : glm::vec2(0.0f);
@@ -128,6 +130,10 @@ aiMesh* toAssimp(const Scene& s, const Mesh& mesh, std::vector<std::uint32_t>& l
   if (anyNormal) {
     out->mNormals = new aiVector3D[normals.size()];
     std::copy(normals.begin(), normals.end(), out->mNormals);
+  }
+  if (!colors.empty()) {
+    out->mColors[0] = new aiColor4D[colors.size()];
+    std::copy(colors.begin(), colors.end(), out->mColors[0]);
   }
   if (anyUv) {
     out->mTextureCoords[0] = new aiVector3D[uvs.size()];

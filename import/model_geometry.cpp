@@ -51,6 +51,7 @@ class Gatherer {
         fail(path_, "vertex " + std::to_string(i + 1) + " of mesh \"" + m.mName.C_Str() + "\" is not a finite number");
       g_.vertices.emplace_back(p.x, p.y, p.z);
     }
+    colors(m, base);
     const std::int32_t normalBase = normals(m, world);
     const std::int32_t uvBase = texCoords(m);
     Mesh mesh;
@@ -91,6 +92,18 @@ class Gatherer {
         ++counts_.trianglesWithBadNormals;
       }
       g_.addFace(t, a);
+    }
+  }
+
+  // The mesh's vertex colours (its first set), one per vertex once any mesh has them: white for meshes without.
+  void colors(const aiMesh& m, std::size_t base) {
+    const bool has = m.HasVertexColors(0);
+    if (!has && g_.vertexColors.empty()) return;
+    g_.vertexColors.resize(base, Color(1.0f));
+    auto channel = [](float c) { return std::isfinite(c) ? std::clamp(c, 0.0f, 1.0f) : 1.0f; };
+    for (unsigned i = 0; i < m.mNumVertices; ++i) {
+      const aiColor4D c = has ? m.mColors[0][i] : aiColor4D(1.0f, 1.0f, 1.0f, 1.0f);
+      g_.vertexColors.emplace_back(channel(c.r), channel(c.g), channel(c.b));
     }
   }
 
@@ -145,18 +158,6 @@ Bounds boundsOf(const std::vector<glm::dvec3>& vertices) {
   return b;
 }
 
-namespace {
-
-// What the scene format cannot hold is named in the summary's "dropped", never silently lost.
-void noteUnkeptParts(const aiScene& scene, Notes& notes) {
-  std::size_t colored = 0;
-  for (unsigned i = 0; i < scene.mNumMeshes && scene.mMeshes; ++i)
-    colored += scene.mMeshes[i] && scene.mMeshes[i]->HasVertexColors(0);
-  if (colored > 0) notes.dropped.push_back("the vertex colours of " + std::to_string(colored) + " meshes");
-}
-
-}  // namespace
-
 void gatherGeometry(const aiScene& scene, const fs::path& path, SceneGeometry& geometry, Notes& notes) {
   if (!scene.mRootNode) fail(path, "the file has no scene (no root node)");
   Gatherer gatherer(scene, path, geometry);
@@ -178,7 +179,6 @@ void gatherGeometry(const aiScene& scene, const fs::path& path, SceneGeometry& g
   if (gatherer.counts().trianglesWithBadNormals > 0)
     notes.dropped.push_back("the normals of " + std::to_string(gatherer.counts().trianglesWithBadNormals) +
                             " triangles (a normal of zero length or not finite)");
-  noteUnkeptParts(scene, notes);
 }
 
 }  // namespace rayview::model

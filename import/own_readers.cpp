@@ -31,8 +31,12 @@ void readPly(const std::string& bytes, const std::filesystem::path& path, SceneG
   }
   if (ply.triangles.empty()) fail(path, "the file has no triangles");
   if (ply.skippedFaces > 0) notes.dropped.push_back(std::to_string(ply.skippedFaces) + " faces of fewer than 3 vertices");
-  // The scene has no vertex colours yet: said, not silently lost.
-  if (!ply.colors.empty()) notes.dropped.push_back("vertex colours");
+  if (!ply.colors.empty() && ply.colors.size() == ply.vertices.size()) {
+    g.vertexColors.reserve(ply.colors.size());
+    for (const glm::vec3& c : ply.colors)  // float colours may stray outside 0..1
+      g.vertexColors.push_back(glm::clamp(glm::vec3(std::isfinite(c.x) ? c.x : 1.0f, std::isfinite(c.y) ? c.y : 1.0f,
+                                                    std::isfinite(c.z) ? c.z : 1.0f), 0.0f, 1.0f));
+  }
   g.vertices = std::move(ply.vertices);
   g.normals.resize(ply.normals.size());
   std::transform(ply.normals.begin(), ply.normals.end(), g.normals.begin(), unitNormal);

@@ -36,6 +36,7 @@ struct LitPoint {
   glm::vec3 n;          // shading normal
   glm::vec3 toEye;      // unit direction back along the ray
   const Material* material;
+  Color diffuse;        // the material's, times the vertex colour where the scene has them
   std::uint32_t triangle;
   int lane;  // the block's lane it belongs to
 };
@@ -59,7 +60,7 @@ void shadePointLightsFour(const LitPoint* points, int count, const std::vector<P
     ng[a] = gatherD([a](const LitPoint& q) { return q.ng[a]; });
     n[a] = gatherF([a](const LitPoint& q) { return q.n[a]; });
     toEye[a] = gatherF([a](const LitPoint& q) { return q.toEye[a]; });
-    diffuse[a] = gatherF([a](const LitPoint& q) { return q.material->diffuse[a]; });
+    diffuse[a] = gatherF([a](const LitPoint& q) { return q.diffuse[a]; });
     specular[a] = gatherF([a](const LitPoint& q) { return q.material->specular[a]; });
   }
   const Float4 exponent = gatherF([](const LitPoint& q) { return q.material->phongExponent; });

@@ -40,6 +40,8 @@ std::string wholenessProblem(const Scene& s) {
   if (next != s.triangles.size()) return "the meshes do not cover the triangles";
   if (!s.faceAttributes.empty() && s.faceAttributes.size() != s.triangles.size())
     return "face attributes are not one per triangle";
+  if (!s.vertexColors.empty() && s.vertexColors.size() != s.vertices.size())
+    return "vertex colours are not one per vertex";
   for (std::size_t i = 0; i < s.triangles.size(); ++i) {
     const FaceAttributes& a = s.attributesOf(i);
     for (int k = 0; k < 3; ++k) {

@@ -170,6 +170,7 @@ void encodeGeometry(const SceneGeometry& g, Bytes& out) {
     w.pod(mesh.firstTriangle);
     w.pod(mesh.triangleCount);
   }
+  w.array(g.vertexColors);
   w.text(g.textureImage);
   writeTexture(w, g.texture);
   w.pod(static_cast<std::uint64_t>(g.materialTextures.size()));
@@ -194,6 +195,7 @@ SceneGeometry decodeGeometry(const std::uint8_t* data, std::size_t size, std::si
     mesh.firstTriangle = r.pod<std::uint32_t>();
     mesh.triangleCount = r.pod<std::uint32_t>();
   }
+  g.vertexColors = r.array<Color>();
   g.textureImage = r.text();
   g.texture = readTexture(r);
   g.materialTextures.resize(r.items(sizeof(std::uint64_t)));

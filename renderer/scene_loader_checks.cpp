@@ -29,6 +29,10 @@ void Loader::finish(const XMLElement* root) {
                                     definedMaterials());
   }
   resolveIndices(rootLine);
+  const auto& colors = result_.scene.vertexColors;
+  if (!colors.empty() && colors.size() != result_.scene.vertices.size())
+    fail(colorDataLine_, "<colordata> has " + std::to_string(colors.size()) + " colours for " +
+                             std::to_string(result_.scene.vertices.size()) + " vertices (one per vertex)");
   loadTexture();
 }
 

@@ -51,7 +51,7 @@ enum class Tag {
   NearDistance, ImageResolution, Lights, AmbientLight,
   Light,  // the element of a light type (light_types.h); its own fields are read from the type's table
   Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
-  TextureFactor, TwoSided, Emission, EmissionImage, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
+  TextureFactor, TwoSided, Emission, EmissionImage, ColorData, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
   Count
 };
 
@@ -69,6 +69,7 @@ inline constexpr TagName kTagNames[] = {
     {"diffuse", Tag::Diffuse}, {"specular", Tag::Specular}, {"phongexponent", Tag::PhongExponent},
     {"mirrorreflectance", Tag::MirrorReflectance}, {"texturefactor", Tag::TextureFactor},
     {"twosided", Tag::TwoSided}, {"emission", Tag::Emission}, {"emissionimage", Tag::EmissionImage},
+    {"colordata", Tag::ColorData},
     {"vertexdata", Tag::VertexData}, {"texturedata", Tag::TextureData}, {"normaldata", Tag::NormalData},
     {"textureimage", Tag::TextureImage}, {"objects", Tag::Objects}, {"mesh", Tag::Mesh},
     {"materialid", Tag::MaterialId}, {"faces", Tag::Faces},
@@ -425,6 +426,7 @@ class Loader {
   void readVertices(const XMLElement* e);
   void readTexCoords(const XMLElement* e);
   void readNormals(const XMLElement* e);
+  void readVertexColors(const XMLElement* e);
 
   void readObjects(const XMLElement* objects);
 
@@ -470,6 +472,7 @@ class Loader {
   bool haveDepth_ = false, haveBackground_ = false, haveAmbient_ = false;
   int cameraLine_ = 0;
   int textureImageLine_ = 0;
+  int colorDataLine_ = 0;  // <colordata>, whose count the checks compare with the vertices'
   std::vector<std::pair<std::string, int>> materialTextureLines_;  // each name a material gives, first line
   std::unordered_map<std::string, int> materialLines_;
   std::unordered_map<std::string, std::uint32_t> materialIndex_;

@@ -22,6 +22,7 @@ void Loader::readScene(const XMLElement* root) {
       case Tag::VertexData: readVertices(e); return true;
       case Tag::TextureData: readTexCoords(e); return true;
       case Tag::NormalData: readNormals(e); return true;
+      case Tag::ColorData: readVertexColors(e); return true;
       case Tag::TextureImage:
         scene.textureImage = trimmedText(e);
         textureImageLine_ = e->GetLineNum();
@@ -292,6 +293,17 @@ void Loader::readNormals(const XMLElement* e) {
       e, "normal", true, [&](std::size_t n) { normals.reserve(n); },
       [&](const double* v) {
         normals.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
+      });
+}
+
+void Loader::readVertexColors(const XMLElement* e) {
+  auto& colors = result_.scene.vertexColors;
+  colors.clear();
+  colorDataLine_ = e->GetLineNum();
+  readBlock<3>(
+      e, "vertex colour", true, [&](std::size_t n) { colors.reserve(n); },
+      [&](const double* v) {
+        colors.emplace_back(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
       });
 }
 

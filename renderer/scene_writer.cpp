@@ -241,6 +241,15 @@ std::string sceneToXml(const SceneParameters& parameters, const SceneGeometry& g
     }
     xml.close(1, "normaldata");
   }
+  if (!geometry.vertexColors.empty()) {
+    xml.open(1, "colordata");
+    for (const Color& c : geometry.vertexColors) {
+      xml.indent(2);
+      Line(out) << c;
+      out += '\n';
+    }
+    xml.close(1, "colordata");
+  }
   if (!textureImage.empty()) xml.text(1, "textureimage", textureImage);
 
   xml.open(1, "objects");

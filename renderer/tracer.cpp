@@ -503,9 +503,9 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
     v.continues = true;
   }
 
+  Color diffuseColor = material.diffuse;  // times the vertex colour, where the scene has them
   Color& color = v.local;
-  color = material.ambient * parameters_.ambientLight;
-  if (material.emits()) color += emissionAt(material, attributes, hit);
+  color = unlitColor(material, attributes, hit, diffuseColor);
 
   // One light direction: its Blinn-Phong terms, then (when they add anything) the shadow ray toward `target`
   // (stopping just before it), or along `l` without end.
@@ -513,7 +513,7 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
   auto addLight = [&](const glm::dvec3& l, const Color& irradiance, const glm::dvec3* target) {
     const int place = sequence++;
     const glm::vec3 toLight = toFloat(l);
-    const Color diffuse = material.diffuse * irradiance * std::max(0.0f, glm::dot(n, toLight));
+    const Color diffuse = diffuseColor * irradiance * std::max(0.0f, glm::dot(n, toLight));
     const glm::vec3 h = glm::normalize(toLight + toEye);
     const float specular = specularPower(std::max(0.0f, glm::dot(n, h)), material.phongExponent);
     const Color contribution = diffuse + material.specular * irradiance * specular;
@@ -536,12 +536,33 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
     lit->n = n;
     lit->toEye = toEye;
     lit->material = &material;
+    lit->diffuse = diffuseColor;
     lit->triangle = hit.triangle;
   } else {
     std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);
   }
 
   if (material.textureFactor != 0.0f && attributes.hasTexCoords()) applyTexture(material, attributes, hit, v);
+}
+
+Color Tracer::unlitColor(const Material& material, const FaceAttributes& attributes, const Hit& hit,
+                         Color& diffuse) const {
+  Color ambient = material.ambient;
+  if (!meshes_.vertexColors.empty()) {
+    const Color tint = vertexColorAt(hit);
+    ambient *= tint;
+    diffuse *= tint;
+  }
+  Color color = ambient * parameters_.ambientLight;
+  if (material.emits()) color += emissionAt(material, attributes, hit);
+  return color;
+}
+
+Color Tracer::vertexColorAt(const Hit& hit) const {
+  const Triangle& t = meshes_.triangles[hit.triangle];
+  const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
+  const std::vector<Color>& c = meshes_.vertexColors;
+  return (1.0f - b1 - b2) * c[t.vertex[0]] + b1 * c[t.vertex[1]] + b2 * c[t.vertex[2]];
 }
 
 Color Tracer::emissionAt(const Material& material, const FaceAttributes& attributes, const Hit& hit) const {

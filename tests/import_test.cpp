@@ -488,9 +488,9 @@ TEST(ImportModel, GltfsOwnCameraAndLightAreUsed) {
   EXPECT_NE(framed.summary.find("made up: camera, key/fill/back lights"), std::string::npos) << framed.summary;
 }
 
-// Emission is kept: the surface shows its own light with no light on it. What the format cannot keep (vertex
-// colours) is named in the summary, not dropped silently.
-TEST(ImportModel, EmissionIsKeptAndVertexColoursAreReportedAsDropped) {
+// Emission is kept (the surface shows its own light with no light on it), and so are vertex colours; neither is
+// in the summary's "dropped".
+TEST(ImportModel, EmissionAndVertexColoursAreKept) {
   std::string gltf = triangleGltf(5.0, 10.0);
   const std::string mesh = R"("attributes":{"POSITION":0})";
   gltf.replace(gltf.find(mesh), mesh.size(), mesh + R"(,"material":0)");
@@ -516,7 +516,9 @@ TEST(ImportModel, EmissionIsKeptAndVertexColoursAreReportedAsDropped) {
                                "element face 1\nproperty list uchar int vertex_indices\nend_header\n"
                                "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n"),
       small());
-  EXPECT_NE(colours.summary.find("dropped: vertex colours"), std::string::npos) << colours.summary;
+  EXPECT_NE(colours.summary.find("dropped: nothing"), std::string::npos) << colours.summary;
+  const std::vector<Color> expected = {Color(1, 0, 0), Color(0, 1, 0), Color(0, 0, 1)};
+  EXPECT_EQ(colours.loaded.scene.vertexColors, expected);
   const ImportedModel plain = importModel(writeFile("plain.gltf", triangleGltf(5.0, 10.0)), small());
   EXPECT_NE(plain.summary.find("dropped: nothing"), std::string::npos) << plain.summary;
 }

@@ -176,5 +176,35 @@ TEST_F(MaterialTextures, EmissionGlowsInTheDarkScaledByItsMap) {
   EXPECT_TRUE(decodeParameters(bytes.data(), bytes.size(), at) == loaded.scene.parameters());
 }
 
+// Vertex colours multiply the ambient (and diffuse) colour, interpolated over the face; one per vertex or refused.
+TEST_F(MaterialTextures, VertexColoursTintTheirFaces) {
+  std::string xml = threeQuads("", "", "");
+  for (std::size_t at; (at = xml.find("<texturefactor>1</texturefactor>")) != std::string::npos;)
+    xml.erase(at, std::string("<texturefactor>1</texturefactor>").size());
+  for (std::size_t at; (at = xml.find("<ambient>0 0 0</ambient>")) != std::string::npos;)
+    xml.replace(at, std::string("<ambient>0 0 0</ambient>").size(), "<ambient>1 1 1</ambient>");
+  xml.replace(xml.find("<ambientlight>0 0 0</ambientlight>"), 34, "<ambientlight>100 100 100</ambientlight>");
+  std::string colours = "<colordata>";
+  for (int v = 0; v < 8; ++v) colours += " 1 0.5 0.25";
+  xml.replace(xml.find("  <texturedata>"), 0, colours + "</colordata>\n");
+  const LoadedScene loaded = loadWritten(xml);
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front().format();
+  ASSERT_EQ(loaded.scene.vertexColors.size(), 8u);
+  const Image image = testing::renderChecked(loaded.scene, AccelKind::Packet).image;
+  for (int i = 0; i < 6; ++i) EXPECT_EQ(pixel(image, i, 1), Color(100, 50, 25)) << i;
+  fs::create_directories(dir_ / "elsewhere");
+  writeSceneFile(dir_ / "elsewhere" / "copy.xml", loaded.scene);
+  EXPECT_EQ(loadSceneFile(dir_ / "elsewhere" / "copy.xml").scene.vertexColors, loaded.scene.vertexColors);
+
+  const std::string shortList = std::string(xml).replace(xml.find(colours), colours.size(), "<colordata>1 1 1 0 0 0");
+  std::ofstream(dir_ / "scene" / "short.xml") << shortList;
+  try {
+    loadSceneFile(dir_ / "scene" / "short.xml");
+    ADD_FAILURE() << "two colours for eight vertices loaded";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("<colordata> has 2 colours for 8 vertices"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rayview

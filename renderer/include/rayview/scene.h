@@ -140,6 +140,9 @@ struct SceneGeometry {
   std::vector<glm::dvec3> vertices;
   std::vector<glm::vec2> texCoords;   // <texturedata>
   std::vector<glm::vec3> normals;     // <normaldata>
+  // <colordata> (rayview's extension, a model's vertex colours): none, or one per vertex, each channel 0..1, which
+  // multiply the ambient and diffuse colours of the faces they shade.
+  std::vector<Color> vertexColors;
   std::vector<Mesh> meshes;           // in order; each a range of `triangles`, together covering them all
   std::vector<Triangle> triangles;    // all meshes, mesh by mesh
   // One per triangle when any face gives texture or normal indices, else empty: the plain faces of most scenes

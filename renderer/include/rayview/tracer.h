@@ -129,6 +129,10 @@ class Tracer {
   // The material's texture at the hit, when it has one to show, blended into `v` by its texture factor.
   void applyTexture(const Material& material, const FaceAttributes& attributes, const Hit& hit, PathVertex& v) const;
   Color sampleTexture(const Texture& texture, const FaceAttributes& face, const Hit& hit) const;
+  // The hit's colour before any light: the ambient term and the emission. The vertex colour, where the scene has
+  // them, multiplies the ambient colour and `diffuse`.
+  Color unlitColor(const Material& material, const FaceAttributes& attributes, const Hit& hit, Color& diffuse) const;
+  Color vertexColorAt(const Hit& hit) const;
   // The light a material gives off at the hit: its emission, times its emission map's texel when it has one.
   Color emissionAt(const Material& material, const FaceAttributes& attributes, const Hit& hit) const;
   // SceneGeometry::materialOf, on arrays of the mesh ranges' starts and materials alone: once per hit.
