@@ -167,14 +167,16 @@ TEST(OwnReaders, AsciiStlKeepsEverySolid) {
   EXPECT_EQ(scene.meshes[1].triangleCount, 2u);
 }
 
-TEST(OwnReaders, PlyColoursAreSaidDroppedAndStripsRead) {
+TEST(OwnReaders, PlyColoursAreKeptAndStripsRead) {
   const ModelScene model = read(writeFile(
       "strips.ply", "ply\nformat ascii 1.0\ncomment Created by Blender\nobj_info made here\nelement vertex 4\n"
                     "property float x\nproperty float y\nproperty float z\nproperty uchar red\nproperty uchar green\n"
                     "property uchar blue\nelement tristrips 1\nproperty list int int vertex_indices\nend_header\n"
                     "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n1 1 0 9 9 9\n4 0 1 2 3\n"));
   EXPECT_EQ(model.scene.triangles.size(), 2u);
-  EXPECT_NE(model.summary.find("dropped: vertex colours"), std::string::npos) << model.summary;
+  EXPECT_NE(model.summary.find("dropped: nothing"), std::string::npos) << model.summary;
+  ASSERT_EQ(model.scene.vertexColors.size(), 4u);
+  EXPECT_EQ(model.scene.vertexColors[1], Color(0.0f, 1.0f, 0.0f));
 }
 
 // A TGA texture named by map_Kd (with an option before the file name) is read and kept.
