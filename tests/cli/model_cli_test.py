@@ -310,7 +310,7 @@ def read_ppm(path):
 def check_every_material_keeps_its_texture(rayview, s):
     # Two materials, two textures of two colours each (red|green, blue|yellow): every material shows its own texels,
     # where one texture per scene would average the other to grey; import writes both beside the scene, and the scene
-    # and an exported OBJ render as the model does.
+    # and an exported OBJ render as the model does. At 320x180: the colours, not the detail, are checked.
     os.makedirs(s("two/out"), exist_ok=True)
     in_two = lambda f: s("two/" + f)
     write_png8(in_two("ab.png"), [[(255, 0, 0), (0, 255, 0)]])
@@ -320,14 +320,14 @@ def check_every_material_keeps_its_texture(rayview, s):
     with open(in_two("two.obj"), "w") as f:
         f.write("mtllib two.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 1.2 0 0\nv 2.2 0 0\nv 2.2 1 0\nv 1.2 1 0\n"
                 "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl a\nf 1/1 2/2 3/3 4/4\nusemtl b\nf 5/1 6/2 7/3 8/4\n")
-    r = run(["render", in_two("two.obj"), "-o", in_two("model.ppm")], rayview)
+    r = run(["render", in_two("two.obj"), "-o", in_two("model.ppm"), "--resolution", "320x180"], rayview)
     check(r.returncode == 0 and "averaged" not in r.stderr, "a model with two textures renders: " + r.stderr.strip())
     pixels = read_ppm(in_two("model.ppm"))
     hues = {"red": lambda p: p[0] > p[1] + 40 and p[0] > p[2] + 40, "green": lambda p: p[1] > p[0] + 40 and p[1] > p[2] + 40,
             "blue": lambda p: p[2] > p[0] + 40 and p[2] > p[1] + 40, "yellow": lambda p: min(p[0], p[1]) > p[2] + 40}
     shown = {name: sum(1 for p in pixels if test(p)) for name, test in hues.items()}
-    check(all(n > 1000 for n in shown.values()), f"each material shows its own texels: {shown}")
-    r = run(["import", in_two("two.obj"), "-o", in_two("out/two.xml")], rayview)
+    check(all(n > 500 for n in shown.values()), f"each material shows its own texels: {shown}")
+    r = run(["import", in_two("two.obj"), "-o", in_two("out/two.xml"), "--resolution", "320x180"], rayview)
     xml = open(in_two("out/two.xml")).read() if r.returncode == 0 else ""
     check(r.returncode == 0 and "textures ab.png (2x1), cd.png (2x1)" in r.stdout and
           xml.count("<textureimage>") == 2 and os.path.exists(in_two("out/two_texture.png")) and
@@ -338,7 +338,7 @@ def check_every_material_keeps_its_texture(rayview, s):
         r = run(args + ["-o", in_two("again.ppm")] if made == "scene" else args, rayview)
         if made != "scene":
             check(r.returncode == 0 and "its textures as" in r.stdout, "export writes both textures: " + r.stdout.strip())
-            r = run(["render", in_two("out/again.obj"), "-o", in_two("again.ppm")], rayview)
+            r = run(["render", in_two("out/again.obj"), "-o", in_two("again.ppm"), "--resolution", "320x180"], rayview)
         check(r.returncode == 0 and read_ppm(in_two("again.ppm")) == pixels,
               f"the {made} renders as the model does, both textures included: " + r.stderr.strip())
 
