@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <optional>
 #include <string>
@@ -24,14 +25,17 @@ Color rgb(const aiColor4D& c) { return Color(c.r, c.g, c.b); }
 
 Color clamp01(Color c) { return glm::clamp(c, Color(0.0f), Color(1.0f)); }
 
-// The base-colour texture a material names ("" when none): glTF's base colour, else the diffuse map.
-std::string baseColorTexture(const aiMaterial& m) {
+// The first texture a material names of the first of `types` it has ("" when none).
+std::string firstTexture(const aiMaterial& m, std::initializer_list<aiTextureType> types) {
   aiString path;
-  if (m.GetTextureCount(aiTextureType_BASE_COLOR) > 0 && m.GetTexture(aiTextureType_BASE_COLOR, 0, &path) == AI_SUCCESS)
-    return path.C_Str();
-  if (m.GetTextureCount(aiTextureType_DIFFUSE) > 0 && m.GetTexture(aiTextureType_DIFFUSE, 0, &path) == AI_SUCCESS)
-    return path.C_Str();
+  for (const aiTextureType type : types)
+    if (m.GetTextureCount(type) > 0 && m.GetTexture(type, 0, &path) == AI_SUCCESS) return path.C_Str();
   return {};
+}
+
+// The base-colour texture a material names: glTF's base colour, else the diffuse map.
+std::string baseColorTexture(const aiMaterial& m) {
+  return firstTexture(m, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE});
 }
 
 // The scale of the metallic and roughness factors: 1, or the averages of the material's metallic-roughness map
@@ -153,10 +157,7 @@ std::string keptTextureName(const fs::path& model, const fs::path& file, std::si
 // The metallic-roughness map a material names ("" when none): glTF's, which Assimp 5.2.5 files as UNKNOWN, or the
 // metalness map of other formats.
 std::string metalRoughTexture(const aiMaterial& m) {
-  aiString path;
-  for (const aiTextureType type : {aiTextureType_UNKNOWN, aiTextureType_METALNESS})
-    if (m.GetTextureCount(type) > 0 && m.GetTexture(type, 0, &path) == AI_SUCCESS) return path.C_Str();
-  return {};
+  return firstTexture(m, {aiTextureType_UNKNOWN, aiTextureType_METALNESS});
 }
 
 // A material's factor scales from its metallic-roughness map's average texel, each map read once. Without them
@@ -184,12 +185,7 @@ std::string fileNamePart(const std::string& name) {
 }
 
 // The emission map a material names ("" when none).
-std::string emissionTexture(const aiMaterial& m) {
-  aiString path;
-  if (m.GetTextureCount(aiTextureType_EMISSIVE) > 0 && m.GetTexture(aiTextureType_EMISSIVE, 0, &path) == AI_SUCCESS)
-    return path.C_Str();
-  return {};
-}
+std::string emissionTexture(const aiMaterial& m) { return firstTexture(m, {aiTextureType_EMISSIVE}); }
 
 // Each material's base-colour texture and emission map, kept as its own: the texture blended in at kTextureFactor,
 // the material's colour times the texture's mean; the map scaling its emission (a map alone: emission 255). Each
