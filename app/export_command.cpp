@@ -49,9 +49,8 @@ int runExportCommand(const CommandLine& command) {
     Scene& scene = loaded.scene;
     // The names the exported materials give their textures, relative to the model; none when there is no file to
     // name, or no material shows it.
-    const std::string sceneTexture = scene.textureImage;
-    renameTextures(scene, [&](const std::string& name, const Texture& texture) {
-      return takesTextures(output) && shown(scene, name, name == sceneTexture) ? beside.write(texture) : "";
+    renameTextures(scene, [&](const std::string& name, const Texture& texture, bool isScenes) {
+      return takesTextures(output) && shown(scene, name, isScenes) ? beside.write(texture) : "";
     });
     exportOpenedScene(scene, output);
   } catch (const SceneError& error) {

@@ -29,7 +29,7 @@ bool sameFile(const fs::path& a, const fs::path& b) {
 // path, model_materials.cpp) is copied only when asked, else the scene names it where it lies, relative to the
 // scene's folder.
 void writeTextures(Scene& scene, const fs::path& output, bool copyOutside, TexturesBeside& beside) {
-  renameTextures(scene, [&](const std::string& name, const Texture& texture) {
+  renameTextures(scene, [&](const std::string& name, const Texture& texture, bool) {
     const fs::path outside = fs::path(name).is_absolute() ? fs::path(name) : fs::path();
     if (!outside.empty() && !copyOutside) {
       std::error_code ec;

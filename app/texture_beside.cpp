@@ -43,13 +43,14 @@ void TexturesBeside::removeAll() {
   written_.clear();
 }
 
-void renameTextures(Scene& scene, const std::function<std::string(const std::string&, const Texture&)>& place) {
-  scene.textureImage = scene.texture && !scene.textureImage.empty() ? place(scene.textureImage, *scene.texture) : "";
+void renameTextures(Scene& scene, const TexturePlace& place) {
+  scene.textureImage =
+      scene.texture && !scene.textureImage.empty() ? place(scene.textureImage, *scene.texture, true) : "";
   if (scene.textureImage.empty()) scene.texture.reset();
   std::map<std::string, std::string> renamed;
   std::vector<NamedTexture> kept;
   for (NamedTexture& named : scene.materialTextures) {
-    const std::string name = named.image ? place(named.name, *named.image) : "";
+    const std::string name = named.image ? place(named.name, *named.image, false) : "";
     renamed[named.name] = name;
     if (!name.empty()) kept.push_back({name, std::move(named.image)});
   }

@@ -30,9 +30,10 @@ class TexturesBeside {
   std::vector<std::filesystem::path> written_;
 };
 
-// Gives each texture of the scene a new name, `place(name, image)`: the scene's own and each material's, the
-// materials renamed to match. A texture that was never read, or that `place` names "", is dropped, and with it the
+// Gives each texture of the scene a new name, `place(name, image, isScenes)`: the scene's own (isScenes true) and
+// each material's, the materials renamed to match. A texture that was never read, or that `place` names "", is dropped, and with it the
 // texture of the materials that showed it.
-void renameTextures(Scene& scene, const std::function<std::string(const std::string&, const Texture&)>& place);
+using TexturePlace = std::function<std::string(const std::string& name, const Texture& image, bool isScenes)>;
+void renameTextures(Scene& scene, const TexturePlace& place);
 
 }  // namespace rayview
