@@ -92,6 +92,11 @@ std::optional<Texture> decodeTga(std::string_view b, long long maxPixels, std::s
   const bool rle = static_cast<unsigned char>(b[2]) >= 9, topDown = (static_cast<unsigned char>(b[17]) & 0x20) != 0;
   std::size_t at = 18 + static_cast<unsigned char>(b[0]);  // after the image id
   const std::size_t pixels = static_cast<std::size_t>(width) * static_cast<std::size_t>(height);
+  // The fewest bytes that can hold the pixels (RLE: a packet of 128 repeats is 1 + bytes), checked before allocating:
+  // a few bytes claiming 2^28 pixels would otherwise cost 805 MB and seconds to refuse.
+  const std::size_t least = rle ? (pixels + 127) / 128 * (1u + static_cast<std::size_t>(bytes))
+                                : pixels * static_cast<std::size_t>(bytes);
+  if (at > b.size() || b.size() - at < least) return reason = "a truncated TGA", std::nullopt;
   std::vector<std::uint8_t> stored(pixels * 3);
   const auto* data = reinterpret_cast<const unsigned char*>(b.data());
   for (std::size_t i = 0; i < pixels;) {

@@ -58,6 +58,19 @@ TEST(TextureFormats, ReadsPlainAndRunLengthTga) {
   EXPECT_NE(reason.find("truncated"), std::string::npos) << reason;
 }
 
+// A few bytes whose header claims 16384 x 16384 pixels (a fuzzer's find, minimized): refused as truncated, from the
+// sizes alone, for plain and run-length data alike.
+TEST(TextureFormats, ATgaFarShorterThanItsHeaderSaysIsTruncated) {
+  for (int type : {2, 10}) {
+    std::string huge = tgaHeader(type, 24);
+    huge[12] = 0, huge[13] = 0x40, huge[14] = 0, huge[15] = 0x40;
+    huge += std::string(9, '\x80');
+    std::string reason;
+    EXPECT_FALSE(detail::decodeImage(huge, reason)) << type;
+    EXPECT_NE(reason.find("a truncated TGA"), std::string::npos) << type << ": " << reason;
+  }
+}
+
 TEST(TextureFormats, ReadsTwentyFourBitAndPalettedBmp) {
   auto bmp = [](int bits, const std::string& palette, const std::string& pixels) {
     std::string s = "BM";
