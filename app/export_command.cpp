@@ -21,10 +21,13 @@ bool takesTextures(const fs::path& output) {
   return extension == ".obj" || extension == ".gltf" || extension == ".glb";
 }
 
-// Whether a material shows the texture named `name` (the scene's own when `sceneTexture`).
-bool shown(const Scene& scene, const std::string& name, bool sceneTexture) {
+// Whether a material shows the texture named `name` (the scene's own when `sceneTexture`) in a file of `output`'s
+// format: glTF keeps metallic-roughness maps, OBJ's MTL has no place for them.
+bool shown(const Scene& scene, const std::string& name, bool sceneTexture, const fs::path& output) {
+  const bool metalRough = lowerExtension(output) != ".obj";
   return std::any_of(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
     if (!sceneTexture && m.emits() && m.emissionImage == name) return true;
+    if (!sceneTexture && metalRough && m.metalRoughImage == name) return true;
     return m.textureFactor != 0.0f && (sceneTexture ? m.textureImage.empty() : m.textureImage == name);
   });
 }
@@ -50,7 +53,7 @@ int runExportCommand(const CommandLine& command) {
     // The names the exported materials give their textures, relative to the model; none when there is no file to
     // name, or no material shows it.
     renameTextures(scene, [&](const std::string& name, const Texture& texture, bool isScenes) {
-      return takesTextures(output) && shown(scene, name, isScenes) ? beside.write(texture) : "";
+      return takesTextures(output) && shown(scene, name, isScenes, output) ? beside.write(texture) : "";
     });
     exportOpenedScene(scene, output);
   } catch (const SceneError& error) {

@@ -56,10 +56,10 @@ void renameTextures(Scene& scene, const TexturePlace& place) {
   }
   scene.materialTextures = std::move(kept);
   for (Material& material : scene.materials) {
-    if (!material.emissionImage.empty()) material.emissionImage = renamed[material.emissionImage];
-    if (material.textureImage.empty()) continue;
-    material.textureImage = renamed[material.textureImage];
-    if (material.textureImage.empty()) material.textureFactor = 0.0f;  // nothing left to show
+    const bool ownTexture = !material.textureImage.empty();
+    for (std::string* name : material.images())
+      if (!name->empty()) *name = renamed[*name];
+    if (ownTexture && material.textureImage.empty()) material.textureFactor = 0.0f;  // nothing left to show
   }
 }
 

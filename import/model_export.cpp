@@ -44,6 +44,23 @@ Color texturedDiffuse(const Material& m, const Texture& texture) {
   return kd;
 }
 
+// A metallic-roughness material as glTF has it: the base colour (divided by the texture's mean, as the diffuse
+// colour), the factors and the map, which the glTF exporter writes as pbrMetallicRoughness.
+void addMetalRough(const Material& m, const Texture* texture, aiMaterial& out) {
+  Color base = m.baseColor;
+  if (texture) {
+    const Color mean = model::averageOf(*texture);
+    for (int c = 0; c < 3; ++c)
+      if (mean[c] > 0.0f) base[c] /= mean[c];
+  }
+  const aiColor4D baseColor(base.x, base.y, base.z, 1.0f);
+  out.AddProperty(&baseColor, 1, AI_MATKEY_BASE_COLOR);
+  out.AddProperty(&m.metallic, 1, AI_MATKEY_METALLIC_FACTOR);
+  out.AddProperty(&m.roughness, 1, AI_MATKEY_ROUGHNESS_FACTOR);
+  const aiString file(m.metalRoughImage);
+  out.AddProperty(&file, AI_MATKEY_TEXTURE(aiTextureType_UNKNOWN, 0));  // GltfMaterial.h: the metallic-roughness map
+}
+
 // `texture`: the image file beside the model that a textured material names ("" for none), `image` what it holds.
 aiMaterial* toAssimp(const Material& m, const std::string& texture, const Texture* image) {
   auto* out = new aiMaterial;
@@ -75,6 +92,7 @@ aiMaterial* toAssimp(const Material& m, const std::string& texture, const Textur
     const aiString file(m.emissionImage);
     out->AddProperty(&file, AI_MATKEY_TEXTURE_EMISSIVE(0));
   }
+  if (!m.metalRoughImage.empty()) addMetalRough(m, textured ? image : nullptr, *out);
   if (m.twoSided) {
     const int twoSided = 1;
     out->AddProperty(&twoSided, 1, AI_MATKEY_TWOSIDED);

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "model_parts.h"
+#include "rayview/metal_rough.h"
 #include "rayview/texture_image.h"
 
 namespace rayview::model {
@@ -38,13 +39,20 @@ std::string baseColorTexture(const aiMaterial& m) {
   return firstTexture(m, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE});
 }
 
-// The scale of the metallic and roughness factors: 1, or the averages of the material's metallic-roughness map
-// (glTF: roughness in green, metallic in blue), which the format cannot keep per texel.
+// glTF's metallic and roughness factors (each 0..1), when the material has either.
 struct MetalRough {
   float metallic = 1.0f, roughness = 1.0f;
 };
+std::optional<MetalRough> metalRoughFactors(const aiMaterial& m) {
+  float metallic = 0.0f, roughness = 1.0f;
+  const bool hasMetallic = m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS;
+  const bool hasRoughness = m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS;
+  if (!hasMetallic && !hasRoughness) return std::nullopt;
+  return MetalRough{std::clamp(std::isfinite(metallic) ? metallic : 0.0f, 0.0f, 1.0f),
+                    std::clamp(std::isfinite(roughness) ? roughness : 1.0f, 0.0f, 1.0f)};
+}
 
-Material phongOf(const aiMaterial& m, bool& madeUpColor, MetalRough scale) {
+Material phongOf(const aiMaterial& m, bool& madeUpColor) {
   Material out;
   aiColor4D color;
   float value = 0.0f;
@@ -54,20 +62,12 @@ Material phongOf(const aiMaterial& m, bool& madeUpColor, MetalRough scale) {
     out.diffuse = Color(0.8f);
     madeUpColor = true;
   }
-  float metallic = 0.0f, roughness = 1.0f;
-  const bool hasMetallic = m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS;
-  const bool hasRoughness = m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS;
-  const bool pbr = hasMetallic || hasRoughness;
-  if (pbr) {
-    metallic = std::clamp(std::isfinite(metallic) ? metallic * scale.metallic : 0.0f, 0.0f, 1.0f);
-    roughness = std::clamp(std::isfinite(roughness) ? roughness * scale.roughness : 1.0f, 0.0f, 1.0f);
-    const Color base = out.diffuse;
-    // Roughness r as a Blinn-Phong exponent: 2/a^2 - 2 with a = r^2, the usual match of the two lobes.
-    const float alpha = std::max(roughness * roughness, 0.01f);
-    out.phongExponent = std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f);
-    out.specular = Color(0.04f) + (base - Color(0.04f)) * metallic;
-    out.diffuse = base * (1.0f - metallic);
-    out.mirror = base * (metallic * (1.0f - roughness));
+  out.ambient = out.diffuse;
+  if (const std::optional<MetalRough> factors = metalRoughFactors(m)) {
+    out.baseColor = out.diffuse;
+    out.metallic = factors->metallic;
+    out.roughness = factors->roughness;
+    setPhongTerms(out, metalRoughTerms(out.baseColor, out.metallic, out.roughness));
   } else {
     if (m.Get(AI_MATKEY_COLOR_SPECULAR, color) == AI_SUCCESS) out.specular = clamp01(rgb(color));
     float strength = 1.0f;
@@ -82,7 +82,6 @@ Material phongOf(const aiMaterial& m, bool& madeUpColor, MetalRough scale) {
       out.mirror = clamp01(rgb(reflective) * std::min(reflectivity, 1.0f));
     }
   }
-  out.ambient = out.diffuse;
   // Emission as radiance on the image's scale: an emissive factor of 1 shows at full brightness, lit or not.
   if (m.Get(AI_MATKEY_COLOR_EMISSIVE, color) == AI_SUCCESS) out.emission = clamp01(rgb(color)) * 255.0f;
   return out;
@@ -160,25 +159,6 @@ std::string metalRoughTexture(const aiMaterial& m) {
   return firstTexture(m, {aiTextureType_UNKNOWN, aiTextureType_METALNESS});
 }
 
-// A material's factor scales from its metallic-roughness map's average texel, each map read once. Without them
-// glTF's default factors (metallic 1, roughness 1) make every mapped metal a pale, broad highlight.
-MetalRough metalRoughScale(const aiScene& scene, const fs::path& modelDir, const aiMaterial& m,
-                           std::map<std::string, std::optional<MetalRough>>& cache, Notes& notes) {
-  const std::string name = metalRoughTexture(m);
-  if (name.empty()) return {};
-  auto [it, added] = cache.emplace(name, std::nullopt);
-  if (added) {
-    std::string reason;
-    if (const std::optional<Texture> texture = loadTexture(scene, modelDir, name, reason, notes)) {
-      const Color average = averageOf(*texture);
-      it->second = MetalRough{average.z, average.y};
-    } else {
-      notes.warnings.push_back("metallic-roughness map \"" + name + "\" cannot be used (" + reason + ")");
-    }
-  }
-  return it->second.value_or(MetalRough{});
-}
-
 std::string fileNamePart(const std::string& name) {
   const std::string base = fs::path(name).filename().string();
   return base.empty() || base[0] == '*' ? "embedded" : base;
@@ -187,9 +167,23 @@ std::string fileNamePart(const std::string& name) {
 // The emission map a material names ("" when none).
 std::string emissionTexture(const aiMaterial& m) { return firstTexture(m, {aiTextureType_EMISSIVE}); }
 
-// Each material's base-colour texture and emission map, kept as its own: the texture blended in at kTextureFactor,
-// the material's colour times the texture's mean; the map scaling its emission (a map alone: emission 255). Each
-// image is read once. Without texture coordinates none can be shown.
+// A glTF material's terms once its textures are known: the base colour times the base texture's mean texel
+// (`meanTexel`), and the metallic-roughness map kept per texel, its mean texel scaling the factors for the terms
+// the file shows readers of the handout's format (and rayview where a hit has no texture coordinates).
+void setMetalRough(Material& material, const Color& meanTexel, const std::optional<std::pair<std::string, Color>>& map) {
+  material.baseColor *= meanTexel;
+  MetalRough scale;
+  if (map) {
+    material.metalRoughImage = map->first;
+    scale = {map->second.z, map->second.y};  // metallic in blue, roughness in green
+  }
+  setPhongTerms(material, metalRoughTerms(material.baseColor, material.metallic * scale.metallic,
+                                          material.roughness * scale.roughness));
+}
+
+// Each material's base-colour texture, emission map and metallic-roughness map, kept as its own: the texture
+// blended in at kTextureFactor, the material's colour times the texture's mean; the map scaling its emission (a
+// map alone: emission 255). Each image is read once. Without texture coordinates none can be shown.
 void keepTextures(const aiScene& scene, const fs::path& path, const std::map<unsigned, std::uint32_t>& ours,
                   Scene& out, Notes& notes) {
   std::map<std::string, std::optional<std::pair<std::string, Color>>> kept;  // the model's name -> ours, mean texel
@@ -212,16 +206,22 @@ void keepTextures(const aiScene& scene, const fs::path& path, const std::map<uns
   bool withoutCoordinates = false;
   for (const auto& [index, our] : ours) {
     if (index >= scene.mNumMaterials || !scene.mMaterials[index]) continue;
-    const std::string base = baseColorTexture(*scene.mMaterials[index]);
-    const std::string glow = emissionTexture(*scene.mMaterials[index]);
-    withoutCoordinates |= (!base.empty() || !glow.empty()) && out.texCoords.empty();
+    const aiMaterial& source = *scene.mMaterials[index];
+    const std::string base = baseColorTexture(source), glow = emissionTexture(source), metal = metalRoughTexture(source);
+    withoutCoordinates |= (!base.empty() || !glow.empty() || !metal.empty()) && out.texCoords.empty();
     if (out.texCoords.empty()) continue;
     Material& material = out.materials[our];
+    Color meanTexel(1.0f);
     if (const auto& image = base.empty() ? std::nullopt : keep(base)) {
-      material.diffuse *= image->second;
-      material.ambient = material.diffuse;
+      meanTexel = image->second;
       material.textureFactor = kTextureFactor;
       material.textureImage = image->first;
+    }
+    if (metalRoughFactors(source)) {
+      setMetalRough(material, meanTexel, metal.empty() ? std::nullopt : keep(metal));
+    } else {
+      material.diffuse *= meanTexel;
+      material.ambient = material.diffuse;
     }
     if (const auto& image = glow.empty() ? std::nullopt : keep(glow)) {
       material.emissionImage = image->first;
@@ -246,7 +246,6 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
   // Assimp's material index -> ours, numbered in order of first use.
   std::map<unsigned, std::uint32_t> ours;
   std::map<std::string, int> taken;
-  std::map<std::string, std::optional<MetalRough>> metalRough;
   bool madeUpColor = false;
   for (Mesh& mesh : out.meshes) {
     const unsigned index = mesh.material;
@@ -255,7 +254,7 @@ void mapMaterials(const aiScene& scene, const fs::path& path, Scene& out, Notes&
       Material material;
       if (index < scene.mNumMaterials && scene.mMaterials[index]) {
         const aiMaterial& m = *scene.mMaterials[index];
-        material = phongOf(m, madeUpColor, metalRoughScale(scene, path.parent_path(), m, metalRough, notes));
+        material = phongOf(m, madeUpColor);
         material.id = materialId(m, index, taken);
       } else {
         material.diffuse = material.ambient = Color(0.8f);

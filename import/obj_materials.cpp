@@ -15,6 +15,7 @@
 
 #include "obj_reader.h"
 #include "rayview/diagnostics.h"
+#include "rayview/metal_rough.h"
 
 namespace rayview::model {
 namespace {
@@ -231,7 +232,7 @@ PhongInputs inputsOf(const ObjMaterial& m) {
 
 Color clamp01(const aiColor3D& c) { return glm::clamp(Color(c.r, c.g, c.b), Color(0.0f), Color(1.0f)); }
 
-// phongOf's formulas (model_materials.cpp) for the keys an OBJ material can have.
+// What phongOf (model_materials.cpp) makes of the keys an OBJ material can have.
 Material phongOf(const PhongInputs& in) {
   Material out;
   out.diffuse = clamp01(in.kd);
@@ -239,16 +240,11 @@ Material phongOf(const PhongInputs& in) {
     float metallic = in.pm.value_or(0.0f), roughness = in.pr.value_or(1.0f);
     metallic = std::clamp(std::isfinite(metallic) ? metallic : 0.0f, 0.0f, 1.0f);
     roughness = std::clamp(std::isfinite(roughness) ? roughness : 1.0f, 0.0f, 1.0f);
-    const Color base = out.diffuse;
-    const float alpha = std::max(roughness * roughness, 0.01f);
-    out.phongExponent = std::clamp(2.0f / (alpha * alpha) - 2.0f, 1.0f, 10000.0f);
-    out.specular = Color(0.04f) + (base - Color(0.04f)) * metallic;
-    out.diffuse = base * (1.0f - metallic);
-    out.mirror = base * (metallic * (1.0f - roughness));
-  } else {
-    if (in.ks) out.specular = clamp01(*in.ks);
-    if (in.ns && std::isfinite(*in.ns) && *in.ns > 0.0f) out.phongExponent = std::clamp(*in.ns, 1.0f, 10000.0f);
+    setPhongTerms(out, metalRoughTerms(out.diffuse, metallic, roughness));
+    return out;
   }
+  if (in.ks) out.specular = clamp01(*in.ks);
+  if (in.ns && std::isfinite(*in.ns) && *in.ns > 0.0f) out.phongExponent = std::clamp(*in.ns, 1.0f, 10000.0f);
   out.ambient = out.diffuse;
   return out;
 }

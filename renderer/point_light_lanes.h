@@ -35,8 +35,9 @@ struct LitPoint {
   glm::dvec3 ng;        // unit geometric normal
   glm::vec3 n;          // shading normal
   glm::vec3 toEye;      // unit direction back along the ray
-  const Material* material;
-  Color diffuse;        // the material's, times the vertex colour where the scene has them
+  Color diffuse;        // the hit's Phong terms (metal_rough.h): the material's, times the vertex colour where
+  Color specular;       // the scene has them, or its metallic-roughness map's at the texel
+  float phongExponent;
   std::uint32_t triangle;
   int lane;  // the block's lane it belongs to
 };
@@ -61,9 +62,9 @@ void shadePointLightsFour(const LitPoint* points, int count, const std::vector<P
     n[a] = gatherF([a](const LitPoint& q) { return q.n[a]; });
     toEye[a] = gatherF([a](const LitPoint& q) { return q.toEye[a]; });
     diffuse[a] = gatherF([a](const LitPoint& q) { return q.diffuse[a]; });
-    specular[a] = gatherF([a](const LitPoint& q) { return q.material->specular[a]; });
+    specular[a] = gatherF([a](const LitPoint& q) { return q.specular[a]; });
   }
-  const Float4 exponent = gatherF([](const LitPoint& q) { return q.material->phongExponent; });
+  const Float4 exponent = gatherF([](const LitPoint& q) { return q.phongExponent; });
   // offsetRayOrigin's offset: kRelativeRayOffset times the hit's largest distance from the eye along an axis.
   const Double4 offset =
       splat4(kRelativeRayOffset) *

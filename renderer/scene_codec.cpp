@@ -116,6 +116,10 @@ void writeMaterial(Writer& w, const Material& m) {
   w.text(m.textureImage);
   w.pod(m.emission);
   w.text(m.emissionImage);
+  w.text(m.metalRoughImage);
+  w.pod(m.baseColor);
+  w.pod(m.metallic);
+  w.pod(m.roughness);
 }
 
 Material readMaterial(Reader& r) {
@@ -131,6 +135,10 @@ Material readMaterial(Reader& r) {
   m.textureImage = r.text();
   m.emission = r.pod<Color>();
   m.emissionImage = r.text();
+  m.metalRoughImage = r.text();
+  m.baseColor = r.pod<Color>();
+  m.metallic = r.pod<float>();
+  m.roughness = r.pod<float>();
   return m;
 }
 

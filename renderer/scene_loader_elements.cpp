@@ -279,6 +279,17 @@ Color Loader::readColor(const XMLElement* e) {
   return Color(static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]));
 }
 
+// <metallicroughness>m r</metallicroughness>: two factors from 0 to 1, as glTF's.
+void Loader::readMetallicRoughness(const XMLElement* e, Material& material) {
+  double v[2];
+  readFixed(e, 2, v, true);
+  for (const double f : v)
+    if (!(f >= 0.0 && f <= 1.0))
+      fail(e->GetLineNum(), elementName(e) + ": metallic and roughness must be from 0 to 1, found " + trimmedText(e));
+  material.metallic = static_cast<float>(v[0]);
+  material.roughness = static_cast<float>(v[1]);
+}
+
 double Loader::readScalar(const XMLElement* e, bool asFloat) {
   double v;
   readFixed(e, 1, &v, asFloat);

@@ -51,7 +51,7 @@ enum class Tag {
   NearDistance, ImageResolution, Lights, AmbientLight,
   Light,  // the element of a light type (light_types.h); its own fields are read from the type's table
   Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
-  TextureFactor, TwoSided, Emission, EmissionImage, ColorData, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
+  TextureFactor, TwoSided, Emission, EmissionImage, BaseColor, MetallicRoughness, MetalRoughImage, ColorData, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
   Count
 };
 
@@ -69,7 +69,8 @@ inline constexpr TagName kTagNames[] = {
     {"diffuse", Tag::Diffuse}, {"specular", Tag::Specular}, {"phongexponent", Tag::PhongExponent},
     {"mirrorreflectance", Tag::MirrorReflectance}, {"texturefactor", Tag::TextureFactor},
     {"twosided", Tag::TwoSided}, {"emission", Tag::Emission}, {"emissionimage", Tag::EmissionImage},
-    {"colordata", Tag::ColorData},
+    {"basecolor", Tag::BaseColor}, {"metallicroughness", Tag::MetallicRoughness},
+    {"metallicroughnessimage", Tag::MetalRoughImage}, {"colordata", Tag::ColorData},
     {"vertexdata", Tag::VertexData}, {"texturedata", Tag::TextureData}, {"normaldata", Tag::NormalData},
     {"textureimage", Tag::TextureImage}, {"objects", Tag::Objects}, {"mesh", Tag::Mesh},
     {"materialid", Tag::MaterialId}, {"faces", Tag::Faces},
@@ -325,6 +326,7 @@ class Loader {
 
   glm::dvec3 readPoint(const XMLElement* e);
   Color readColor(const XMLElement* e);
+  void readMetallicRoughness(const XMLElement* e, Material& material);
   double readScalar(const XMLElement* e, bool asFloat);
 
   // Exactly `count` integers; `what` describes them for the message ("a non-negative integer").
@@ -397,7 +399,7 @@ class Loader {
   std::string describe(const XMLElement* e);
 
   void readMaterials(const XMLElement* materials);
-  // A material's own image (its <textureimage> or <emissionimage>) into `name`, remembered for loadTexture.
+  // A material's own image (its <textureimage>, <emissionimage> or <metallicroughnessimage>) into `name`, remembered for loadTexture.
   void readMaterialTexture(const XMLElement* e, std::string& name);
 
   // ---------------------------------------------------------------- geometry

@@ -206,6 +206,9 @@ void Loader::readMaterials(const XMLElement* materials) {
         case Tag::TextureImage: readMaterialTexture(c, material.textureImage); break;
         case Tag::Emission: material.emission = readColor(c); break;
         case Tag::EmissionImage: readMaterialTexture(c, material.emissionImage); break;
+        case Tag::BaseColor: material.baseColor = readColor(c); break;
+        case Tag::MetallicRoughness: readMetallicRoughness(c, material); break;
+        case Tag::MetalRoughImage: readMaterialTexture(c, material.metalRoughImage); break;
         case Tag::TwoSided: {
           std::int64_t flag = 0;
           readIntegers(c, 1, &flag, 0, "0 or 1");

@@ -33,7 +33,7 @@ std::string outputOverwritesInput(const std::filesystem::path& output, const std
   };
   if (std::string problem = isTexture(scene.textureImage); !problem.empty()) return problem;
   for (const Material& material : scene.materials)
-    for (const std::string* name : {&material.textureImage, &material.emissionImage})
+    for (const std::string* name : material.images())
       if (std::string problem = isTexture(*name); !problem.empty()) return problem;
   return {};
 }

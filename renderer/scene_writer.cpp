@@ -194,6 +194,11 @@ void writeParameters(XmlWriter& xml, const SceneParameters& parameters) {
     if (!m.textureImage.empty()) xml.text(3, "textureimage", m.textureImage);
     if (m.emits()) xml.element(3, "emission", m.emission);
     if (!m.emissionImage.empty()) xml.text(3, "emissionimage", m.emissionImage);
+    if (!m.metalRoughImage.empty()) {
+      xml.element(3, "basecolor", m.baseColor);
+      xml.element(3, "metallicroughness", m.metallic, m.roughness);
+      xml.text(3, "metallicroughnessimage", m.metalRoughImage);
+    }
     xml.close(2, "material");
   }
   xml.close(1, "materials");
@@ -304,10 +309,8 @@ void writeSceneFile(const fs::path& outputPath, const SceneParameters& parameter
     throw ImageIoError(problem);
   // The materials' own textures are found as the scene's is, from the file the scene came from.
   SceneParameters written = parameters;
-  for (Material& m : written.materials) {
-    m.textureImage = textureReferenceFor(loaded, m.textureImage, outputPath);
-    m.emissionImage = textureReferenceFor(loaded, m.emissionImage, outputPath);
-  }
+  for (Material& m : written.materials)
+    for (std::string* name : m.images()) *name = textureReferenceFor(loaded, *name, outputPath);
   writeFileAtomically(outputPath, sceneToXml(written, loaded.geometry(), textureReferenceFor(loaded, outputPath)));
 }
 

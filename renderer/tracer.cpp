@@ -182,6 +182,8 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   for (const Material& material : parameters.materials) {
     textures_.push_back(meshes.textureOf(material));
     emissionMaps_.push_back(meshes.textureNamed(material.emissionImage));
+    metalRoughMaps_.push_back(meshes.textureNamed(material.metalRoughImage));
+    anyMetalRough_ |= metalRoughMaps_.back() != nullptr;
   }
   for (const Mesh& mesh : meshes.meshes) {
     meshStarts_.push_back(mesh.firstTriangle);
@@ -489,9 +491,11 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
   // `v` may be a block's slot from an earlier block: every field foldPath reads is set.
   v.continues = false;
   v.textured = false;
+  PhongTerms terms = termsAt(material, attributes, hit);
   // The mirror ray before the shading: 1.05-1.07x faster renders of the scenes with mirrors (docs/PERFORMANCE.md,
-  // "Shading"), its normalisation (a square root, then a division) overlapping the shading.
-  if (material.isMirror() && depth < parameters_.maxRayDepth) {
+  // "Shading"), its normalisation (a square root, then a division) overlapping the shading. A metallic-roughness
+  // texel can make the mirror black where the material's average is not: no ray there.
+  if (material.isMirror() && depth < parameters_.maxRayDepth && terms.mirror != Color(0.0f)) {
     const glm::dvec3 nExact(n);
     const glm::dvec3 r = glm::normalize(dExact - 2.0 * glm::dot(dExact, nExact) * nExact);
     mirrorRay.origin = secondaryOrigin(r);
@@ -499,13 +503,12 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
     mirrorRay.tNear = 0.0;
     mirrorRay.tFar = kInfinity;
     mirrorRay.excludedTriangle = excluded;
-    v.mirror = material.mirror;
+    v.mirror = terms.mirror;
     v.continues = true;
   }
 
-  Color diffuseColor = material.diffuse;  // times the vertex colour, where the scene has them
   Color& color = v.local;
-  color = unlitColor(material, attributes, hit, diffuseColor);
+  color = unlitColor(material, attributes, hit, terms);
 
   // One light direction: its Blinn-Phong terms, then (when they add anything) the shadow ray toward `target`
   // (stopping just before it), or along `l` without end.
@@ -513,10 +516,10 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
   auto addLight = [&](const glm::dvec3& l, const Color& irradiance, const glm::dvec3* target) {
     const int place = sequence++;
     const glm::vec3 toLight = toFloat(l);
-    const Color diffuse = diffuseColor * irradiance * std::max(0.0f, glm::dot(n, toLight));
+    const Color diffuse = terms.diffuse * irradiance * std::max(0.0f, glm::dot(n, toLight));
     const glm::vec3 h = glm::normalize(toLight + toEye);
-    const float specular = specularPower(std::max(0.0f, glm::dot(n, h)), material.phongExponent);
-    const Color contribution = diffuse + material.specular * irradiance * specular;
+    const float specular = specularPower(std::max(0.0f, glm::dot(n, h)), terms.phongExponent);
+    const Color contribution = diffuse + terms.specular * irradiance * specular;
     if (contribution == Color(0.0f)) return;  // no shadow ray for light that would add nothing
     const glm::dvec3 origin = secondaryOrigin(l);
     if (!target) {
@@ -535,8 +538,9 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
     lit->ng = ngExact;
     lit->n = n;
     lit->toEye = toEye;
-    lit->material = &material;
-    lit->diffuse = diffuseColor;
+    lit->diffuse = terms.diffuse;
+    lit->specular = terms.specular;
+    lit->phongExponent = terms.phongExponent;
     lit->triangle = hit.triangle;
   } else {
     std::apply([&](const auto&... byType) { ((illuminateAll(byType, pExact, pixelSeed, addLight)), ...); }, lights_);
@@ -545,15 +549,23 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
   if (material.textureFactor != 0.0f && attributes.hasTexCoords()) applyTexture(material, attributes, hit, v);
 }
 
+PhongTerms Tracer::termsAt(const Material& material, const FaceAttributes& attributes, const Hit& hit) const {
+  if (!anyMetalRough_) [[likely]]
+    return phongTermsOf(material);
+  const Texture* map = metalRoughMaps_[static_cast<std::size_t>(&material - parameters_.materials.data())];
+  if (!map || !attributes.hasTexCoords()) return phongTermsOf(material);
+  const Color texel = sampleTexture(*map, attributes, hit) / 255.0f;
+  return metalRoughTerms(material.baseColor, material.metallic * texel.z, material.roughness * texel.y);
+}
+
 Color Tracer::unlitColor(const Material& material, const FaceAttributes& attributes, const Hit& hit,
-                         Color& diffuse) const {
-  Color ambient = material.ambient;
+                         PhongTerms& terms) const {
   if (!meshes_.vertexColors.empty()) {
     const Color tint = vertexColorAt(hit);
-    ambient *= tint;
-    diffuse *= tint;
+    terms.ambient *= tint;
+    terms.diffuse *= tint;
   }
-  Color color = ambient * parameters_.ambientLight;
+  Color color = terms.ambient * parameters_.ambientLight;
   if (material.emits()) color += emissionAt(material, attributes, hit);
   return color;
 }

@@ -330,18 +330,25 @@ TEST(ImportModel, GlbWithAnEmbeddedPngTextureShowsIt) {
   EXPECT_GT(lastBlue, firstRed);
 }
 
-// The metallic-roughness map scales the factors by its average texel: here green (roughness) is 0 everywhere and
-// blue (metallic) 230 on half the texels, so metallic 0.45 and roughness 0, not the defaults' fully metallic, fully
-// rough material whose diffuse colour is black and whose highlight covers everything.
-TEST(ImportModel, AMetallicRoughnessMapScalesTheFactors) {
+// The metallic-roughness map is kept per texel, and the terms the file shows readers of the handout's format are
+// its average texel's: here green (roughness) is 0 everywhere and blue (metallic) 230 on half the texels, so
+// metallic 0.45 and roughness 0, not the defaults' fully metallic, fully rough material whose diffuse colour is
+// black and whose highlight covers everything. The base colour is the factor (white) times the texture's mean.
+TEST(ImportModel, AMetallicRoughnessMapIsKeptAndScalesTheAverageTerms) {
   const Scene scene = loadModelScene(writeFile("metal.glb", texturedGlb(true)), small()).scene;
   ASSERT_EQ(scene.materials.size(), 1u);
   const Material& m = scene.materials[0];
-  const float metallic = 115.0f / 255.0f;
-  EXPECT_NEAR(m.specular.x, 0.04f + (1.0f - 0.04f) * metallic, 1e-3f);  // the base colour factor is white
+  const float half = 115.0f / 255.0f;
+  EXPECT_NEAR(m.baseColor.x, half, 1e-3f);
+  EXPECT_EQ(m.baseColor.y, 0.0f);
+  EXPECT_EQ(m.metallic, 1.0f);
+  EXPECT_EQ(m.roughness, 1.0f);
+  ASSERT_NE(scene.textureNamed(m.metalRoughImage), nullptr);
+  EXPECT_EQ(scene.textureNamed(m.metalRoughImage)->width, 4);
+  EXPECT_NEAR(m.specular.x, 0.04f + (half - 0.04f) * half, 1e-3f);
   EXPECT_GT(m.diffuse.x, 0.0f);
   EXPECT_EQ(m.phongExponent, 10000.0f);  // roughness 0: the sharpest lobe
-  EXPECT_GT(m.mirror.x, 0.4f);
+  EXPECT_NEAR(m.mirror.x, half * half, 1e-3f);
 }
 
 TEST(ImportModel, ObjRoundTripGivesTheSameTrianglesBitForBitInFloat) {

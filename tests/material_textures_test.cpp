@@ -8,6 +8,7 @@
 #include <fstream>
 #include <string>
 
+#include "rayview/metal_rough.h"
 #include "rayview/scene_codec.h"
 #include "rayview/scene_loader.h"
 #include "rayview/scene_writer.h"
@@ -203,6 +204,67 @@ TEST_F(MaterialTextures, VertexColoursTintTheirFaces) {
     ADD_FAILURE() << "two colours for eight vertices loaded";
   } catch (const SceneError& e) {
     EXPECT_NE(std::string(e.what()).find("<colordata> has 2 colours for 8 vertices"), std::string::npos) << e.what();
+  }
+}
+
+// A metallic-roughness map sets each hit's Phong terms from the base colour and the factors times its texel
+// (metallic in blue, roughness in green): exactly the image of plain materials holding those terms, and not the
+// image of the averaged terms the file also holds. It survives the writer and the codec.
+TEST_F(MaterialTextures, MetallicRoughnessIsShadedPerTexel) {
+  writePixel(dir_ / "scene" / "maps" / "plastic.ppm", 0, 255, 0);  // metallic 0, roughness 1
+  writePixel(dir_ / "scene" / "maps" / "metal.ppm", 0, 51, 255);   // metallic 1, roughness 0.2
+  std::string xml = threeQuads("", "", "");
+  const std::string factor = "<texturefactor>1</texturefactor>";
+  const char* maps[3] = {"maps/plastic.ppm", "maps/metal.ppm", nullptr};
+  for (const char* map : maps) {
+    const std::size_t at = xml.find(factor);
+    xml.replace(at, factor.size(),
+                map ? std::string("<basecolor>0.8 0.6 0.4</basecolor><metallicroughness>1 0.5</metallicroughness>"
+                                  "<metallicroughnessimage>") + map + "</metallicroughnessimage>"
+                    : std::string());
+  }
+  for (std::size_t at; (at = xml.find("<diffuse>0 0 0</diffuse>")) != std::string::npos;)
+    xml.replace(at, std::string("<diffuse>0 0 0</diffuse>").size(), "<diffuse>0.3 0.3 0.3</diffuse>");
+  xml.replace(xml.find("<maxraytracedepth>0"), 19, "<maxraytracedepth>1");
+  xml.replace(xml.find("<ambientlight>0 0 0</ambientlight>"), 34,
+              "<ambientlight>20 20 20</ambientlight><pointlight id=\"1\"><position>0 0 1</position>"
+              "<intensity>900 900 900</intensity></pointlight>");
+  const LoadedScene loaded = loadWritten(xml);
+  EXPECT_TRUE(loaded.warnings.empty()) << loaded.warnings.front().format();
+  const Scene& scene = loaded.scene;
+  ASSERT_EQ(scene.materials[1].metalRoughImage, "maps/metal.ppm");
+
+  Scene perTexel = scene, averaged = scene;
+  setPhongTerms(perTexel.materials[0], metalRoughTerms(Color(0.8f, 0.6f, 0.4f), 0.0f, 0.5f));
+  setPhongTerms(perTexel.materials[1], metalRoughTerms(Color(0.8f, 0.6f, 0.4f), 1.0f, 0.5f * (51.0f / 255.0f)));
+  for (Scene* s : {&perTexel, &averaged})
+    for (Material& m : s->materials) m.metalRoughImage.clear();
+  const Image image = testing::renderChecked(scene, AccelKind::Packet).image;
+  EXPECT_EQ(image.rgb, testing::renderChecked(scene, AccelKind::Reference).image.rgb);
+  EXPECT_EQ(image.rgb, testing::renderChecked(perTexel, AccelKind::Packet).image.rgb);
+  EXPECT_NE(image.rgb, testing::renderChecked(averaged, AccelKind::Packet).image.rgb);
+
+  fs::create_directories(dir_ / "elsewhere");
+  writeSceneFile(dir_ / "elsewhere" / "copy.xml", scene);
+  const LoadedScene again = loadSceneFile(dir_ / "elsewhere" / "copy.xml");
+  EXPECT_TRUE(again.scene.parameters().materials[1].metalRoughImage == "../scene/maps/metal.ppm");
+  EXPECT_EQ(testing::renderChecked(again.scene, AccelKind::Packet).image.rgb, image.rgb);
+  Bytes bytes;
+  encodeParameters(scene.parameters(), bytes);
+  std::size_t at = 0;
+  EXPECT_TRUE(decodeParameters(bytes.data(), bytes.size(), at) == scene.parameters());
+}
+
+// Factors outside 0..1 are refused at their line.
+TEST_F(MaterialTextures, MetallicRoughnessFactorsAreFromZeroToOne) {
+  std::string xml = threeQuads("", "", "");
+  xml.replace(xml.find("<texturefactor>1</texturefactor>"), 32, "<metallicroughness>1.5 0</metallicroughness>");
+  try {
+    loadWritten(xml);
+    ADD_FAILURE() << "a metallic factor of 1.5 loaded";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.diagnostic().where.line, 8);
+    EXPECT_NE(std::string(e.what()).find("must be from 0 to 1"), std::string::npos) << e.what();
   }
 }
 

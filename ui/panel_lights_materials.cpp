@@ -52,6 +52,12 @@ void drawMaterialsPanel(SceneParameters& edits, bool hasTexture, std::optional<s
       ImGui::DragFloat("Phong exponent", &m.phongExponent, 0.25f, 0.0f, 1e6f, "%.4g", ImGuiSliderFlags_NoRoundToFormat);
       editCoefficient("Mirror", m.mirror);
       if (hasTexture) ImGui::SliderFloat("Texture factor", &m.textureFactor, 0.0f, 1.0f, "%.3f");
+      if (!m.metalRoughImage.empty()) {
+        hintText("Where its metallic-roughness map applies, these three set the terms above.");
+        editCoefficient("Base colour", m.baseColor);
+        ImGui::SliderFloat("Metallic", &m.metallic, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+        ImGui::SliderFloat("Roughness", &m.roughness, 0.0f, 1.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+      }
       ImGui::Checkbox("Two-sided (lit from behind too)", &m.twoSided);
       ImGui::TreePop();
     }

@@ -52,7 +52,7 @@ std::string editProblem(const SceneParameters& edits, const RenderSettings& sett
   if (!lightProblem.empty()) return lightProblem;
   for (const Material& m : edits.materials)
     if (!finite(m.ambient) || !finite(m.diffuse) || !finite(m.specular) || !finite(m.mirror) ||
-        !std::isfinite(m.phongExponent) || !std::isfinite(m.textureFactor))
+        !std::isfinite(m.phongExponent) || !std::isfinite(m.textureFactor) || !finite(m.baseColor))
       return "material " + m.id + ": numbers must be finite";
   return {};
 }

@@ -165,6 +165,7 @@ def main():
     check_export_on_full_disk(a.rayview, s)
     check_export_keeps_the_texture(a.rayview, s)
     check_every_material_keeps_its_texture(a.rayview, s)
+    check_metal_keeps_its_map(a.rayview, s)
     check_unusable_values_name_the_model(a.rayview, s)
 
 
@@ -341,6 +342,51 @@ def check_every_material_keeps_its_texture(rayview, s):
             r = run(["render", in_two("out/again.obj"), "-o", in_two("again.ppm"), "--resolution", "320x180"], rayview)
         check(r.returncode == 0 and read_ppm(in_two("again.ppm")) == pixels,
               f"the {made} renders as the model does, both textures included: " + r.stderr.strip())
+
+
+def check_metal_keeps_its_map(rayview, s):
+    # A glTF quad whose metallic-roughness map is plastic on the left and polished metal on the right: import keeps
+    # the map per texel, and the imported scene and a re-exported glTF render exactly as the model does.
+    os.makedirs(s("metal/out"), exist_ok=True)
+    in_metal = lambda f: s("metal/" + f)
+    write_png8(in_metal("mr.png"), [[(0, 255, 0), (0, 51, 255)]])
+    data = struct.pack("<12f", 0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0) + struct.pack("<8f", 0, 1, 1, 1, 1, 0, 0, 0) + \
+        struct.pack("<6H", 0, 1, 2, 0, 2, 3) + b"\0\0"
+    with open(in_metal("quad.bin"), "wb") as f:
+        f.write(data)
+    gltf = {"asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+            "meshes": [{"primitives": [{"attributes": {"POSITION": 0, "TEXCOORD_0": 1}, "indices": 2, "material": 0}]}],
+            "materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.8, 0.6, 0.4, 1], "metallicFactor": 1,
+                                                    "roughnessFactor": 1, "metallicRoughnessTexture": {"index": 0}}}],
+            "textures": [{"source": 0}], "images": [{"uri": "mr.png"}],
+            "accessors": [{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]},
+                          {"bufferView": 1, "componentType": 5126, "count": 4, "type": "VEC2"},
+                          {"bufferView": 2, "componentType": 5123, "count": 6, "type": "SCALAR"}],
+            "bufferViews": [{"buffer": 0, "byteOffset": 0, "byteLength": 48}, {"buffer": 0, "byteOffset": 48, "byteLength": 32},
+                            {"buffer": 0, "byteOffset": 80, "byteLength": 12}],
+            "buffers": [{"uri": "quad.bin", "byteLength": len(data)}]}
+    with open(in_metal("quad.gltf"), "w") as f:
+        json.dump(gltf, f)
+    size = ["--resolution", "160x90"]
+    r = run(["render", in_metal("quad.gltf"), "-o", in_metal("model.ppm")] + size, rayview)
+    check(r.returncode == 0, "a glTF with a metallic-roughness map renders: " + r.stderr.strip())
+    pixels = read_ppm(in_metal("model.ppm"))
+    r = run(["import", in_metal("quad.gltf"), "-o", in_metal("out/quad.xml")] + size, rayview)
+    xml = open(in_metal("out/quad.xml")).read() if r.returncode == 0 else ""
+    check(r.returncode == 0 and "<metallicroughnessimage>quad_texture.png</metallicroughnessimage>" in xml and
+          "<metallicroughness>1 1</metallicroughness>" in xml and os.path.exists(in_metal("out/quad_texture.png")),
+          "import keeps the map beside the scene, with the base colour and the factors: " + r.stdout.strip())
+    r = run(["render", in_metal("out/quad.xml"), "-o", in_metal("scene.ppm")], rayview)
+    check(r.returncode == 0 and read_ppm(in_metal("scene.ppm")) == pixels, "the scene renders as the model does")
+    r = run(["export", in_metal("quad.gltf"), "-o", in_metal("out/again.gltf")], rayview)
+    exported = json.load(open(in_metal("out/again.gltf"))) if r.returncode == 0 else {}
+    pbr = exported.get("materials", [{}])[0].get("pbrMetallicRoughness", {})
+    check(r.returncode == 0 and "metallicRoughnessTexture" in pbr, "export writes the map as glTF's: " + str(pbr))
+    r = run(["render", in_metal("out/again.gltf"), "-o", in_metal("again.ppm")] + size, rayview)
+    again = read_ppm(in_metal("again.ppm")) if r.returncode == 0 else []
+    close = sum(1 for p, q in zip(pixels, again) if max(abs(a - b) for a, b in zip(p, q)) <= 1)
+    check(len(again) == len(pixels) and close >= 0.99 * len(pixels),
+          f"the exported glTF renders as the model does: {close} of {len(pixels)} pixels within 1")
 
 
 def check_export_on_full_disk(rayview, s):

@@ -7,6 +7,7 @@
 // A Scene is both, as the loader reads them. No acceleration data, no GL.
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -51,7 +52,17 @@ struct Material {
   // a texel (each channel 0..1), for a model's emission map.
   Color emission{0.0f};
   std::string emissionImage{};
+  // <metallicroughnessimage>, with <basecolor>r g b</basecolor> (0..1) and <metallicroughness>m r</metallicroughness>,
+  // rayview's extension for glTF's metal: where the map applies, each hit's Phong terms come from the base colour
+  // and the factors times the texel (metallic in blue, roughness in green), as docs/scene-format.md says; the other
+  // fields hold those terms at the map's average, which is what readers of the handout's format see.
+  std::string metalRoughImage{};
+  Color baseColor{0.0f};
+  float metallic = 1.0f, roughness = 1.0f;
 
+  // Every image file the material names, so that whatever finds, renames or checks one finds them all.
+  std::array<const std::string*, 3> images() const { return {&textureImage, &emissionImage, &metalRoughImage}; }
+  std::array<std::string*, 3> images() { return {&textureImage, &emissionImage, &metalRoughImage}; }
   bool emits() const { return emission.x != 0.0f || emission.y != 0.0f || emission.z != 0.0f; }
   bool isMirror() const { return mirror.x != 0.0f || mirror.y != 0.0f || mirror.z != 0.0f; }
   bool operator==(const Material&) const = default;

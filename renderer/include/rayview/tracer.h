@@ -9,6 +9,7 @@
 
 #include "rayview/accel.h"
 #include "rayview/camera_rays.h"
+#include "rayview/metal_rough.h"
 #include "rayview/render_settings.h"
 #include "rayview/scene.h"
 
@@ -129,9 +130,11 @@ class Tracer {
   // The material's texture at the hit, when it has one to show, blended into `v` by its texture factor.
   void applyTexture(const Material& material, const FaceAttributes& attributes, const Hit& hit, PathVertex& v) const;
   Color sampleTexture(const Texture& texture, const FaceAttributes& face, const Hit& hit) const;
+  // The Phong terms at the hit: the material's, or where its metallic-roughness map applies, the map's at the texel.
+  PhongTerms termsAt(const Material& material, const FaceAttributes& attributes, const Hit& hit) const;
   // The hit's colour before any light: the ambient term and the emission. The vertex colour, where the scene has
-  // them, multiplies the ambient colour and `diffuse`.
-  Color unlitColor(const Material& material, const FaceAttributes& attributes, const Hit& hit, Color& diffuse) const;
+  // them, multiplies the ambient and diffuse terms of `terms`.
+  Color unlitColor(const Material& material, const FaceAttributes& attributes, const Hit& hit, PhongTerms& terms) const;
   Color vertexColorAt(const Hit& hit) const;
   // The light a material gives off at the hit: its emission, times its emission map's texel when it has one.
   Color emissionAt(const Material& material, const FaceAttributes& attributes, const Hit& hit) const;
@@ -150,6 +153,8 @@ class Tracer {
   bool pointLightsOnly_ = false;  // so a block's hits are lit four at a time (shadePointLights)
   std::vector<const Texture*> textures_;  // per material: SceneGeometry::textureOf, once per render
   std::vector<const Texture*> emissionMaps_;  // per material: its <emissionimage>, or null
+  std::vector<const Texture*> metalRoughMaps_;  // per material: its <metallicroughnessimage>, or null
+  bool anyMetalRough_ = false;                  // so the handout's scenes never look one up
   std::vector<std::uint32_t> meshStarts_;     // each mesh's first triangle, in order
   std::vector<std::uint32_t> meshMaterials_;  // and its material
 };
