@@ -175,7 +175,27 @@ std::size_t fileLights(const aiScene& scene, const glm::dvec3& centre, double ra
   return added;
 }
 
-void madeUpLights(const Axes& a, const glm::dvec3& centre, double radius, SceneParameters& p) {
+// How much brighter the kit shines on a model whose brightest diffuse or specular colour (times its brightest vertex
+// colour) is darker than white: as much as makes that colour lit as white would be, up to kMostExposure. No surface then
+// gets more light than a white one under the plain kit, so nothing clips that would not clip on a white model,
+// and a dark model (a dark texture's mean as its colour) is not left near black.
+constexpr float kMostExposure = 4.0f;
+float exposureFor(const Scene& s) {
+  float brightest = 0.0f;
+  for (const Material& m : s.materials) {
+    // A texel's diffuse and specular are at most its base colour (or glTF's 0.04 for the specular).
+    const Color lit = m.metalRoughImage.empty() ? glm::max(m.diffuse, m.specular) : glm::max(m.baseColor, Color(0.04f));
+    brightest = std::max({brightest, lit.x, lit.y, lit.z});
+  }
+  if (!s.vertexColors.empty()) {
+    float tint = 0.0f;
+    for (const Color& c : s.vertexColors) tint = std::max({tint, c.x, c.y, c.z});
+    brightest *= tint;
+  }
+  return brightest * kMostExposure > 1.0f ? std::max(1.0f, 1.0f / brightest) : kMostExposure;
+}
+
+void madeUpLights(const Axes& a, const glm::dvec3& centre, double radius, float exposure, SceneParameters& p) {
   // The most irradiance each light gives any point of the model (at its bounding sphere's nearest point), on the
   // 0..255 scale: key, fill, back. No face direction gathers more than 215 from the three together, so a white
   // diffuse surface with the ambient 30 stays below 255 (only highlights clip), as F3D's and Blender's kits keep it.
@@ -193,7 +213,7 @@ void madeUpLights(const Axes& a, const glm::dvec3& centre, double radius, SceneP
     PointLight point;
     point.id = std::to_string(id++);
     point.position = centre + glm::normalize(light.direction) * distance;
-    point.intensity = Color(light.irradiance * static_cast<float>(nearest * nearest));
+    point.intensity = Color(exposure * light.irradiance * static_cast<float>(nearest * nearest));
     p.lights.of<PointLight>().push_back(point);
   }
 }
@@ -260,7 +280,7 @@ void frameScene(const aiScene* scene, const ModelImportOptions& options, Scene& 
     notes.madeUp.push_back("camera");
   }
   if (!useFileLights(scene, options, out, centre, radius, notes)) {
-    madeUpLights(axes, centre, radius, out);
+    madeUpLights(axes, centre, radius, exposureFor(out), out);
     notes.madeUp.push_back("key/fill/back lights");
   }
   roundToFloats(out, radius);

@@ -39,11 +39,17 @@ std::string baseColorTexture(const aiMaterial& m) {
   return firstTexture(m, {aiTextureType_BASE_COLOR, aiTextureType_DIFFUSE});
 }
 
-// glTF's metallic and roughness factors (each 0..1), when the material has either.
+// glTF's metallic and roughness factors (each 0..1), when the material has either. A material that also has glTF's
+// specular-glossiness (Assimp's glossiness factor) and no metallic-roughness map is read as Phong: its specular
+// colour is the file's own, where glTF's metal would make every dielectric 0.04 (so an OBJ exported to glTF, whose
+// exporter writes both, opens again with the specular colour it had).
 struct MetalRough {
   float metallic = 1.0f, roughness = 1.0f;
 };
+std::string metalRoughTexture(const aiMaterial& m);
 std::optional<MetalRough> metalRoughFactors(const aiMaterial& m) {
+  float glossiness = 0.0f;
+  if (m.Get(AI_MATKEY_GLOSSINESS_FACTOR, glossiness) == AI_SUCCESS && metalRoughTexture(m).empty()) return std::nullopt;
   float metallic = 0.0f, roughness = 1.0f;
   const bool hasMetallic = m.Get(AI_MATKEY_METALLIC_FACTOR, metallic) == AI_SUCCESS;
   const bool hasRoughness = m.Get(AI_MATKEY_ROUGHNESS_FACTOR, roughness) == AI_SUCCESS;

@@ -251,6 +251,19 @@ TEST(ImportModel, TheLightKitKeepsAWhiteModelBelowClippingAndVisible) {
   EXPECT_GE(stl.mean, 30.0);
 }
 
+// A dark model (a dark texture's mean as its colour, a dark grey plastic) is lit brighter, as much as makes its
+// brightest colour lit as white would be, so it is not left near black; a white one keeps the plain kit.
+TEST(ImportModel, TheLightKitLightsADarkModelBrighter) {
+  writeFile("sphere.mtl", "newmtl dark\nKd 0.08 0.08 0.08\nKs 0 0 0\nnewmtl white\nKd 1 1 1\nKs 0 0 0\n");
+  const Scene dark = loadModelScene(writeFile("dark.obj", sphereObj("dark")), small()).scene;
+  const Scene white = loadModelScene(writeFile("white.obj", sphereObj("white")), small()).scene;
+  const Exposure e = exposureOf(dark, "sphere_dark");
+  EXPECT_GE(e.mean, 30.0);
+  EXPECT_EQ(e.clipped, 0.0);
+  const float ratio = dark.lights.of<PointLight>()[0].intensity.x / white.lights.of<PointLight>()[0].intensity.x;
+  EXPECT_EQ(ratio, 4.0f);  // at most four times: 1 / 0.08 would be 12.5
+}
+
 // Sizes where a fixed epsilon would fail (docs/numerics.md): the made-up scene scales with the model, so the
 // picture is the same box, framed and lit.
 TEST(ImportModel, TinyAndHugeModelsAreFramedAndLit) {
