@@ -175,16 +175,17 @@ std::size_t fileLights(const aiScene& scene, const glm::dvec3& centre, double ra
   return added;
 }
 
-// How much brighter the kit shines on a model whose brightest diffuse or specular colour (times its brightest vertex
-// colour) is darker than white: as much as makes that colour lit as white would be, up to kMostExposure. No surface then
-// gets more light than a white one under the plain kit, so nothing clips that would not clip on a white model,
+// How much brighter the kit shines on a model whose brightest diffuse plus specular colour (times its brightest
+// vertex colour) is darker than white: as much as makes that sum lit as a white diffuse one would be, up to
+// kMostExposure. The sum, since a specular lobe of exponent 1 is as broad as the diffuse one. No surface then
+// reflects more than a white one under the plain kit, so nothing clips that would not clip on a white model,
 // and a dark model (a dark texture's mean as its colour) is not left near black.
 constexpr float kMostExposure = 4.0f;
 float exposureFor(const Scene& s) {
   float brightest = 0.0f;
   for (const Material& m : s.materials) {
-    // A texel's diffuse and specular are at most its base colour (or glTF's 0.04 for the specular).
-    const Color lit = m.metalRoughImage.empty() ? glm::max(m.diffuse, m.specular) : glm::max(m.baseColor, Color(0.04f));
+    // A texel's diffuse plus specular is at most its base colour plus glTF's 0.04.
+    const Color lit = m.metalRoughImage.empty() ? m.diffuse + m.specular : m.baseColor + Color(0.04f);
     brightest = std::max({brightest, lit.x, lit.y, lit.z});
   }
   if (!s.vertexColors.empty()) {
