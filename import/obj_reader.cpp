@@ -5,6 +5,7 @@
 
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstring>
@@ -106,9 +107,17 @@ class ObjParser {
     for (int c = 0; c < 3; ++c) number(rest, p[c], true, "a vertex coordinate");
     if (static_cast<long long>(g_.vertices.size()) >= kMaxItems) failAt("too many vertices (over 2^31)");
     g_.vertices.push_back(p);
-    int extra = 0;
-    for (double ignored = 0.0; extra < 4 && number(rest, ignored, false, "a vertex value");) ++extra;
-    colors_ |= extra >= 3;  // x y z r g b: a colour, which the scene cannot hold yet
+    double extra[4] = {};
+    int count = 0;
+    while (count < 4 && number(rest, extra[count], false, "a vertex value")) ++count;
+    // x y z r g b (MeshLab's and others' vertex colours; a fourth value is alpha): one per vertex, white for the
+    // vertices of the file that have none.
+    if (count >= 3) {
+      colors_.resize(g_.vertices.size() - 1, Color(1.0f));
+      colors_.emplace_back(static_cast<float>(extra[0]), static_cast<float>(extra[1]), static_cast<float>(extra[2]));
+    } else if (!colors_.empty()) {
+      colors_.emplace_back(1.0f);
+    }
   }
 
   void normal(std::string_view rest) {
@@ -149,7 +158,8 @@ class ObjParser {
   int line_ = 0;
   std::string name_;
   unsigned material_ = 0;
-  bool haveMaterial_ = false, changed_ = true, colors_ = false;
+  bool haveMaterial_ = false, changed_ = true;
+  std::vector<Color> colors_;  // empty when no vertex has a colour
   std::size_t pointsAndLines_ = 0;
   std::vector<bool> badNormal_;
   HighestIndex highest_[3];  // v, vt, vn
@@ -311,7 +321,14 @@ ObjMaterials ObjParser::finish() {
   if (facesWithoutNormals > 0)
     notes_.dropped.push_back("the normals of " + std::to_string(facesWithoutNormals) +
                              " triangles (a normal of zero length or not finite)");
-  if (colors_) notes_.dropped.push_back("vertex colours");
+  if (!colors_.empty()) {
+    // Colours written as 0..255 rather than 0..1 are taken as bytes.
+    float most = 0.0f;
+    for (const Color& c : colors_) most = std::max({most, c.x, c.y, c.z});
+    for (Color& c : colors_) c = glm::clamp(most > 1.0f ? c / 255.0f : c, Color(0.0f), Color(1.0f));
+    colors_.resize(g_.vertices.size(), Color(1.0f));
+    g_.vertexColors = std::move(colors_);
+  }
   return std::move(materials_);
 }
 

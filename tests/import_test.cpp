@@ -543,6 +543,21 @@ TEST(ImportModel, EmissionAndVertexColoursAreKept) {
   EXPECT_NE(plain.summary.find("dropped: nothing"), std::string::npos) << plain.summary;
 }
 
+// An OBJ's `v x y z r g b` colours are kept by rayview's own OBJ reader: 0..1 as written, 0..255 as bytes, white
+// for the vertices that have none, and not "dropped".
+TEST(ImportModel, ObjVertexColoursAreKept) {
+  const ImportedModel model = importModel(
+      writeFile("colours.obj", "v 0 0 0 1 0 0\nv 1 0 0\nv 0 1 0 0 0.5 1\nf 1 2 3\n"), small());
+  EXPECT_NE(model.summary.find("dropped: nothing"), std::string::npos) << model.summary;
+  const std::vector<Color> expected = {Color(1, 0, 0), Color(1, 1, 1), Color(0, 0.5f, 1)};
+  EXPECT_EQ(model.loaded.scene.vertexColors, expected);
+  const ImportedModel bytes = importModel(writeFile("bytes.obj", "v 0 0 0 255 0 51\nv 1 0 0 0 255 0\nv 0 1 0 0 0 255\nf 1 2 3\n"), small());
+  ASSERT_EQ(bytes.loaded.scene.vertexColors.size(), 3u);
+  EXPECT_EQ(bytes.loaded.scene.vertexColors[0], Color(1.0f, 0.0f, 51.0f / 255.0f));
+  const ImportedModel none = importModel(writeFile("none.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n"), small());
+  EXPECT_TRUE(none.loaded.scene.vertexColors.empty());
+}
+
 // A camera that looks away from the model, or a light too weak to see it by (1 cd at 4.2 units: 14 of 255), is
 // replaced by rayview's with a warning; asked for, the file's is kept whatever it shows.
 TEST(ImportModel, AFileCameraOrLightThatShowsNothingIsReplaced) {
