@@ -81,6 +81,10 @@ struct LeafTriangle {
 
 constexpr int kMaxDepth = 64;
 constexpr int kBins = 16;
+// Up to this many triangles with leaves of one, each leaf keeps its triangle's corners (80 bytes a triangle) instead
+// of reading three indexed vertices and subtracting the origin at every visit. Beyond, and in the lean layout, the
+// corners are computed per visit: memory per triangle matters more there (docs/PERFORMANCE.md).
+constexpr std::size_t kKeptCornersTriangles = std::size_t{1} << 16;
 
 // A triangle while the BVH builds: its box, its centroid as the box's own arithmetic gives it (one axis or all
 // three), its index. Two layouts of the same values: CentroidKept, 40 bytes, for leaves of one triangle (builds ~8 %
@@ -375,6 +379,10 @@ class PacketBvhAccel final : public Accel {
     }
     leafTriangles_.reserve(triangles.size());
     for (const BuildTriangle& t : triangles) leafTriangles_.push_back(t.id);
+    if (leafMax == 1 && triangles.size() <= kKeptCornersTriangles) {
+      leafCorners_.reserve(triangles.size());
+      for (const BuildTriangle& t : triangles) leafCorners_.push_back(corners(t.id));
+    }
   }
 
   // Lanes k < count: the float-traversable ones set up in `p` (their bits returned), the others answered by
@@ -461,6 +469,13 @@ class PacketBvhAccel final : public Accel {
       const unsigned lanes = entry.lanes & active;
       if (!lanes) continue;
       if (!(n.countOrAxis & kInner)) {
+        if (!leafCorners_.empty()) {
+          for (std::uint32_t i = n.first; i < n.first + n.countOrAxis; ++i) {
+            const LeafTriangle& t = leafCorners_[i];
+            testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { onHit(k, t, hit, active); });
+          }
+          continue;
+        }
         for (std::uint32_t i = n.first; i < n.first + n.countOrAxis; ++i) {
           const LeafTriangle t = corners(leafTriangles_[i]);
           testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { onHit(k, t, hit, active); });
@@ -528,6 +543,7 @@ class PacketBvhAccel final : public Accel {
   };
   std::unique_ptr<Node[], Free> nodes_;  // nodes_[1] is the root (nodes_[0] unused); null without triangles
   std::vector<std::uint32_t> leafTriangles_;  // in leaf order
+  std::vector<LeafTriangle> leafCorners_;     // the same, with their corners: empty beyond kKeptCornersTriangles
   const SceneGeometry& scene_;               // outlives the accel (buildAccel's contract)
 };
 
