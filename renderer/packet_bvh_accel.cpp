@@ -35,7 +35,6 @@ Float8 load8(const float* p) {
 Float8 splat8(float x) { return Float8{x, x, x, x, x, x, x, x}; }
 Float8 min8(Float8 a, Float8 b) { return a < b ? a : b; }
 Float8 max8(Float8 a, Float8 b) { return a < b ? b : a; }
-Float8 abs8(Float8 a) { return a < splat8(0.0f) ? -a : a; }
 unsigned bits8(Int8 m) {
 #ifdef __AVX__
   return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<Float8>(m)));
@@ -440,10 +439,9 @@ class PacketBvhAccel final : public Accel {
         far = min8(far, max8(t0, t1));
       }
       // Widening each slab's distances by their own 2^-18 before the max / min is the same as widening the result
-      // (x - |x| s and x + |x| s are increasing): once here.
-      near -= abs8(near) * splat8(kSlack);
-      far += abs8(far) * splat8(kSlack);
-      result |= bits8(near <= far) << at;
+      // (x - |x| s and x + |x| s are increasing): once here. `near` is never negative (tNear is not), and a
+      // negative `far` fails either way, so the widening is two products.
+      result |= bits8(near * splat8(1.0f - kSlack) <= far * splat8(1.0f + kSlack)) << at;
     }
     return result & lanes;
   }
