@@ -31,28 +31,26 @@ std::string formatFor(const fs::path& output) {
   return found == kFormats.end() ? std::string() : found->second;
 }
 
-// The diffuse colour a textured material is written with. The formats multiply it by the texture, and the importer
-// gives a textured material its colour times the texture's mean texel (model_materials.cpp): divided by that mean,
-// the model opens again with its colour. A wholly textured one (factor 1, the handout's 2025 files) is white, as the
-// formats mean by a plain texture.
-Color texturedDiffuse(const Material& m, const Texture& texture) {
-  if (m.textureFactor == 1.0f) return Color(1.0f);
+// `colour` divided by the texture's mean texel, channel by channel: the importer gives a textured material its colour
+// times that mean (model_materials.cpp), so the written colour opens again as it was.
+Color withoutMeanTexel(Color colour, const Texture& texture) {
   const Color mean = model::averageOf(texture);
-  Color kd = m.diffuse;
   for (int c = 0; c < 3; ++c)
-    if (mean[c] > 0.0f) kd[c] /= mean[c];
-  return kd;
+    if (mean[c] > 0.0f) colour[c] /= mean[c];
+  return colour;
 }
 
-// A metallic-roughness material as glTF has it: the base colour (divided by the texture's mean, as the diffuse
-// colour), the factors and the map, which the glTF exporter writes as pbrMetallicRoughness.
+// The diffuse colour a textured material is written with. The formats multiply it by the texture: the colour
+// without the mean texel. A wholly textured one (factor 1, the handout's 2025 files) is white, as the formats mean
+// by a plain texture.
+Color texturedDiffuse(const Material& m, const Texture& texture) {
+  return m.textureFactor == 1.0f ? Color(1.0f) : withoutMeanTexel(m.diffuse, texture);
+}
+
+// A metallic-roughness material as glTF has it: the base colour (without the texture's mean, as the diffuse colour),
+// the factors and the map, which the glTF exporter writes as pbrMetallicRoughness.
 void addMetalRough(const Material& m, const Texture* texture, aiMaterial& out) {
-  Color base = m.baseColor;
-  if (texture) {
-    const Color mean = model::averageOf(*texture);
-    for (int c = 0; c < 3; ++c)
-      if (mean[c] > 0.0f) base[c] /= mean[c];
-  }
+  const Color base = texture ? withoutMeanTexel(m.baseColor, *texture) : m.baseColor;
   const aiColor4D baseColor(base.x, base.y, base.z, 1.0f);
   out.AddProperty(&baseColor, 1, AI_MATKEY_BASE_COLOR);
   out.AddProperty(&m.metallic, 1, AI_MATKEY_METALLIC_FACTOR);
