@@ -148,7 +148,7 @@ void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN*
   for (; packed && first + kWatertightWidth <= N; first += kWatertightWidth) {
     unsigned block = 0;
     for (int j = 0; j < kWatertightWidth; ++j)
-      if (valid[first + j]) block |= 1u << j;
+      if (valid[first + j] && lanes[id(first + j)].ray) block |= 1u << j;
     if (block == 0) continue;
     const unsigned lane0 = id(first);
     bool vector = (block & (block - 1)) != 0 && lane0 % kWatertightWidth == 0 && lane0 < kRayPacket;
@@ -174,7 +174,7 @@ void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN*
     }
   }
   for (unsigned i = first; i < N; ++i) {
-    if (!valid[i]) continue;
+    if (!valid[i] || !lanes[id(i)].ray) continue;
     TriangleHit one;
     if (testTriangle(t, primID, query, id(i), one)) onHit(i, id(i), one);
   }
@@ -378,13 +378,20 @@ class EmbreeAccel final : public Accel {
     return occludedByAnyTriangle(ray, data_.size(), [&](std::uint32_t i) { return data_.corners(i); });
   }
 
+  // A lane the query does not use. Its valid entry is 0, but Embree's AVX2 packet traversal hands the callbacks
+  // lanes that its valid mask left out whenever their interval is not empty (a [0, 0] one included): so the interval
+  // is empty, and the callbacks skip a lane without a ray (testLanes) rather than read a ray an earlier query left.
+  static void leaveOut(RTCRay16& packet, QueryLane* lanes, int k) {
+    packet.tfar[k] = -INFINITY;
+    lanes[k].ray = nullptr;
+  }
+
   // Lanes k < count of a packet, each ray's float copy with its lane as id; a ray Embree cannot take is answered
   // by `without(k)` and left out (valid[k] = 0). Returns whether any lane is left for Embree.
   // Four rays at a time in vector registers (one at a time it was ~10 % of a render): each lane gets exactly what
   // floatTraversable(), prepareWatertightRay() and fill() give its ray alone (WatertightLanes.PreparedFourAtOnceAsOneAtATime,
   // FloatSteps.FourWideAgreeWithTheScalarSteps, and Packets.AnswerEachRayAsItsOwnQueryDoes for the whole query).
-  // Lanes from `count` on get an empty interval, as a stack packet's zeros were: Embree's packet traversal then
-  // ignores them.
+  // Lanes from `count` on are left out as well.
   template <class Without>
   static bool fillPacket(const Ray* rays, int count, QueryLane* lanes, WatertightLanes<kRayPacket>& packed,
                          RTCRay16& packet, int* valid, Without&& without) {
@@ -410,16 +417,20 @@ class EmbreeAccel final : public Accel {
           lanes[k].ray = &rays[k];
           lanes[k].triangle = RTC_INVALID_GEOMETRY_ID;
           any = true;
-        } else if (inCount[j]) {
-          without(k);
+        } else {
+          leaveOut(packet, lanes, k);
+          if (inCount[j]) without(k);
         }
       }
     }
     for (; first < kRayPacket; first += kWatertightWidth) {
       for (float* field : {packet.org_x, packet.org_y, packet.org_z, packet.dir_x, packet.dir_y, packet.dir_z,
-                           packet.tnear, packet.tfar})
+                           packet.tnear})
         std::memset(field + first, 0, kWatertightWidth * sizeof(float));
-      for (int j = 0; j < kWatertightWidth; ++j) valid[first + j] = 0;
+      for (int j = 0; j < kWatertightWidth; ++j) {
+        valid[first + j] = 0;
+        leaveOut(packet, lanes, first + j);
+      }
     }
     return any;
   }

@@ -25,6 +25,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -377,6 +378,41 @@ TEST(EmbreeIsas, EveryPacketWidthGivesTheSameAnswersBitForBit) {
     }
   }
   EXPECT_EQ(scenes, 2);
+}
+
+// A packet of fewer than 16 rays, the first a thread sends (its scratch lanes never filled), at every packet width:
+// Embree's narrower traversals call back for lanes the valid mask leaves out unless their interval is empty, and the
+// callbacks read those lanes' rays. Each answer must be the single ray's, and nothing read beyond the query's rays.
+TEST(EmbreeIsas, PacketsOfFewRaysOnANewThreadAnswerOnlyTheirRays) {
+  if (availableAccel(AccelKind::Embree) != AccelKind::Embree) GTEST_SKIP() << "built without Embree";
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "this machine has no AVX2";
+  SceneGeometry scene;
+  scene.vertices = {{-1.0, -1.0, -2.0}, {1.0, -1.0, -2.0}, {0.0, 1.0, -2.0}};
+  scene.addFace(Triangle{{0, 1, 2}});
+  const glm::dvec3 origin{0.0};
+  for (const char* isa : {"", "avx2", "sse4.2"}) {
+    const std::unique_ptr<Accel> accel = *isa ? makeEmbreeAccelForIsa(scene, origin, isa)
+                                              : makeEmbreeAccel(scene, origin, EmbreeLayout::Fast, nullptr, nullptr);
+    ASSERT_TRUE(accel) << isa;
+    for (int count = 1; count < kRayPacket; ++count) {
+      std::vector<Ray> rays(static_cast<std::size_t>(count));
+      for (int k = 0; k < count; ++k)
+        rays[static_cast<std::size_t>(k)] = Ray{{0.0, 0.0, 0.0}, {0.01 * k, 0.0, -1.0}, 0.0, 10.0};
+      std::optional<Hit> hits[kRayPacket];
+      bool occluded[kRayPacket] = {};
+      std::thread([&] {  // a new thread: its packet scratch holds no earlier query's lanes
+        accel->closestHits(rays.data(), count, hits);
+        accel->occludedMany(rays.data(), count, occluded);
+      }).join();
+      for (int k = 0; k < count; ++k) {
+        const std::optional<Hit> single = accel->closestHit(rays[static_cast<std::size_t>(k)]);
+        ASSERT_TRUE(single.has_value()) << isa << " ray " << k;
+        ASSERT_TRUE(hits[k].has_value()) << isa << " count " << count << " ray " << k;
+        EXPECT_EQ(hits[k]->t, single->t) << isa << " count " << count << " ray " << k;
+        EXPECT_TRUE(occluded[k]) << isa << " count " << count << " ray " << k;
+      }
+    }
+  }
 }
 #endif  // RAYVIEW_HAVE_EMBREE
 
