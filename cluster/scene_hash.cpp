@@ -46,6 +46,8 @@ void addTexture(Hasher& hasher, const std::optional<Texture>& texture) {
   const int size[2] = {texture->width, texture->height};
   hasher.add(size, sizeof size);
   hasher.add(texture->rgb.data(), texture->rgb.size());
+  // A cut-out's coverage; nothing for an image without alpha, whose hash stays what it was.
+  if (!texture->alpha.empty()) hasher.add(texture->alpha.data(), texture->alpha.size());
 }
 
 }  // namespace

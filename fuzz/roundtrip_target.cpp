@@ -58,6 +58,9 @@ void compare(const rayview::Scene& a, const rayview::Scene& b) {
     EXPECT_SAME(same(ma.mirror, mb.mirror));
     EXPECT_SAME(ma.textureFactor == mb.textureFactor);
     EXPECT_SAME(ma.twoSided == mb.twoSided);
+    // The cutoff is written only with its image (without one it has no effect).
+    EXPECT_SAME(ma.alphaImage.empty() == mb.alphaImage.empty());
+    EXPECT_SAME(ma.alphaImage.empty() || ma.alphaCutoff == mb.alphaCutoff);
   }
 }
 

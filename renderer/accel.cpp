@@ -91,32 +91,34 @@ AccelKind accelWithinRange(const SceneGeometry& scene, AccelKind kind, const glm
 }
 
 std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
-                                  BuildProgress progress, void* progressUser) {
-  return buildCheckedAccel(scene, accelWithinRange(scene, kind, origin), origin, progress, progressUser);
+                                  BuildProgress progress, void* progressUser, const CutOuts* cutOuts) {
+  return buildCheckedAccel(scene, accelWithinRange(scene, kind, origin), origin, progress, progressUser, 0, cutOuts);
 }
 
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
-                                         BuildProgress progress, void* progressUser, std::size_t pixels) {
-  if (kind == AccelKind::Packet) return makePacketBvhAccel(scene, origin);
+                                         BuildProgress progress, void* progressUser, std::size_t pixels,
+                                         const CutOuts* cutOuts) {
+  if (kind == AccelKind::Packet) return makePacketBvhAccel(scene, origin, 0, 1, cutOuts);
 #ifdef RAYVIEW_HAVE_EMBREE
   if (kind == AccelKind::Embree) {
     std::string why;
     if (embreeLibrary(&why))
-      return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size(), pixels), progress, progressUser);
+      return makeEmbreeAccel(scene, origin, embreeLayoutFor(scene.triangles.size(), pixels), progress, progressUser,
+                             cutOuts);
     // Built with Embree, run where it cannot be loaded: the packet BVH gives the same answers, more slowly on
     // big scenes. Said once a process.
     static std::once_flag once;
     std::call_once(once, [&] {
       std::fprintf(stderr, "rayview: cannot load Embree (%s): using rayview's packet BVH instead\n", why.c_str());
     });
-    return makePacketBvhAccel(scene, origin);
+    return makePacketBvhAccel(scene, origin, 0, 1, cutOuts);
   }
 #else
   static_cast<void>(pixels);
   // Built without Embree: the packet BVH in its place (availableAccel).
-  if (kind == AccelKind::Embree) return makePacketBvhAccel(scene, origin);
+  if (kind == AccelKind::Embree) return makePacketBvhAccel(scene, origin, 0, 1, cutOuts);
 #endif
-  return makeReferenceAccel(scene, origin, progress, progressUser);
+  return makeReferenceAccel(scene, origin, progress, progressUser, cutOuts);
 }
 
 }  // namespace rayview

@@ -27,23 +27,25 @@ inline constexpr std::size_t kQuickBuildRaysPerTriangle = 16;
 // `pixels`: the one render's camera rays the BVH is built for; 0 when unknown or for many renders (the viewer).
 EmbreeLayout embreeLayoutFor(std::size_t triangles, std::size_t pixels = 0);
 
+// Every constructor takes the scene's cut-outs (null for none; buildAccel's contract).
 std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,
-                                       BuildProgress progress, void* progressUser);
+                                       BuildProgress progress, void* progressUser, const CutOuts* cutOuts = nullptr);
 // For tests: the fast layout on a device limited to one vector ISA ("avx2", "sse4.2"; Embree's `isa` setting).
 // Embree's packet width follows the ISA (16 lanes with AVX-512, 8 with AVX2, 4 with SSE), so the callbacks get
 // a 16-ray packet whole or in pieces: this builds each piece size on one machine.
-std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin, const std::string& isa);
+std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin,
+                                             const std::string& isa, const CutOuts* cutOuts = nullptr);
 // rayview's packet BVH (packet_bvh_accel.cpp): Embree's answers for every ray within Embree's range, with no Embree.
 // A big scene's build uses up to `buildThreads` threads (0: the hardware's); the BVH is the same for any number.
 // Leaves hold one triangle, or up to `leafTriangles` (fewer nodes: less memory, slower rays; lean_memory.h).
 std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads = 0,
-                                          std::size_t leafTriangles = 1);
+                                          std::size_t leafTriangles = 1, const CutOuts* cutOuts = nullptr);
 // prepareGeometry builds the packet BVH for AccelKind::Embree up to this many triangles: Embree's device, task
 // scheduler and first build cost a process ~5 ms, more than its faster traversal saves a small scene's render
 // (docs/PERFORMANCE.md, "The packet BVH for small scenes").
 inline constexpr std::size_t kPacketBvhTriangles = 5000;
 std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin,
-                                          BuildProgress progress, void* progressUser);
+                                          BuildProgress progress, void* progressUser, const CutOuts* cutOuts = nullptr);
 
 // `kind`, or the reference BVH when it is Embree and a vertex is beyond what Embree can represent (the
 // geometry's part of embreeRangeProblem; buildAccel's check).
@@ -53,6 +55,7 @@ AccelKind accelWithinRange(const SceneGeometry& scene, AccelKind kind, const glm
 // reads every corner of every face, ~1 ms at 100 000 triangles, and a render made it three times.
 // `pixels` as for embreeLayoutFor.
 std::unique_ptr<Accel> buildCheckedAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
-                                         BuildProgress progress, void* progressUser, std::size_t pixels = 0);
+                                         BuildProgress progress, void* progressUser, std::size_t pixels = 0,
+                                         const CutOuts* cutOuts = nullptr);
 
 }  // namespace rayview

@@ -18,6 +18,7 @@
 #include <glm/common.hpp>
 
 #include "accel_backends.h"
+#include "rayview/cut_outs.h"
 #include "embree_library.h"
 #include "float_rays.h"
 #include "float_steps.h"
@@ -111,6 +112,7 @@ struct TriangleData {
   const std::vector<glm::dvec3>* vertices = nullptr;  // world positions
   const std::vector<Triangle>* triangles = nullptr;
   glm::dvec3 origin{0.0};
+  const CutOuts* cutOuts = nullptr;  // null for a scene without cut-outs
 
   TriangleCorners corners(std::uint32_t triangle) const { return cornersOf(*vertices, (*triangles)[triangle], origin); }
   std::uint32_t size() const { return triangles ? static_cast<std::uint32_t>(triangles->size()) : 0; }
@@ -123,6 +125,11 @@ void triangleBounds(const RTCBoundsFunctionArguments* args) {
       RTCBounds{box.lower.x, box.lower.y, box.lower.z, 0.0f, box.upper.x, box.upper.y, box.upper.z, 0.0f};
 }
 
+// Whether a hit of the triangle counts: not where a cut-out hides it (one branch when the scene has none).
+bool kept(const CutOuts* cutOuts, unsigned primID, const TriangleHit& hit) {
+  return !cutOuts || !cutOuts->hides(primID, hit.b1, hit.b2);
+}
+
 // Query lane `id` against the triangle, by the scalar test.
 bool testTriangle(const TriangleCorners& t, unsigned primID, const QueryContext& query, unsigned id,
                   TriangleHit& hit) {
@@ -133,14 +140,15 @@ bool testTriangle(const TriangleCorners& t, unsigned primID, const QueryContext&
 }
 
 // The valid lanes of a callback's N, each tested against the triangle; `onHit(i, id, hit)` gets each valid lane i
-// (query lane `id`, the float ray's id) whose ray hits it and does not exclude it, in increasing order of i, as a
-// plain loop over the lanes gives them. For a packet query (`packed` set), four consecutive lanes of Embree's
-// that are four consecutive query lanes from a multiple of four (Embree hands a 16-wide packet whole on an
-// AVX-512 machine, in halves or quarters on others: all line up), two or more of them valid and sharing their
-// axis permutation, go through the four-wide test; every other lane through the scalar one.
+// (query lane `id`, the float ray's id) whose ray hits it, does not exclude it and is not in a cut-out (`cutOuts`,
+// null for none), in increasing order of i, as a plain loop over the lanes gives them. For a packet query (`packed`
+// set), four consecutive lanes of Embree's that are four consecutive query lanes from a multiple of four (Embree
+// hands a 16-wide packet whole on an AVX-512 machine, in halves or quarters on others: all line up), two or more of
+// them valid and sharing their axis permutation, go through the four-wide test; every other lane through the scalar
+// one.
 template <class OnHit>
 void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN* rays, const TriangleCorners& t,
-               unsigned primID, OnHit&& onHit) {
+               unsigned primID, const CutOuts* cutOuts, OnHit&& onHit) {
   const WatertightLanes<kRayPacket>* packed = query.packed;
   const QueryLane* lanes = query.lanes;
   auto id = [&](unsigned i) { return RTCRayN_id(rays, N, i); };
@@ -164,19 +172,21 @@ void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN*
       const unsigned hit =
           block & intersectWatertight4(*packed, static_cast<int>(lane0), permutation, t.a, t.b, t.c, hits);
       for (unsigned j = 0; j < kWatertightWidth; ++j)
-        if ((hit & (1u << j)) && primID != lanes[lane0 + j].ray->excludedTriangle) onHit(first + j, lane0 + j, hits[j]);
+        if ((hit & (1u << j)) && primID != lanes[lane0 + j].ray->excludedTriangle && kept(cutOuts, primID, hits[j]))
+          onHit(first + j, lane0 + j, hits[j]);
       continue;
     }
     for (unsigned j = 0; j < kWatertightWidth; ++j) {
       if (!(block & (1u << j))) continue;
       TriangleHit one;
-      if (testTriangle(t, primID, query, id(first + j), one)) onHit(first + j, id(first + j), one);
+      if (testTriangle(t, primID, query, id(first + j), one) && kept(cutOuts, primID, one))
+        onHit(first + j, id(first + j), one);
     }
   }
   for (unsigned i = first; i < N; ++i) {
     if (!valid[i] || !lanes[id(i)].ray) continue;
     TriangleHit one;
-    if (testTriangle(t, primID, query, id(i), one)) onHit(i, id(i), one);
+    if (testTriangle(t, primID, query, id(i), one) && kept(cutOuts, primID, one)) onHit(i, id(i), one);
   }
 }
 
@@ -188,7 +198,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   const TriangleCorners corners = data.corners(args->primID);  // once for every lane
   // Lane i of Embree's arguments (lane `id` of the query) hits at `hit`: the closest so far?
-  testLanes(query, args->valid, args->N, rays, corners, args->primID,
+  testLanes(query, args->valid, args->N, rays, corners, args->primID, data.cutOuts,
             [&](unsigned i, unsigned id, const TriangleHit& hit) {
               QueryLane& lane = lanes[id];
               if (lane.triangle != RTC_INVALID_GEOMETRY_ID &&
@@ -207,7 +217,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
-  testLanes(query, args->valid, args->N, args->ray, data.corners(args->primID), args->primID,
+  testLanes(query, args->valid, args->N, args->ray, data.corners(args->primID), args->primID, data.cutOuts,
             [&](unsigned i, unsigned, const TriangleHit&) { RTCRayN_tfar(args->ray, args->N, i) = -INFINITY; });
 }
 
@@ -242,7 +252,7 @@ PacketScratch& packetScratch() {
 class EmbreeAccel final : public Accel {
  public:
   EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, RTCDevice device, EmbreeLayout layout,
-              BuildProgress progress, void* progressUser)
+              BuildProgress progress, void* progressUser, const CutOuts* cutOuts)
       : Accel(origin), rtc_(embree()) {
     scene_ = rtc_.NewScene(device);
     // ROBUST: watertight triangle tests (SPEC section 6). MEDIUM build quality: the viewer must show
@@ -255,7 +265,7 @@ class EmbreeAccel final : public Accel {
     ProgressRelay relay{progress, progressUser};
     if (progress) rtc_.SetSceneProgressMonitorFunction(scene_, relayProgress, &relay);
 
-    data_ = {&scene.vertices, &scene.triangles, origin};
+    data_ = {&scene.vertices, &scene.triangles, origin, cutOuts};
     if (!scene.triangles.empty()) {
       RTCGeometry geometry = rtc_.NewGeometry(device, RTC_GEOMETRY_TYPE_USER);
       rtc_.SetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(scene.triangles.size()));
@@ -371,11 +381,12 @@ class EmbreeAccel final : public Accel {
   // Embree asserts on such a ray: floatTraversable() turns it away, and it is answered here by testing every
   // triangle, in double.
   std::optional<Hit> closestHitWithoutEmbree(const Ray& ray) const {
-    return closestHitByEveryTriangle(ray, data_.size(), [&](std::uint32_t i) { return data_.corners(i); });
+    return closestHitByEveryTriangle(ray, data_.size(), data_.cutOuts,
+                                     [&](std::uint32_t i) { return data_.corners(i); });
   }
 
   bool occludedWithoutEmbree(const Ray& ray) const {
-    return occludedByAnyTriangle(ray, data_.size(), [&](std::uint32_t i) { return data_.corners(i); });
+    return occludedByAnyTriangle(ray, data_.size(), data_.cutOuts, [&](std::uint32_t i) { return data_.corners(i); });
   }
 
   // A lane the query does not use. Its valid entry is 0, but Embree's AVX2 packet traversal hands the callbacks
@@ -466,16 +477,19 @@ EmbreeLayout embreeLayoutFor(std::size_t triangles, std::size_t pixels) {
 }
 
 std::unique_ptr<Accel> makeEmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, EmbreeLayout layout,
-                                       BuildProgress progress, void* progressUser) {
-  auto accel = std::make_unique<EmbreeAccel>(scene, origin, sharedDevice(layout), layout, progress, progressUser);
+                                       BuildProgress progress, void* progressUser, const CutOuts* cutOuts) {
+  auto accel =
+      std::make_unique<EmbreeAccel>(scene, origin, sharedDevice(layout), layout, progress, progressUser, cutOuts);
   if (!accel->valid()) return nullptr;  // cancelled through the progress callback
   return accel;
 }
 
-std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin, const std::string& isa) {
+std::unique_ptr<Accel> makeEmbreeAccelForIsa(const SceneGeometry& scene, const glm::dvec3& origin,
+                                             const std::string& isa, const CutOuts* cutOuts) {
   std::string why;
   if (!embreeLibrary(&why)) throw std::runtime_error("Embree: " + why);
-  auto accel = std::make_unique<EmbreeAccel>(scene, origin, isaDevice(isa), EmbreeLayout::Fast, nullptr, nullptr);
+  auto accel =
+      std::make_unique<EmbreeAccel>(scene, origin, isaDevice(isa), EmbreeLayout::Fast, nullptr, nullptr, cutOuts);
   if (!accel->valid()) return nullptr;
   return accel;
 }

@@ -13,6 +13,7 @@
 
 #include "float_steps.h"
 #include "rayview/accel.h"
+#include "rayview/cut_outs.h"
 #include "simd4.h"
 #include "watertight_lanes.h"
 #include "watertight_triangle.h"
@@ -122,9 +123,11 @@ template <int kLanes>
 }
 
 // A ray floatTraversable turns away, answered by testing every triangle in double: `corners(i)` gives triangle i's
-// corners relative to the accel's origin (members a, b, c), for i < count.
+// corners relative to the accel's origin (members a, b, c), for i < count; a hit `cutOuts` hides (null for none)
+// does not count.
 template <class Corners>
-std::optional<Hit> closestHitByEveryTriangle(const Ray& ray, std::uint32_t count, Corners&& corners) {
+std::optional<Hit> closestHitByEveryTriangle(const Ray& ray, std::uint32_t count, const CutOuts* cutOuts,
+                                             Corners&& corners) {
   const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
   std::optional<Hit> best;
   for (std::uint32_t i = 0; i < count; ++i) {
@@ -133,6 +136,7 @@ std::optional<Hit> closestHitByEveryTriangle(const Ray& ray, std::uint32_t count
     TriangleHit hit;
     const double tFar = best ? std::min(ray.tFar, tieSearchLimit(best->t)) : ray.tFar;
     if (!intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, tFar, hit)) continue;
+    if (cutOuts && cutOuts->hides(i, hit.b1, hit.b2)) continue;
     if (best && !replacesClosestHit(hit.t, i, best->t, best->triangle)) continue;
     best = Hit{hit.t, i, hit.b1, hit.b2};
   }
@@ -140,13 +144,15 @@ std::optional<Hit> closestHitByEveryTriangle(const Ray& ray, std::uint32_t count
 }
 
 template <class Corners>
-bool occludedByAnyTriangle(const Ray& ray, std::uint32_t count, Corners&& corners) {
+bool occludedByAnyTriangle(const Ray& ray, std::uint32_t count, const CutOuts* cutOuts, Corners&& corners) {
   const WatertightRay prepared = prepareWatertightRay(ray.origin, ray.direction);
   for (std::uint32_t i = 0; i < count; ++i) {
     if (i == ray.excludedTriangle) continue;
     const auto t = corners(i);
     TriangleHit hit;
-    if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit)) return true;
+    if (intersectWatertight(prepared, t.a, t.b, t.c, ray.tNear, ray.tFar, hit) &&
+        !(cutOuts && cutOuts->hides(i, hit.b1, hit.b2)))
+      return true;
   }
   return false;
 }

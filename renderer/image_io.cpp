@@ -201,6 +201,26 @@ std::string encodePng(const Image& image, const PngOptions& options) {
   return bytes;
 }
 
+std::string encodeTexturePng(const Texture& texture) {
+  if (texture.alpha.empty()) {
+    Image image(texture.width, texture.height);
+    image.rgb = texture.rgb;
+    return encodePng(image);
+  }
+  std::vector<std::uint8_t> rgba;
+  rgba.reserve(texture.alpha.size() * 4);
+  for (std::size_t i = 0; i < texture.alpha.size(); ++i)
+    rgba.insert(rgba.end(), {texture.rgb[i * 3], texture.rgb[i * 3 + 1], texture.rgb[i * 3 + 2], texture.alpha[i]});
+  std::string bytes;
+  const PngOptions options;
+  png_detail::currentOptions = &options;
+  const int ok = stbi_write_png_to_func(appendBytes, &bytes, texture.width, texture.height, 4, rgba.data(),
+                                        texture.width * 4);
+  png_detail::currentOptions = nullptr;
+  if (!ok) throw ImageIoError("cannot encode the PNG image");
+  return bytes;
+}
+
 bool isSupportedImageExtension(const std::filesystem::path& path) {
   const std::string ext = lowerExtension(path);
   return ext == ".png" || ext == ".ppm";

@@ -292,8 +292,9 @@ Packet& packetScratch() {
 
 class PacketBvhAccel final : public Accel {
  public:
-  PacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads, std::size_t leafMax)
-      : Accel(origin), scene_(scene) {
+  PacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads, std::size_t leafMax,
+                 const CutOuts* cutOuts)
+      : Accel(origin), scene_(scene), cutOuts_(cutOuts) {
     if (leafMax > 1)
       build<CentroidComputed>(buildThreads, leafMax);
     else
@@ -470,13 +471,13 @@ class PacketBvhAccel final : public Accel {
         if (!leafCorners_.empty()) {
           for (std::uint32_t i = n.first; i < n.first + n.countOrAxis; ++i) {
             const LeafTriangle& t = leafCorners_[i];
-            testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { onHit(k, t, hit, active); });
+            testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { keptHit(k, t, hit, active, onHit); });
           }
           continue;
         }
         for (std::uint32_t i = n.first; i < n.first + n.countOrAxis; ++i) {
           const LeafTriangle t = corners(leafTriangles_[i]);
-          testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { onHit(k, t, hit, active); });
+          testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { keptHit(k, t, hit, active, onHit); });
         }
         continue;
       }
@@ -490,6 +491,12 @@ class PacketBvhAccel final : public Accel {
       if (farLanes) stack[top++] = {&children[1 - nearSide], farLanes};
       if (nearLanes) stack[top++] = {&children[nearSide], nearLanes};
     }
+  }
+
+  // onHit for a hit that counts: not one a cut-out hides (one branch when the scene has none).
+  template <class OnHit>
+  void keptHit(int k, const LeafTriangle& t, const TriangleHit& hit, unsigned& active, OnHit& onHit) const {
+    if (!cutOuts_ || !cutOuts_->hides(t.id, hit.b1, hit.b2)) onHit(k, t, hit, active);
   }
 
   // The lanes of `lanes` against the triangle, four at a time where four consecutive lanes from a multiple of four
@@ -528,11 +535,11 @@ class PacketBvhAccel final : public Accel {
   // A ray the float traversal turns away (the viewer's camera moved far from the build origin): every triangle, in
   // double, as the Embree back-end answers it.
   std::optional<Hit> closestHitByEveryTriangle(const Ray& ray) const {
-    return rayview::closestHitByEveryTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()),
+    return rayview::closestHitByEveryTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()), cutOuts_,
                                               [this](std::uint32_t i) { return corners(i); });
   }
   bool occludedByAnyTriangle(const Ray& ray) const {
-    return rayview::occludedByAnyTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()),
+    return rayview::occludedByAnyTriangle(ray, static_cast<std::uint32_t>(scene_.triangles.size()), cutOuts_,
                                           [this](std::uint32_t i) { return corners(i); });
   }
 
@@ -543,13 +550,15 @@ class PacketBvhAccel final : public Accel {
   std::vector<std::uint32_t> leafTriangles_;  // in leaf order
   std::vector<LeafTriangle> leafCorners_;     // the same, with their corners: empty beyond kKeptCornersTriangles
   const SceneGeometry& scene_;               // outlives the accel (buildAccel's contract)
+  const CutOuts* cutOuts_;                   // null for a scene without cut-outs; outlives the accel too
 };
 
 }  // namespace
 
 std::unique_ptr<Accel> makePacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads,
-                                          std::size_t leafTriangles) {
-  return std::make_unique<PacketBvhAccel>(scene, origin, buildThreads, std::max<std::size_t>(leafTriangles, 1));
+                                          std::size_t leafTriangles, const CutOuts* cutOuts) {
+  return std::make_unique<PacketBvhAccel>(scene, origin, buildThreads, std::max<std::size_t>(leafTriangles, 1),
+                                          cutOuts);
 }
 
 }  // namespace rayview

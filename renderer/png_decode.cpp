@@ -58,15 +58,30 @@ void readBytes(png_structp png, png_bytep into, png_size_t count) {
 void onWarning(png_structp, png_const_charp) {}  // ancillary-chunk problems: the samples are still exact
 
 // 8-bit RGB as stored: palettes and low bit depths expanded, 16-bit samples scaled (v * 255 / 65535, rounded),
-// grey made RGB, alpha and tRNS dropped (the colour, not composited), no gamma or colour-space conversion.
-void setTransforms(png_structp png, png_infop info) {
+// grey made RGB, no gamma or colour-space conversion; an alpha channel or tRNS chunk read as a fourth sample (8-bit,
+// scaled alike), which decodeInto moves to Texture::alpha (the colour is never composited with it).
+// Returns the samples a pixel: 3 or 4.
+unsigned setTransforms(png_structp png, png_infop info) {
   png_set_expand(png);
   png_set_scale_16(png);
-  png_set_strip_alpha(png);
   const int colour = png_get_color_type(png, info);
   if (colour == PNG_COLOR_TYPE_GRAY || colour == PNG_COLOR_TYPE_GRAY_ALPHA) png_set_gray_to_rgb(png);
   png_set_interlace_handling(png);
   png_read_update_info(png, info);
+  return png_get_channels(png, info);
+}
+
+// RGBA pixels (4 a pixel, in `out.rgb`) to RGB in place plus their alpha apart: each pixel's colour moves down to
+// its RGB place, which never overtakes what is still to be read.
+void splitAlpha(Texture& out, std::size_t pixels) {
+  out.alpha.resize(pixels);
+  std::uint8_t* samples = out.rgb.data();
+  for (std::size_t i = 0; i < pixels; ++i) {
+    out.alpha[i] = samples[i * 4 + 3];
+    std::memmove(samples + i * 3, samples + i * 4, 3);
+  }
+  out.rgb.resize(pixels * 3);
+  out.rgb.shrink_to_fit();
 }
 
 // Between setjmp and a longjmp back to it, no automatic object with a destructor is alive and nothing local is
@@ -84,15 +99,18 @@ bool decodeInto(Reading& reading, png_structp png, png_infop info, Texture& out,
     reason = problem;
     return false;
   }
-  setTransforms(png, info);
-  if (png_get_rowbytes(png, info) != static_cast<std::size_t>(width) * 3) png_error(png, "unexpected row layout");
+  const unsigned channels = setTransforms(png, info);
+  if ((channels != 3 && channels != 4) || png_get_rowbytes(png, info) != static_cast<std::size_t>(width) * channels)
+    png_error(png, "unexpected row layout");
   out.width = static_cast<int>(width);
   out.height = static_cast<int>(height);
-  out.rgb.resize(static_cast<std::size_t>(width) * height * 3);
+  const std::size_t pixels = static_cast<std::size_t>(width) * height;
+  out.rgb.resize(pixels * channels);
   rows.resize(height);
-  for (png_uint_32 y = 0; y < height; ++y) rows[y] = out.rgb.data() + static_cast<std::size_t>(y) * width * 3;
+  for (png_uint_32 y = 0; y < height; ++y) rows[y] = out.rgb.data() + static_cast<std::size_t>(y) * width * channels;
   png_read_image(png, rows.data());
   png_read_end(png, nullptr);
+  if (channels == 4) splitAlpha(out, pixels);
   return true;
 }
 

@@ -1,5 +1,5 @@
 #pragma once
-// PNG to 8-bit RGB with libpng (see png_decode.cpp for why not stb_image).
+// PNG to 8-bit RGB, and alpha when it has any, with libpng (see png_decode.cpp for why not stb_image).
 
 #include <optional>
 #include <string>

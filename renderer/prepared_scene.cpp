@@ -16,16 +16,19 @@ using Clock = std::chrono::steady_clock;
 // packet BVH (the same answers, none of Embree's start-up), and a lean build the packet BVH with bigger leaves
 // (lean_memory.h): the caller has made Embree's range check (buildCheckedAccel). `pixels`, the one image's (OneImage
 // only, else 0), lets Embree build quickly for a cheap image. `buildMs` counts from `start`, which includes that check.
-std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry, const glm::dvec3& origin,
-                                          AccelKind kind, BvhBuild build, std::size_t pixels, BuildProgress progress,
-                                          void* progressUser, Clock::time_point start) {
+// `parameters` (null for bare geometry) give the materials' cut-outs.
+std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry,
+                                          const SceneParameters* parameters, const glm::dvec3& origin, AccelKind kind, BvhBuild build, std::size_t pixels,
+                                          BuildProgress progress, void* progressUser, Clock::time_point start) {
   auto prepared = std::make_shared<PreparedGeometry>();
+  if (parameters) prepared->cutOuts = CutOuts::of(*parameters, *geometry);
+  const CutOuts* cutOuts = prepared->cutOuts.get();
   const std::size_t triangles = geometry->triangles.size();
   if (kind == AccelKind::Embree && triangles <= kPacketBvhTriangles) kind = AccelKind::Packet;
   if (kind != AccelKind::Reference && build == BvhBuild::Lean)
-    prepared->accel = makePacketBvhAccel(*geometry, origin, 0, kLeanLeafTriangles);
+    prepared->accel = makePacketBvhAccel(*geometry, origin, 0, kLeanLeafTriangles, cutOuts);
   else
-    prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser, pixels);
+    prepared->accel = buildCheckedAccel(*geometry, kind, origin, progress, progressUser, pixels, cutOuts);
   if (!prepared->accel) return nullptr;
   prepared->shading = prepareShadingGeometry(*geometry, origin);
   prepared->source = std::move(geometry);
@@ -46,8 +49,8 @@ std::shared_ptr<const PreparedGeometry> prepareScene(std::shared_ptr<const Scene
   const std::size_t pixels = build != BvhBuild::OneImage ? 0
                              : static_cast<std::size_t>(std::max(scene.camera.width, 0)) *
                                    static_cast<std::size_t>(std::max(scene.camera.height, 0));
-  auto prepared = prepare(std::move(geometry), scene.camera.position, problem.empty() ? kind : AccelKind::Reference,
-                          build, pixels, progress, progressUser, start);
+  auto prepared = prepare(std::move(geometry), &scene.parameters(), scene.camera.position,
+                          problem.empty() ? kind : AccelKind::Reference, build, pixels, progress, progressUser, start);
   if (prepared) prepared->accelFallback = std::move(problem);
   return prepared;
 }
@@ -59,7 +62,7 @@ std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Sc
                                                         BuildProgress progress, void* progressUser) {
   const auto start = Clock::now();
   const AccelKind within = accelWithinRange(*geometry, availableAccel(kind), origin);
-  return prepare(std::move(geometry), origin, within, build, 0, progress, progressUser, start);
+  return prepare(std::move(geometry), nullptr, origin, within, build, 0, progress, progressUser, start);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,

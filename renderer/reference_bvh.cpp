@@ -90,6 +90,7 @@ bool ReferenceBvh::traverse(const BvhRay& ray, BvhHit* out) const {
         if (tri.id == ray.excludedTriangle) continue;
         TriangleHit hit;
         if (!intersectWatertight(triangleRay, tri.v0, tri.v1, tri.v2, ray.tNear, tFar, hit)) continue;
+        if (cutOuts_ && cutOuts_->hides(tri.id, hit.b1, hit.b2)) continue;
         if constexpr (kAnyHit) {
           return true;
         } else {

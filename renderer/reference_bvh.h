@@ -11,6 +11,7 @@
 #include <glm/vec3.hpp>
 
 #include "rayview/accel.h"
+#include "rayview/cut_outs.h"
 #include "watertight_triangle.h"
 
 namespace rayview {
@@ -38,6 +39,8 @@ class ReferenceBvh {
   static std::unique_ptr<ReferenceBvh> build(const std::vector<glm::dvec3>& vertices,
                                              const std::vector<Triangle>& triangles, BuildProgress progress,
                                              void* progressUser);
+  // A hit `cutOuts` hides is no hit (null, the default, for a scene without cut-outs); it must outlive the BVH.
+  void setCutOuts(const CutOuts* cutOuts) { cutOuts_ = cutOuts; }
 
   bool closestHit(const BvhRay& ray, BvhHit& out) const;
   bool occluded(const BvhRay& ray) const;
@@ -62,6 +65,7 @@ class ReferenceBvh {
 
   std::vector<Node> nodes_;                // nodes_[0] is the root
   std::vector<LeafTriangle> triangles_;    // in leaf order, vertices gathered for locality
+  const CutOuts* cutOuts_ = nullptr;
 };
 
 }  // namespace rayview

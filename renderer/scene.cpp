@@ -73,6 +73,8 @@ std::string materialProblem(const Material& m) {
       !std::isfinite(m.phongExponent) || !std::isfinite(m.textureFactor))
     return "material \"" + m.id + "\" has a value that is not finite";
   if (m.phongExponent < 0.0f) return "material \"" + m.id + "\" has a negative Phong exponent";
+  if (!(m.alphaCutoff >= 0.0f && m.alphaCutoff <= 1.0f))
+    return "material \"" + m.id + "\" has an alpha cutoff outside 0..1";
   return "";
 }
 

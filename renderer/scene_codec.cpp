@@ -120,6 +120,8 @@ void writeMaterial(Writer& w, const Material& m) {
   w.pod(m.baseColor);
   w.pod(m.metallic);
   w.pod(m.roughness);
+  w.text(m.alphaImage);
+  w.pod(m.alphaCutoff);
 }
 
 Material readMaterial(Reader& r) {
@@ -139,6 +141,8 @@ Material readMaterial(Reader& r) {
   m.baseColor = r.pod<Color>();
   m.metallic = r.pod<float>();
   m.roughness = r.pod<float>();
+  m.alphaImage = r.text();
+  m.alphaCutoff = r.pod<float>();
   return m;
 }
 
@@ -148,6 +152,7 @@ void writeTexture(Writer& w, const std::optional<Texture>& texture) {
   w.pod(texture->width);
   w.pod(texture->height);
   w.array(texture->rgb);
+  w.array(texture->alpha);
 }
 
 std::optional<Texture> readTexture(Reader& r) {
@@ -156,8 +161,10 @@ std::optional<Texture> readTexture(Reader& r) {
   texture.width = r.pod<int>();
   texture.height = r.pod<int>();
   texture.rgb = r.array<std::uint8_t>();
-  if (texture.width < 0 || texture.height < 0 ||
-      texture.rgb.size() != static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height) * 3)
+  texture.alpha = r.array<std::uint8_t>();
+  const std::size_t pixels = static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height);
+  if (texture.width < 0 || texture.height < 0 || texture.rgb.size() != pixels * 3 ||
+      (!texture.alpha.empty() && texture.alpha.size() != pixels))
     throw CodecError("texture size does not match its pixels");
   return texture;
 }

@@ -290,6 +290,13 @@ void Loader::readMetallicRoughness(const XMLElement* e, Material& material) {
   material.roughness = static_cast<float>(v[1]);
 }
 
+// <alphacutoff>c</alphacutoff>: a coverage from 0 to 1, as glTF's alphaCutoff.
+void Loader::readAlphaCutoff(const XMLElement* e, Material& material) {
+  const double c = readScalar(e, true);
+  if (!(c >= 0.0 && c <= 1.0)) fail(e->GetLineNum(), elementName(e) + ": must be from 0 to 1, found " + trimmedText(e));
+  material.alphaCutoff = static_cast<float>(c);
+}
+
 double Loader::readScalar(const XMLElement* e, bool asFloat) {
   double v;
   readFixed(e, 1, &v, asFloat);

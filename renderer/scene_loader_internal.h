@@ -51,7 +51,7 @@ enum class Tag {
   NearDistance, ImageResolution, Lights, AmbientLight,
   Light,  // the element of a light type (light_types.h); its own fields are read from the type's table
   Materials, Material, Ambient, Diffuse, Specular, PhongExponent, MirrorReflectance,
-  TextureFactor, TwoSided, Emission, EmissionImage, BaseColor, MetallicRoughness, MetalRoughImage, ColorData, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
+  TextureFactor, TwoSided, Emission, EmissionImage, BaseColor, MetallicRoughness, MetalRoughImage, AlphaImage, AlphaCutoff, ColorData, VertexData, TextureData, NormalData, TextureImage, Objects, Mesh, MaterialId, Faces,
   Count
 };
 
@@ -70,7 +70,8 @@ inline constexpr TagName kTagNames[] = {
     {"mirrorreflectance", Tag::MirrorReflectance}, {"texturefactor", Tag::TextureFactor},
     {"twosided", Tag::TwoSided}, {"emission", Tag::Emission}, {"emissionimage", Tag::EmissionImage},
     {"basecolor", Tag::BaseColor}, {"metallicroughness", Tag::MetallicRoughness},
-    {"metallicroughnessimage", Tag::MetalRoughImage}, {"colordata", Tag::ColorData},
+    {"metallicroughnessimage", Tag::MetalRoughImage}, {"alphaimage", Tag::AlphaImage},
+    {"alphacutoff", Tag::AlphaCutoff}, {"colordata", Tag::ColorData},
     {"vertexdata", Tag::VertexData}, {"texturedata", Tag::TextureData}, {"normaldata", Tag::NormalData},
     {"textureimage", Tag::TextureImage}, {"objects", Tag::Objects}, {"mesh", Tag::Mesh},
     {"materialid", Tag::MaterialId}, {"faces", Tag::Faces},
@@ -327,6 +328,7 @@ class Loader {
   glm::dvec3 readPoint(const XMLElement* e);
   Color readColor(const XMLElement* e);
   void readMetallicRoughness(const XMLElement* e, Material& material);
+  void readAlphaCutoff(const XMLElement* e, Material& material);
   double readScalar(const XMLElement* e, bool asFloat);
 
   // Exactly `count` integers; `what` describes them for the message ("a non-negative integer").
@@ -399,7 +401,8 @@ class Loader {
   std::string describe(const XMLElement* e);
 
   void readMaterials(const XMLElement* materials);
-  // A material's own image (its <textureimage>, <emissionimage> or <metallicroughnessimage>) into `name`, remembered for loadTexture.
+  // A material's own image (its <textureimage>, <emissionimage>, <metallicroughnessimage> or <alphaimage>) into
+  // `name`, remembered for loadTexture.
   void readMaterialTexture(const XMLElement* e, std::string& name);
 
   // ---------------------------------------------------------------- geometry

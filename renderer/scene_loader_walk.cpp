@@ -209,6 +209,8 @@ void Loader::readMaterials(const XMLElement* materials) {
         case Tag::BaseColor: material.baseColor = readColor(c); break;
         case Tag::MetallicRoughness: readMetallicRoughness(c, material); break;
         case Tag::MetalRoughImage: readMaterialTexture(c, material.metalRoughImage); break;
+        case Tag::AlphaImage: readMaterialTexture(c, material.alphaImage); break;
+        case Tag::AlphaCutoff: readAlphaCutoff(c, material); break;
         case Tag::TwoSided: {
           std::int64_t flag = 0;
           readIntegers(c, 1, &flag, 0, "0 or 1");

@@ -199,6 +199,10 @@ void writeParameters(XmlWriter& xml, const SceneParameters& parameters) {
       xml.element(3, "metallicroughness", m.metallic, m.roughness);
       xml.text(3, "metallicroughnessimage", m.metalRoughImage);
     }
+    if (!m.alphaImage.empty()) {
+      xml.text(3, "alphaimage", m.alphaImage);
+      xml.element(3, "alphacutoff", m.alphaCutoff);
+    }
     xml.close(2, "material");
   }
   xml.close(1, "materials");

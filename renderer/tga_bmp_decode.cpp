@@ -75,7 +75,8 @@ std::optional<Texture> decodeBmp(std::string_view b, long long maxPixels, std::s
   if (offset > b.size() || rowBytes * static_cast<std::size_t>(height) > b.size() - offset)
     return reason = "a truncated BMP (fewer pixels than its header says)", std::nullopt;
   const std::string_view palette = b.substr(14 + headerSize, offset > 14 + headerSize ? offset - 14 - headerSize : 0);
-  Texture t{width, static_cast<int>(height), std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3)};
+  Texture t{width, static_cast<int>(height),
+            std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3), {}};
   for (long long y = 0; y < height; ++y) {
     const long long stored = signedHeight < 0 ? y : height - 1 - y;  // bottom-up unless the height is negative
     const auto* row = reinterpret_cast<const unsigned char*>(b.data()) + offset + rowBytes * static_cast<std::size_t>(stored);
@@ -97,7 +98,9 @@ std::optional<Texture> decodeTga(std::string_view b, long long maxPixels, std::s
   const std::size_t least = rle ? (pixels + 127) / 128 * (1u + static_cast<std::size_t>(bytes))
                                 : pixels * static_cast<std::size_t>(bytes);
   if (at > b.size() || b.size() - at < least) return reason = "a truncated TGA", std::nullopt;
-  std::vector<std::uint8_t> stored(pixels * 3);
+  // A 32-bit image whose descriptor gives its pixels 8 attribute bits has alpha; any other has none.
+  const bool alpha = bytes == 4 && (static_cast<unsigned char>(b[17]) & 0x0F) == 8;
+  std::vector<std::uint8_t> stored(pixels * 3), storedAlpha(alpha ? pixels : 0);
   const auto* data = reinterpret_cast<const unsigned char*>(b.data());
   for (std::size_t i = 0; i < pixels;) {
     std::size_t run = 1;
@@ -111,14 +114,17 @@ std::optional<Texture> decodeTga(std::string_view b, long long maxPixels, std::s
       const std::size_t from = repeat ? at : at + k * static_cast<std::size_t>(bytes);
       if (from + static_cast<std::size_t>(bytes) > b.size()) return reason = "a truncated TGA", std::nullopt;
       putPixel(data + from, bytes, &stored[i * 3]);
+      if (alpha) storedAlpha[i] = data[from + 3];
     }
     at += (repeat ? 1 : run) * static_cast<std::size_t>(bytes);
   }
-  Texture t{width, height, std::vector<std::uint8_t>(pixels * 3)};
-  const std::size_t rowBytes = static_cast<std::size_t>(width) * 3;
-  for (int y = 0; y < height; ++y)  // bottom-up unless the descriptor says top-down
-    std::memcpy(&t.rgb[static_cast<std::size_t>(y) * rowBytes],
-                &stored[static_cast<std::size_t>(topDown ? y : height - 1 - y) * rowBytes], rowBytes);
+  Texture t{width, height, std::vector<std::uint8_t>(pixels * 3), std::vector<std::uint8_t>(storedAlpha.size())};
+  const std::size_t rowBytes = static_cast<std::size_t>(width) * 3, w = static_cast<std::size_t>(width);
+  for (int y = 0; y < height; ++y) {  // bottom-up unless the descriptor says top-down
+    const auto from = static_cast<std::size_t>(topDown ? y : height - 1 - y), to = static_cast<std::size_t>(y);
+    std::memcpy(&t.rgb[to * rowBytes], &stored[from * rowBytes], rowBytes);
+    if (alpha) std::memcpy(&t.alpha[to * w], &storedAlpha[from * w], w);
+  }
   return t;
 }
 

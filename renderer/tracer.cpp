@@ -10,6 +10,7 @@
 #include "light_samples.h"
 #include "rayview/light_types.h"
 #include "rayview/prepared_scene.h"
+#include "rayview/texel_lookup.h"
 #include "ray_offset.h"
 #include "point_light_lanes.h"
 #include "specular_power.h"
@@ -592,19 +593,12 @@ void Tracer::applyTexture(const Material& material, const FaceAttributes& attrib
   v.texel = sampleTexture(*texture, attributes, hit);
 }
 
-// Texture lookup: uv interpolated from the face's <texturedata> entries; u to the right, v up (OBJ
-// convention: v = 0 is the bottom row of the image); repeat wrap; nearest texel.
+// Texture lookup at the texel texelIndex gives (rayview/texel_lookup.h); black where uv is not finite.
 Color Tracer::sampleTexture(const Texture& texture, const FaceAttributes& face, const Hit& hit) const {
-  const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
-  const float b0 = 1.0f - b1 - b2;
-  const glm::vec2 uv = b0 * meshes_.texCoords[face.texCoord[0]] + b1 * meshes_.texCoords[face.texCoord[1]] +
-                       b2 * meshes_.texCoords[face.texCoord[2]];
-  if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return Color(0.0f);
-  const float u = uv.x - std::floor(uv.x);
-  const float v = uv.y - std::floor(uv.y);
-  const int x = std::min(static_cast<int>(u * texture.width), texture.width - 1);
-  const int y = std::min(static_cast<int>((1.0f - v) * texture.height), texture.height - 1);
-  const std::uint8_t* texel = &texture.rgb[(static_cast<std::size_t>(y) * texture.width + x) * 3];
+  const std::size_t at =
+      texelIndex(texture, meshes_.texCoords, face, static_cast<float>(hit.b1), static_cast<float>(hit.b2));
+  if (at == kNoTexel) return Color(0.0f);
+  const std::uint8_t* texel = &texture.rgb[at * 3];
   return Color(texel[0], texel[1], texel[2]);
 }
 

@@ -97,6 +97,10 @@ void expectSameScene(const Scene& a, const Scene& b) {
     EXPECT_EQ(ma.textureFactor, mb.textureFactor);
     EXPECT_EQ(ma.twoSided, mb.twoSided);
     EXPECT_EQ(ma.textureImage.empty(), mb.textureImage.empty());
+    EXPECT_EQ(ma.alphaImage.empty(), mb.alphaImage.empty());
+    if (!ma.alphaImage.empty()) {
+      EXPECT_EQ(ma.alphaCutoff, mb.alphaCutoff);
+    }
   }
 
   // The texture is found again from the new file's directory, with the same pixels.

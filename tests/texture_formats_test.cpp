@@ -1,11 +1,14 @@
 // TGA and BMP textures (renderer/tga_bmp_decode.h, through decodeImage as every texture is read), on images the
-// test writes: each variant's pixels where they belong, truncated files refused.
+// test writes: each variant's pixels where they belong, truncated files refused. PNG's alpha kept apart from the
+// colour (for cut-outs), the colour exactly as without it.
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <string>
 
+#include "rayview/image.h"
 #include "rayview/texture_image.h"
+#include "support/rgba_png.h"
 
 namespace rayview {
 namespace {
@@ -58,6 +61,24 @@ TEST(TextureFormats, ReadsPlainAndRunLengthTga) {
   EXPECT_NE(reason.find("truncated"), std::string::npos) << reason;
 }
 
+// A 32-bit TGA with 8 attribute bits keeps them as alpha (its colour as without); a 24-bit one has none.
+TEST(TextureFormats, ThirtyTwoBitTgaKeepsItsAlpha) {
+  std::string tga = tgaHeader(2, 32);
+  tga[17] = 8;  // 8 attribute bits, bottom row first
+  std::uint8_t a = 10;
+  for (const auto* row : {kBottom, kTop})
+    for (int x = 0; x < 2; ++x) bgr(tga, row[x]), tga.push_back(static_cast<char>(a)), a = static_cast<std::uint8_t>(a + 60);
+  expectPixels(tga, "32-bit TGA");
+  std::string reason;
+  const std::optional<Texture> t = detail::decodeImage(tga, reason);
+  ASSERT_TRUE(t) << reason;
+  EXPECT_EQ(t->alpha, (std::vector<std::uint8_t>{130, 190, 10, 70}));  // top row first
+  std::string plain = tgaHeader(2, 24);
+  for (const auto* row : {kBottom, kTop})
+    for (int x = 0; x < 2; ++x) bgr(plain, row[x]);
+  EXPECT_TRUE(detail::decodeImage(plain, reason)->alpha.empty());
+}
+
 // A few bytes whose header claims 16384 x 16384 pixels (a fuzzer's find, minimized): refused as truncated, from the
 // sizes alone, for plain and run-length data alike.
 TEST(TextureFormats, ATgaFarShorterThanItsHeaderSaysIsTruncated) {
@@ -93,6 +114,34 @@ TEST(TextureFormats, ReadsTwentyFourBitAndPalettedBmp) {
   std::string reason;
   EXPECT_FALSE(detail::decodeImage(bmp(24, "", rows).substr(0, 60), reason));
   EXPECT_NE(reason.find("truncated"), std::string::npos) << reason;
+}
+
+// An RGBA PNG decodes to the same colour as the RGB PNG of its colour, with its alpha kept beside; grey and alpha
+// decodes to grey RGB and the alpha; a PNG without alpha carries none.
+TEST(TextureFormats, PngKeepsItsAlphaApartAndItsColourAsItIs) {
+  std::vector<std::uint8_t> rgba;
+  Image colour(3, 2);
+  for (int y = 0; y < 2; ++y)
+    for (int x = 0; x < 3; ++x) {
+      const std::uint8_t r = std::uint8_t(40 * x + 7), g = std::uint8_t(90 * y + 3), b = std::uint8_t(200 - 30 * x);
+      rgba.insert(rgba.end(), {r, g, b, std::uint8_t(x * 100 + y)});
+      colour.pixel(x, y)[0] = r, colour.pixel(x, y)[1] = g, colour.pixel(x, y)[2] = b;
+    }
+  std::string reason;
+  const std::optional<Texture> withAlpha = detail::decodeImage(testing::encodePngWithAlpha(3, 2, 4, rgba), reason);
+  const std::optional<Texture> without = detail::decodeImage(encodePng(colour), reason);
+  ASSERT_TRUE(withAlpha && without) << reason;
+  EXPECT_EQ(withAlpha->rgb, without->rgb);
+  EXPECT_EQ(withAlpha->rgb, colour.rgb);
+  EXPECT_EQ(withAlpha->alpha, (std::vector<std::uint8_t>{0, 100, 200, 1, 101, 201}));
+  EXPECT_TRUE(without->alpha.empty());
+  EXPECT_EQ(detail::decodeImage(encodeTexturePng(*withAlpha), reason), withAlpha);  // written back with its alpha
+
+  const std::optional<Texture> grey =
+      detail::decodeImage(testing::encodePngWithAlpha(2, 1, 2, {10, 0, 250, 255}), reason);
+  ASSERT_TRUE(grey) << reason;
+  EXPECT_EQ(grey->rgb, (std::vector<std::uint8_t>{10, 10, 10, 250, 250, 250}));
+  EXPECT_EQ(grey->alpha, (std::vector<std::uint8_t>{0, 255}));
 }
 
 }  // namespace

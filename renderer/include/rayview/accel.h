@@ -18,6 +18,8 @@ namespace rayview {
 
 inline constexpr std::uint32_t kNoTriangle = 0xFFFFFFFFu;
 
+class CutOuts;  // rayview/cut_outs.h
+
 // The most rays closestHits() and occludedMany() take at once: a 16-wide packet (docs/PERFORMANCE.md, "Packets").
 inline constexpr int kRayPacket = 16;
 
@@ -80,8 +82,10 @@ std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeo
 
 // The Embree back-end when asked for and the geometry is within Embree's range, else the reference BVH.
 // The accel may read `scene`'s arrays while tracing (the Embree back-end does, rather than copy them): the scene
-// must outlive it and not change.
+// must outlive it and not change. `cutOuts` (null for none), when given, must outlive it too: a hit it hides is no
+// hit, for closest hits and occlusion alike.
 std::unique_ptr<Accel> buildAccel(const SceneGeometry& scene, AccelKind kind, const glm::dvec3& origin,
-                                  BuildProgress progress = nullptr, void* progressUser = nullptr);
+                                  BuildProgress progress = nullptr, void* progressUser = nullptr,
+                                  const CutOuts* cutOuts = nullptr);
 
 }  // namespace rayview

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rayview/accel.h"
+#include "rayview/cut_outs.h"
 #include "rayview/scene.h"
 #include "rayview/tracer.h"
 
@@ -15,6 +16,9 @@ namespace rayview {
 
 struct PreparedGeometry {
   std::shared_ptr<const SceneGeometry> source;  // the geometry it came from (read while tracing)
+  // The scene's cut-outs (null when it has none, and for bare geometry, which has no materials): before `accel`,
+  // which reads it, so that it is destroyed after it.
+  std::unique_ptr<const CutOuts> cutOuts;
   std::unique_ptr<Accel> accel;
   ShadingGeometry shading;
   double buildMs = 0.0;
@@ -42,7 +46,8 @@ enum class BvhBuild {
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const SceneGeometry> geometry,
                                                         const glm::dvec3& origin, AccelKind kind, BvhBuild build,
                                                         BuildProgress progress = nullptr, void* progressUser = nullptr);
-// The same for a loaded scene, relative to its camera; shares `scene` (no copy of its meshes). Embree is
+// The same for a loaded scene, relative to its camera, with its cut-outs (rayview/cut_outs.h, from the materials as
+// they are now: an edit of a material's cut-out needs a new build); shares `scene` (no copy of its meshes). Embree is
 // used only when every ray of the scene stays in its range (embreeRangeProblem), else the reference BVH and
 // `accelFallback` says why.
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,

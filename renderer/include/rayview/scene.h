@@ -59,10 +59,17 @@ struct Material {
   std::string metalRoughImage{};
   Color baseColor{0.0f};
   float metallic = 1.0f, roughness = 1.0f;
+  // <alphaimage> with <alphacutoff>c</alphacutoff> (0..1), rayview's extension for models' cut-outs (leaves, fences,
+  // hair cards): where a face has texture coordinates and the image's coverage there (its alpha, else its grey level)
+  // is below c, the surface is not there and every ray passes through (rayview/cut_outs.h).
+  std::string alphaImage{};
+  float alphaCutoff = 0.5f;
 
   // Every image file the material names, so that whatever finds, renames or checks one finds them all.
-  std::array<const std::string*, 3> images() const { return {&textureImage, &emissionImage, &metalRoughImage}; }
-  std::array<std::string*, 3> images() { return {&textureImage, &emissionImage, &metalRoughImage}; }
+  std::array<const std::string*, 4> images() const {
+    return {&textureImage, &emissionImage, &metalRoughImage, &alphaImage};
+  }
+  std::array<std::string*, 4> images() { return {&textureImage, &emissionImage, &metalRoughImage, &alphaImage}; }
   bool emits() const { return emission.x != 0.0f || emission.y != 0.0f || emission.z != 0.0f; }
   bool isMirror() const { return mirror.x != 0.0f || mirror.y != 0.0f || mirror.z != 0.0f; }
   bool operator==(const Material&) const = default;
@@ -135,6 +142,9 @@ struct Texture {
   int width = 0;
   int height = 0;
   std::vector<std::uint8_t> rgb;
+  // The image's alpha channel, one byte a pixel in the same order, kept apart from the colour (which is never
+  // composited): empty for an image without one, so that only images with alpha pay for it.
+  std::vector<std::uint8_t> alpha;
 
   bool operator==(const Texture&) const = default;
 };
