@@ -22,12 +22,13 @@ bool takesTextures(const fs::path& output) {
 }
 
 // Whether a material shows the texture named `name` (the scene's own when `sceneTexture`) in a file of `output`'s
-// format: glTF keeps metallic-roughness maps, OBJ's MTL has no place for them.
+// format: glTF keeps metallic-roughness maps, OBJ's MTL has no place for them; both keep cut-outs' images.
 bool shown(const Scene& scene, const std::string& name, bool sceneTexture, const fs::path& output) {
   const bool metalRough = lowerExtension(output) != ".obj";
   return std::any_of(scene.materials.begin(), scene.materials.end(), [&](const Material& m) {
     if (!sceneTexture && m.emits() && m.emissionImage == name) return true;
     if (!sceneTexture && metalRough && m.metalRoughImage == name) return true;
+    if (!sceneTexture && m.alphaImage == name) return true;
     return m.textureFactor != 0.0f && (sceneTexture ? m.textureImage.empty() : m.textureImage == name);
   });
 }

@@ -30,9 +30,7 @@ std::string TexturesBeside::freeName() const {
 std::string TexturesBeside::write(const Texture& texture) {
   const std::string name = freeName();
   const fs::path target = output_.parent_path() / name;
-  Image image(texture.width, texture.height);
-  image.rgb = texture.rgb;
-  writeImageFile(target, std::move(image));
+  writeFileAtomically(target, encodeTexturePng(texture));
   written_.push_back(target);
   return name;
 }

@@ -2,6 +2,7 @@
 // Phong colours and shininess, each material's texture by the name the export command wrote it under.
 
 #include <assimp/Exporter.hpp>
+#include <assimp/GltfMaterial.h>
 #include <assimp/material.h>
 #include <assimp/scene.h>
 #include <unistd.h>
@@ -59,6 +60,17 @@ void addMetalRough(const Material& m, const Texture* texture, aiMaterial& out) {
   out.AddProperty(&file, AI_MATKEY_TEXTURE(aiTextureType_UNKNOWN, 0));  // GltfMaterial.h: the metallic-roughness map
 }
 
+// A cut-out as the formats have it: an opacity map (OBJ's map_d; glTF has none), and where the coverage is the
+// material's texture's own alpha, glTF's alpha mode MASK at the cutoff. OBJ keeps no cutoff (read back at 0.5).
+void addCutOut(const Material& m, const std::string& texture, aiMaterial& out) {
+  const aiString file(m.alphaImage);
+  out.AddProperty(&file, AI_MATKEY_TEXTURE(aiTextureType_OPACITY, 0));
+  if (m.alphaImage != texture) return;
+  const aiString mask("MASK");
+  out.AddProperty(&mask, AI_MATKEY_GLTF_ALPHAMODE);
+  out.AddProperty(&m.alphaCutoff, 1, AI_MATKEY_GLTF_ALPHACUTOFF);
+}
+
 // `texture`: the image file beside the model that a textured material names ("" for none), `image` what it holds.
 aiMaterial* toAssimp(const Material& m, const std::string& texture, const Texture* image) {
   auto* out = new aiMaterial;
@@ -91,6 +103,7 @@ aiMaterial* toAssimp(const Material& m, const std::string& texture, const Textur
     out->AddProperty(&file, AI_MATKEY_TEXTURE_EMISSIVE(0));
   }
   if (!m.metalRoughImage.empty()) addMetalRough(m, textured ? image : nullptr, *out);
+  if (!m.alphaImage.empty()) addCutOut(m, textured ? texture : std::string(), *out);
   if (m.twoSided) {
     const int twoSided = 1;
     out->AddProperty(&twoSided, 1, AI_MATKEY_TWOSIDED);

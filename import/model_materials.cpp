@@ -1,6 +1,7 @@
 // Assimp's materials as the handout's Blinn-Phong materials (the formula is in docs/scene-format.md, "Opening
 // models"), each with its own texture.
 
+#include <assimp/GltfMaterial.h>
 #include <assimp/material.h>
 #include <assimp/scene.h>
 
@@ -128,10 +129,13 @@ std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDi
       reason = "the embedded image is too large";
       return std::nullopt;
     }
-    Texture t{static_cast<int>(embedded->mWidth), static_cast<int>(embedded->mHeight), {}};
+    Texture t{static_cast<int>(embedded->mWidth), static_cast<int>(embedded->mHeight), {}, {}};
     t.rgb.reserve(pixels * 3);
     for (std::size_t i = 0; i < pixels; ++i)
       t.rgb.insert(t.rgb.end(), {embedded->pcData[i].r, embedded->pcData[i].g, embedded->pcData[i].b});
+    // Alpha only when some texel is not opaque: an opaque image pays nothing for it.
+    if (std::any_of(embedded->pcData, embedded->pcData + pixels, [](const aiTexel& texel) { return texel.a != 255; }))
+      for (std::size_t i = 0; i < pixels; ++i) t.alpha.push_back(embedded->pcData[i].a);
     return t;
   }
   std::error_code ec;
@@ -173,6 +177,35 @@ std::string fileNamePart(const std::string& name) {
 // The emission map a material names ("" when none).
 std::string emissionTexture(const aiMaterial& m) { return firstTexture(m, {aiTextureType_EMISSIVE}); }
 
+// A material's cut-out, as the model names it: glTF's alpha mode MASK (its base-colour texture's alpha, at its
+// alphaCutoff) or BLEND (the same, at 0.5: rayview draws no blending; `blended` set), else an opacity map (OBJ's map_d)
+// at 0.5. `keep(name)` keeps an image as keepTextures does; `base` is the material's base-colour texture.
+template <class Keep>
+void keepCutOut(const aiMaterial& source, const std::string& base, Keep&& keep, Scene& out, Material& material,
+                bool& blended) {
+  aiString mode;
+  const std::string alphaMode = source.Get(AI_MATKEY_GLTF_ALPHAMODE, mode) == AI_SUCCESS ? mode.C_Str() : "";
+  if ((alphaMode == "MASK" || alphaMode == "BLEND") && !base.empty()) {
+    const auto& image = keep(base);
+    const Texture* texture = image ? out.textureNamed(image->first) : nullptr;
+    if (!texture || texture->alpha.empty()) return;  // an image without alpha: opaque, as glTF reads it
+    float cutoff = 0.5f;
+    if (alphaMode == "MASK" && source.Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff) == AI_SUCCESS && std::isfinite(cutoff))
+      cutoff = std::clamp(cutoff, 0.0f, 1.0f);
+    else
+      cutoff = 0.5f;
+    blended |= alphaMode == "BLEND";
+    material.alphaImage = image->first;
+    material.alphaCutoff = cutoff;
+    return;
+  }
+  const std::string opacity = firstTexture(source, {aiTextureType_OPACITY});
+  if (const auto& image = opacity.empty() ? std::nullopt : keep(opacity)) {
+    material.alphaImage = image->first;
+    material.alphaCutoff = 0.5f;
+  }
+}
+
 // A glTF material's terms once its textures are known: the base colour times the base texture's mean texel
 // (`meanTexel`), and the metallic-roughness map kept per texel, its mean texel scaling the factors for the terms
 // the file shows readers of the handout's format (and rayview where a hit has no texture coordinates).
@@ -209,7 +242,7 @@ void keepTextures(const aiScene& scene, const fs::path& path, const std::map<uns
     out.materialTextures.push_back({it->second->first, std::move(texture)});
     return it->second;
   };
-  bool withoutCoordinates = false;
+  bool withoutCoordinates = false, blended = false;
   for (const auto& [index, our] : ours) {
     if (index >= scene.mNumMaterials || !scene.mMaterials[index]) continue;
     const aiMaterial& source = *scene.mMaterials[index];
@@ -233,7 +266,9 @@ void keepTextures(const aiScene& scene, const fs::path& path, const std::map<uns
       material.emissionImage = image->first;
       if (!material.emits()) material.emission = Color(255.0f);
     }
+    keepCutOut(source, base, keep, out, material, blended);
   }
+  if (blended) notes.dropped.push_back("alpha blending (drawn as a cut-out at 0.5)");
   if (withoutCoordinates)
     notes.warnings.push_back("the model has textures but no texture coordinates; they are left out");
 }

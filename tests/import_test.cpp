@@ -25,6 +25,7 @@
 #include "rayview/scene_writer.h"
 #include "rayview/tracer.h"
 #include "support/image_compare.h"
+#include "support/rgba_png.h"
 
 namespace rayview {
 namespace {
@@ -280,17 +281,8 @@ TEST(ImportModel, UpZLooksAlongTheModelsZ) {
   expectFramed(scene, "box_up_z");
 }
 
-// A quad textured left half red, right half blue, its PNG inside the .glb.
-// A quad whose base colour is a 4x4 PNG, red on the left and blue on the right; with `metalRoughMap`, the same image
-// is its metallic-roughness map under glTF's default factors (metallic 1, roughness 1).
-std::string texturedGlb(bool metalRoughMap = false) {
-  Image texture(4, 4);
-  for (int y = 0; y < 4; ++y)
-    for (int x = 0; x < 4; ++x) {
-      texture.pixel(x, y)[0] = x < 2 ? 230 : 0;
-      texture.pixel(x, y)[2] = x < 2 ? 0 : 230;
-    }
-  const std::string png = encodePng(texture);
+// A quad whose base colour is `png` (the .glb's own image), its material `material` (JSON).
+std::string quadGlb(const std::string& png, const std::string& material) {
   std::string bin;
   for (float v : {-1.f, -1.f, 0.f, 1.f, -1.f, 0.f, 1.f, 1.f, 0.f, -1.f, 1.f, 0.f}) put(bin, v);
   for (float v : {0.f, 1.f, 1.f, 1.f, 1.f, 0.f, 0.f, 0.f}) put(bin, v);
@@ -300,9 +292,7 @@ std::string texturedGlb(bool metalRoughMap = false) {
   std::string json =
       R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
       R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"TEXCOORD_0":1},"indices":2,"material":0}]}],)" +
-      std::string(metalRoughMap ? R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},)"
-                                  R"("metallicRoughnessTexture":{"index":0}}}],)"
-                                : R"("materials":[{"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":1.0}}],)") +
+      std::string(R"("materials":[)") + material + "]," +
       R"("textures":[{"source":0}],"images":[{"bufferView":3,"mimeType":"image/png"}],)"
       R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
       R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC2"},{"bufferView":2,"componentType":5125,"count":6,"type":"SCALAR"}],)"
@@ -320,6 +310,32 @@ std::string texturedGlb(bool metalRoughMap = false) {
   put(glb, std::uint32_t{0x004E4942});
   glb += bin;
   return glb;
+}
+
+// A quad whose base colour is a 4x4 PNG, red on the left and blue on the right; with `metalRoughMap`, the same image
+// is its metallic-roughness map under glTF's default factors (metallic 1, roughness 1).
+std::string texturedGlb(bool metalRoughMap = false) {
+  Image texture(4, 4);
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) {
+      texture.pixel(x, y)[0] = x < 2 ? 230 : 0;
+      texture.pixel(x, y)[2] = x < 2 ? 0 : 230;
+    }
+  return quadGlb(encodePng(texture),
+                 metalRoughMap ? R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0},)"
+                                 R"("metallicRoughnessTexture":{"index":0}}})"
+                               : R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0},"metallicFactor":0.0,"roughnessFactor":1.0}})");
+}
+
+// The quad of texturedGlb, its image's red left half clear (alpha 0), under glTF's alpha mode `mode`.
+std::string cutOutGlb(const std::string& mode) {
+  std::vector<std::uint8_t> rgba;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x)
+      rgba.insert(rgba.end(), {std::uint8_t(x < 2 ? 230 : 0), 0, std::uint8_t(x < 2 ? 0 : 230), std::uint8_t(x < 2 ? 0 : 255)});
+  return quadGlb(testing::encodePngWithAlpha(4, 4, 4, rgba),
+                 R"({"alphaMode":")" + mode + R"(","alphaCutoff":0.3,"pbrMetallicRoughness":{"baseColorTexture":{"index":0},)"
+                 R"("metallicFactor":0.0,"roughnessFactor":1.0}})");
 }
 
 TEST(ImportModel, GlbWithAnEmbeddedPngTextureShowsIt) {
@@ -341,6 +357,34 @@ TEST(ImportModel, GlbWithAnEmbeddedPngTextureShowsIt) {
   }
   EXPECT_GE(firstRed, 0);
   EXPECT_GT(lastBlue, firstRed);
+}
+
+// glTF's alpha mode MASK: the base colour's alpha is the cut-out, at the file's cutoff; the clear red half is not
+// drawn. BLEND is drawn the same way, at 0.5, and the summary says so.
+TEST(ImportModel, AGltfMaskIsACutOut) {
+  const ImportedModel model = importModel(writeFile("leaf.glb", cutOutGlb("MASK")), small());
+  const Scene& scene = model.loaded.scene;
+  ASSERT_EQ(scene.materials.size(), 1u);
+  const Material& m = scene.materials[0];
+  EXPECT_EQ(m.alphaImage, m.textureImage);
+  EXPECT_EQ(m.alphaCutoff, 0.3f);
+  ASSERT_NE(scene.textureNamed(m.alphaImage), nullptr);
+  EXPECT_EQ(scene.textureNamed(m.alphaImage)->alpha.size(), 16u);
+  const Image image = render(scene);
+  int red = 0, blue = 0;
+  for (int x = 0; x < image.width; ++x) {
+    const std::uint8_t* p = image.pixel(x, image.height / 2);
+    red += p[0] > p[2] + 30;
+    blue += p[2] > p[0] + 30;
+  }
+  EXPECT_EQ(red, 0) << "the clear half is drawn";
+  EXPECT_GT(blue, 0);
+  EXPECT_EQ(model.summary.find("alpha blending"), std::string::npos) << model.summary;
+
+  const ImportedModel blended = importModel(writeFile("glass.glb", cutOutGlb("BLEND")), small());
+  EXPECT_EQ(blended.loaded.scene.materials[0].alphaCutoff, 0.5f);
+  EXPECT_FALSE(blended.loaded.scene.materials[0].alphaImage.empty());
+  EXPECT_NE(blended.summary.find("alpha blending (drawn as a cut-out at 0.5)"), std::string::npos) << blended.summary;
 }
 
 // The metallic-roughness map is kept per texel, and the terms the file shows readers of the handout's format are
