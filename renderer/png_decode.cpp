@@ -72,14 +72,18 @@ unsigned setTransforms(png_structp png, png_infop info) {
 }
 
 // RGBA pixels (4 a pixel, in `out.rgb`) to RGB in place plus their alpha apart: each pixel's colour moves down to
-// its RGB place, which never overtakes what is still to be read.
+// its RGB place, which never overtakes what is still to be read. An alpha that is opaque everywhere (many models'
+// RGBA textures) is dropped: such an image is as one without, and costs no more.
 void splitAlpha(Texture& out, std::size_t pixels) {
   out.alpha.resize(pixels);
   std::uint8_t* samples = out.rgb.data();
+  bool opaque = true;
   for (std::size_t i = 0; i < pixels; ++i) {
     out.alpha[i] = samples[i * 4 + 3];
+    opaque &= out.alpha[i] == 255;
     std::memmove(samples + i * 3, samples + i * 4, 3);
   }
+  if (opaque) out.alpha = {};
   out.rgb.resize(pixels * 3);
   out.rgb.shrink_to_fit();
 }

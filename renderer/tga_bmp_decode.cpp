@@ -2,6 +2,7 @@
 
 #include "tga_bmp_decode.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 
@@ -99,8 +100,8 @@ std::optional<Texture> decodeTga(std::string_view b, long long maxPixels, std::s
                                 : pixels * static_cast<std::size_t>(bytes);
   if (at > b.size() || b.size() - at < least) return reason = "a truncated TGA", std::nullopt;
   // A 32-bit image whose descriptor gives its pixels 8 attribute bits has alpha; any other has none.
-  const bool alpha = bytes == 4 && (static_cast<unsigned char>(b[17]) & 0x0F) == 8;
-  std::vector<std::uint8_t> stored(pixels * 3), storedAlpha(alpha ? pixels : 0);
+  const bool withAlpha = bytes == 4 && (static_cast<unsigned char>(b[17]) & 0x0F) == 8;
+  std::vector<std::uint8_t> stored(pixels * 3), storedAlpha(withAlpha ? pixels : 0);
   const auto* data = reinterpret_cast<const unsigned char*>(b.data());
   for (std::size_t i = 0; i < pixels;) {
     std::size_t run = 1;
@@ -114,10 +115,13 @@ std::optional<Texture> decodeTga(std::string_view b, long long maxPixels, std::s
       const std::size_t from = repeat ? at : at + k * static_cast<std::size_t>(bytes);
       if (from + static_cast<std::size_t>(bytes) > b.size()) return reason = "a truncated TGA", std::nullopt;
       putPixel(data + from, bytes, &stored[i * 3]);
-      if (alpha) storedAlpha[i] = data[from + 3];
+      if (withAlpha) storedAlpha[i] = data[from + 3];
     }
     at += (repeat ? 1 : run) * static_cast<std::size_t>(bytes);
   }
+  // As for PNG: an alpha opaque everywhere is none.
+  if (std::all_of(storedAlpha.begin(), storedAlpha.end(), [](std::uint8_t a) { return a == 255; })) storedAlpha = {};
+  const bool alpha = !storedAlpha.empty();
   Texture t{width, height, std::vector<std::uint8_t>(pixels * 3), std::vector<std::uint8_t>(storedAlpha.size())};
   const std::size_t rowBytes = static_cast<std::size_t>(width) * 3, w = static_cast<std::size_t>(width);
   for (int y = 0; y < height; ++y) {  // bottom-up unless the descriptor says top-down

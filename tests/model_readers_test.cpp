@@ -195,5 +195,19 @@ TEST(ObjReader, TgaTextureFromTheMtlIsKept) {
   EXPECT_EQ(texture->rgb[0], 0x40);
 }
 
+// An opacity map (map_d, a grey image) is the material's cut-out at cutoff 0.5.
+TEST(ObjReader, AnOpacityMapIsACutOut) {
+  writeFile("mask.pgm", std::string("P5\n2 1\n255\n") + '\0' + '\xff');
+  writeFile("leaf.mtl", "newmtl leaf\nKd 0.2 0.8 0.2\nmap_d mask.pgm\n");
+  const ModelScene model = read(writeFile("leaf.obj", "mtllib leaf.mtl\n" + kSquare +
+                                                          "vt 0 0\nvt 1 0\nvt 1 1\nusemtl leaf\nf 1/1 2/2 3/3\n"));
+  const Material& m = model.scene.materials.at(0);
+  ASSERT_FALSE(m.alphaImage.empty()) << model.summary;
+  EXPECT_EQ(m.alphaCutoff, 0.5f);
+  const Texture* mask = model.scene.textureNamed(m.alphaImage);
+  ASSERT_TRUE(mask);
+  EXPECT_EQ(mask->rgb, (std::vector<std::uint8_t>{0, 0, 0, 255, 255, 255}));
+}
+
 }  // namespace
 }  // namespace rayview
