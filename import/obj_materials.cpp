@@ -213,14 +213,15 @@ struct PhongInputs {
   aiColor3D kd{0.6f, 0.6f, 0.6f};
   std::optional<aiColor3D> ks;
   std::optional<float> ns, pr, pm;
-  bool textured = false;
+  bool textured = false;  // names a texture or an opacity map (a cut-out): mapMaterials keeps them
 };
 
 PhongInputs inputsOf(const ObjMaterial& m) {
   PhongInputs in;
   for (const auto& [key, rest] : m.statements) {
     std::string_view line = rest;
-    if (mapType(key) == aiTextureType_DIFFUSE) in.textured |= !mapFile(rest).empty();
+    if (const aiTextureType type = mapType(key); type == aiTextureType_DIFFUSE || type == aiTextureType_OPACITY)
+      in.textured |= !mapFile(rest).empty();
     else if (key == "Kd") in.kd = colorOf(line).value_or(in.kd);
     else if (key == "Ks") in.ks = colorOf(line) ? colorOf(line) : in.ks;
     else if (key == "Ns") in.ns = number(word(line)) ? number(rest) : in.ns;
