@@ -189,14 +189,11 @@ void keepCutOut(const aiMaterial& source, const std::string& base, Keep&& keep, 
     const auto& image = keep(base);
     const Texture* texture = image ? out.textureNamed(image->first) : nullptr;
     if (!texture || texture->alpha.empty()) return;  // an image without alpha: opaque, as glTF reads it
-    float cutoff = 0.5f;
-    if (alphaMode == "MASK" && source.Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff) == AI_SUCCESS && std::isfinite(cutoff))
-      cutoff = std::clamp(cutoff, 0.0f, 1.0f);
-    else
-      cutoff = 0.5f;
+    float cutoff = 0.5f;  // glTF's default; BLEND's too, here
+    if (alphaMode == "MASK") source.Get(AI_MATKEY_GLTF_ALPHACUTOFF, cutoff);
     blended |= alphaMode == "BLEND";
     material.alphaImage = image->first;
-    material.alphaCutoff = cutoff;
+    material.alphaCutoff = std::isfinite(cutoff) ? std::clamp(cutoff, 0.0f, 1.0f) : 0.5f;
     return;
   }
   const std::string opacity = firstTexture(source, {aiTextureType_OPACITY});

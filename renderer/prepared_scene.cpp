@@ -18,8 +18,9 @@ using Clock = std::chrono::steady_clock;
 // only, else 0), lets Embree build quickly for a cheap image. `buildMs` counts from `start`, which includes that check.
 // `parameters` (null for bare geometry) give the materials' cut-outs.
 std::shared_ptr<PreparedGeometry> prepare(std::shared_ptr<const SceneGeometry> geometry,
-                                          const SceneParameters* parameters, const glm::dvec3& origin, AccelKind kind, BvhBuild build, std::size_t pixels,
-                                          BuildProgress progress, void* progressUser, Clock::time_point start) {
+                                          const SceneParameters* parameters, const glm::dvec3& origin, AccelKind kind,
+                                          BvhBuild build, std::size_t pixels, BuildProgress progress,
+                                          void* progressUser, Clock::time_point start) {
   auto prepared = std::make_shared<PreparedGeometry>();
   if (parameters) prepared->cutOuts = CutOuts::of(*parameters, *geometry);
   const CutOuts* cutOuts = prepared->cutOuts.get();
