@@ -125,9 +125,16 @@ void triangleBounds(const RTCBoundsFunctionArguments* args) {
       RTCBounds{box.lower.x, box.lower.y, box.lower.z, 0.0f, box.upper.x, box.upper.y, box.upper.z, 0.0f};
 }
 
-// Whether a hit of the triangle counts: not where a cut-out hides it (one branch when the scene has none).
-bool kept(const CutOuts* cutOuts, unsigned primID, const TriangleHit& hit) {
-  return !cutOuts || !cutOuts->hides(primID, hit.b1, hit.b2);
+// Whether a hit of the triangle counts: not where a cut-out hides it. The callbacks come in two builds, with and
+// without cut-outs (kCutOuts), registered by the scene's: with a run-time test of a null pointer instead, car's
+// render took 0.9 % more instructions (callgrind) for scenes without any.
+template <bool kCutOuts>
+bool kept([[maybe_unused]] const CutOuts* cutOuts, [[maybe_unused]] unsigned primID,
+          [[maybe_unused]] const TriangleHit& hit) {
+  if constexpr (kCutOuts)
+    return !cutOuts->hides(primID, hit.b1, hit.b2);
+  else
+    return true;
 }
 
 // Query lane `id` against the triangle, by the scalar test.
@@ -146,7 +153,7 @@ bool testTriangle(const TriangleCorners& t, unsigned primID, const QueryContext&
 // hands a 16-wide packet whole on an AVX-512 machine, in halves or quarters on others: all line up), two or more of
 // them valid and sharing their axis permutation, go through the four-wide test; every other lane through the scalar
 // one.
-template <class OnHit>
+template <bool kCutOuts, class OnHit>
 void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN* rays, const TriangleCorners& t,
                unsigned primID, const CutOuts* cutOuts, OnHit&& onHit) {
   const WatertightLanes<kRayPacket>* packed = query.packed;
@@ -172,24 +179,26 @@ void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN*
       const unsigned hit =
           block & intersectWatertight4(*packed, static_cast<int>(lane0), permutation, t.a, t.b, t.c, hits);
       for (unsigned j = 0; j < kWatertightWidth; ++j)
-        if ((hit & (1u << j)) && primID != lanes[lane0 + j].ray->excludedTriangle && kept(cutOuts, primID, hits[j]))
+        if ((hit & (1u << j)) && primID != lanes[lane0 + j].ray->excludedTriangle &&
+            kept<kCutOuts>(cutOuts, primID, hits[j]))
           onHit(first + j, lane0 + j, hits[j]);
       continue;
     }
     for (unsigned j = 0; j < kWatertightWidth; ++j) {
       if (!(block & (1u << j))) continue;
       TriangleHit one;
-      if (testTriangle(t, primID, query, id(first + j), one) && kept(cutOuts, primID, one))
+      if (testTriangle(t, primID, query, id(first + j), one) && kept<kCutOuts>(cutOuts, primID, one))
         onHit(first + j, id(first + j), one);
     }
   }
   for (unsigned i = first; i < N; ++i) {
     if (!valid[i] || !lanes[id(i)].ray) continue;
     TriangleHit one;
-    if (testTriangle(t, primID, query, id(i), one) && kept(cutOuts, primID, one)) onHit(i, id(i), one);
+    if (testTriangle(t, primID, query, id(i), one) && kept<kCutOuts>(cutOuts, primID, one)) onHit(i, id(i), one);
   }
 }
 
+template <bool kCutOuts>
 void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
@@ -198,7 +207,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   RTCHitN* hits = RTCRayHitN_HitN(args->rayhit, args->N);
   const TriangleCorners corners = data.corners(args->primID);  // once for every lane
   // Lane i of Embree's arguments (lane `id` of the query) hits at `hit`: the closest so far?
-  testLanes(query, args->valid, args->N, rays, corners, args->primID, data.cutOuts,
+  testLanes<kCutOuts>(query, args->valid, args->N, rays, corners, args->primID, data.cutOuts,
             [&](unsigned i, unsigned id, const TriangleHit& hit) {
               QueryLane& lane = lanes[id];
               if (lane.triangle != RTC_INVALID_GEOMETRY_ID &&
@@ -214,11 +223,14 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
             });
 }
 
+template <bool kCutOuts>
 void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
-  testLanes(query, args->valid, args->N, args->ray, data.corners(args->primID), args->primID, data.cutOuts,
-            [&](unsigned i, unsigned, const TriangleHit&) { RTCRayN_tfar(args->ray, args->N, i) = -INFINITY; });
+  testLanes<kCutOuts>(query, args->valid, args->N, args->ray, data.corners(args->primID), args->primID, data.cutOuts,
+                      [&](unsigned i, unsigned, const TriangleHit&) {
+                        RTCRayN_tfar(args->ray, args->N, i) = -INFINITY;
+                      });
 }
 
 // A packet query's lanes and Embree's packet, kept per thread: set up on the stack they cost ~3 KB of
@@ -271,8 +283,8 @@ class EmbreeAccel final : public Accel {
       rtc_.SetGeometryUserPrimitiveCount(geometry, static_cast<unsigned>(scene.triangles.size()));
       rtc_.SetGeometryUserData(geometry, &data_);
       rtc_.SetGeometryBoundsFunction(geometry, triangleBounds, nullptr);
-      rtc_.SetGeometryIntersectFunction(geometry, intersectTriangle);
-      rtc_.SetGeometryOccludedFunction(geometry, occludeTriangle);
+      rtc_.SetGeometryIntersectFunction(geometry, cutOuts ? intersectTriangle<true> : intersectTriangle<false>);
+      rtc_.SetGeometryOccludedFunction(geometry, cutOuts ? occludeTriangle<true> : occludeTriangle<false>);
       rtc_.CommitGeometry(geometry);
       rtc_.AttachGeometry(scene_, geometry);
       rtc_.ReleaseGeometry(geometry);
