@@ -72,7 +72,11 @@ def toasts(args, work):
     shots = {name: os.path.join(work, f"toast_{name}.png") for name in ("none", "ok", "fail")}
     script = os.path.join(work, "toast.rvs")
     with open(script, "w") as f:
-        f.write(f"wait-final\nprint-state\nsleep {STEP_SECONDS}\nscreenshot {shots['none']}\nsleep {STEP_SECONDS}\n"
+        # Hiding the panels (F9, during the first sleep) resizes the image and starts a new render: the second
+        # wait-final lets it finish, so that the Ctrl+S after the first screenshot saves at once, not when a slow
+        # (sanitized, loaded) final pass ends after the next screenshot.
+        f.write(f"wait-final\nprint-state\nsleep {STEP_SECONDS}\nwait-final\nscreenshot {shots['none']}\n"
+                f"sleep {STEP_SECONDS}\n"
                 f"screenshot {shots['ok']}\nsleep {STEP_SECONDS}\nscreenshot {shots['fail']}\nquit\n")
     # Every numbered name but the first taken before the window opens: the first Ctrl+S takes toast_001.png, the next
     # one fails. Made here, not between the two saves, where the script's sleep would race 9998 file creations.
