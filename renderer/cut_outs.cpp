@@ -9,7 +9,8 @@ std::unique_ptr<const CutOuts> CutOuts::of(const SceneParameters& parameters, co
   bool any = false;
   for (const Material& material : parameters.materials) {
     Mask mask;
-    if (const Texture* image = geometry.textureNamed(material.alphaImage)) {
+    const Texture* image = geometry.textureNamed(material.alphaImage);
+    if (image && !image->opaqueAlpha) {  // an alpha 255 everywhere hides nothing
       const bool alpha = !image->alpha.empty();
       mask = {image, alpha ? image->alpha.data() : image->rgb.data(), alpha ? 1u : 3u, material.alphaCutoff * 255.0f};
       any = true;

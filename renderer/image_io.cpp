@@ -202,15 +202,18 @@ std::string encodePng(const Image& image, const PngOptions& options) {
 }
 
 std::string encodeTexturePng(const Texture& texture) {
-  if (texture.alpha.empty()) {
+  if (texture.alpha.empty() && !texture.opaqueAlpha) {
     Image image(texture.width, texture.height);
     image.rgb = texture.rgb;
     return encodePng(image);
   }
   std::vector<std::uint8_t> rgba;
-  rgba.reserve(texture.alpha.size() * 4);
-  for (std::size_t i = 0; i < texture.alpha.size(); ++i)
-    rgba.insert(rgba.end(), {texture.rgb[i * 3], texture.rgb[i * 3 + 1], texture.rgb[i * 3 + 2], texture.alpha[i]});
+  const std::size_t pixels = texture.rgb.size() / 3;
+  rgba.reserve(pixels * 4);
+  for (std::size_t i = 0; i < pixels; ++i) {
+    const std::uint8_t a = texture.alpha.empty() ? 255 : texture.alpha[i];  // opaqueAlpha: 255 everywhere
+    rgba.insert(rgba.end(), {texture.rgb[i * 3], texture.rgb[i * 3 + 1], texture.rgb[i * 3 + 2], a});
+  }
   std::string bytes;
   const PngOptions options;
   png_detail::currentOptions = &options;

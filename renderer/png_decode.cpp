@@ -83,7 +83,10 @@ void splitAlpha(Texture& out, std::size_t pixels) {
     opaque &= out.alpha[i] == 255;
     std::memmove(samples + i * 3, samples + i * 4, 3);
   }
-  if (opaque) out.alpha = {};
+  if (opaque) {
+    out.alpha = {};
+    out.opaqueAlpha = true;
+  }
   out.rgb.resize(pixels * 3);
   out.rgb.shrink_to_fit();
 }

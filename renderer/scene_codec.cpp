@@ -153,6 +153,7 @@ void writeTexture(Writer& w, const std::optional<Texture>& texture) {
   w.pod(texture->height);
   w.array(texture->rgb);
   w.array(texture->alpha);
+  w.pod(static_cast<std::uint8_t>(texture->opaqueAlpha));
 }
 
 std::optional<Texture> readTexture(Reader& r) {
@@ -162,6 +163,7 @@ std::optional<Texture> readTexture(Reader& r) {
   texture.height = r.pod<int>();
   texture.rgb = r.array<std::uint8_t>();
   texture.alpha = r.array<std::uint8_t>();
+  texture.opaqueAlpha = r.pod<std::uint8_t>() != 0;
   const std::size_t pixels = static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height);
   if (texture.width < 0 || texture.height < 0 || texture.rgb.size() != pixels * 3 ||
       (!texture.alpha.empty() && texture.alpha.size() != pixels))

@@ -120,9 +120,11 @@ std::optional<Texture> decodeTga(std::string_view b, long long maxPixels, std::s
     at += (repeat ? 1 : run) * static_cast<std::size_t>(bytes);
   }
   // As for PNG: an alpha opaque everywhere is none.
-  if (std::all_of(storedAlpha.begin(), storedAlpha.end(), [](std::uint8_t a) { return a == 255; })) storedAlpha = {};
+  const bool opaque = !storedAlpha.empty() &&
+                      std::all_of(storedAlpha.begin(), storedAlpha.end(), [](std::uint8_t a) { return a == 255; });
+  if (opaque) storedAlpha = {};
   const bool alpha = !storedAlpha.empty();
-  Texture t{width, height, std::vector<std::uint8_t>(pixels * 3), std::vector<std::uint8_t>(storedAlpha.size())};
+  Texture t{width, height, std::vector<std::uint8_t>(pixels * 3), std::vector<std::uint8_t>(storedAlpha.size()), opaque};
   const std::size_t rowBytes = static_cast<std::size_t>(width) * 3, w = static_cast<std::size_t>(width);
   for (int y = 0; y < height; ++y) {  // bottom-up unless the descriptor says top-down
     const auto from = static_cast<std::size_t>(topDown ? y : height - 1 - y), to = static_cast<std::size_t>(y);

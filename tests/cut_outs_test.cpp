@@ -13,6 +13,8 @@
 
 #include "accel_backends.h"
 #include "rayview/build_features.h"
+#include "rayview/image.h"
+#include "rayview/texture_image.h"
 #include "rayview/cut_outs.h"
 #include "rayview/scene_codec.h"
 #include "rayview/scene_loader.h"
@@ -211,6 +213,22 @@ TEST_F(CutOutScene, GreyMapsAndTheCutoffDecideTheHole) {
   Scene none = scene;
   none.materials[1].alphaImage.clear();
   EXPECT_EQ(CutOuts::of(none, none), nullptr);  // no cut-outs: the back-ends get no checks at all
+}
+
+// An image whose alpha channel is 255 everywhere is opaque, however dark its colour: it is no grey map.
+TEST_F(CutOutScene, AnImageWithAnOpaqueAlphaHidesNothing) {
+  std::vector<std::uint8_t> dark;
+  for (int i = 0; i < 4; ++i) dark.insert(dark.end(), {0, 0, 0, 255});
+  std::ofstream(dir_ / "dark.png", std::ios::binary) << testing::encodePngWithAlpha(4, 1, 4, dark);
+  const Scene scene = load(quadSceneXml("<alphaimage>dark.png</alphaimage><alphacutoff>0.5</alphacutoff>")).scene;
+  ASSERT_TRUE(scene.textureNamed("dark.png"));
+  EXPECT_TRUE(scene.textureNamed("dark.png")->opaqueAlpha);
+  EXPECT_EQ(CutOuts::of(scene, scene), nullptr) << "black, but opaque: no hole anywhere";
+  // Written back (as import and texture_beside write images), it keeps its alpha and so stays opaque.
+  std::string reason;
+  const std::optional<Texture> again = detail::decodeImage(encodeTexturePng(*scene.textureNamed("dark.png")), reason);
+  ASSERT_TRUE(again) << reason;
+  EXPECT_TRUE(again->opaqueAlpha);
 }
 
 TEST_F(CutOutScene, ACutoffOutsideZeroToOneIsRefusedAtItsLine) {

@@ -147,6 +147,8 @@ TEST(TextureFormats, PngKeepsItsAlphaApartAndItsColourAsItIs) {
       detail::decodeImage(testing::encodePngWithAlpha(2, 1, 2, {10, 255, 250, 255}), reason);
   ASSERT_TRUE(opaque) << reason;
   EXPECT_TRUE(opaque->alpha.empty());
+  EXPECT_TRUE(opaque->opaqueAlpha);
+  EXPECT_FALSE(without->opaqueAlpha);
 }
 
 }  // namespace

@@ -41,8 +41,8 @@ struct PngOptions {
 // The whole PNG file (8-bit RGB). Throws ImageIoError.
 std::string encodePng(const Image& image, const PngOptions& options = {});
 
-// A texture as a whole PNG file: 8-bit RGBA when it has an alpha channel (Texture::alpha, so that a cut-out's image
-// keeps its coverage), else 8-bit RGB as encodePng. Throws ImageIoError.
+// A texture as a whole PNG file: 8-bit RGBA when it has an alpha channel (Texture::alpha or opaqueAlpha, so that a
+// cut-out's image keeps its coverage), else 8-bit RGB as encodePng. Throws ImageIoError.
 std::string encodeTexturePng(const Texture& texture);
 
 // Writes to a temporary file beside `path` and renames it into place, so an existing file is never left

@@ -143,8 +143,11 @@ struct Texture {
   int height = 0;
   std::vector<std::uint8_t> rgb;
   // The image's alpha channel, one byte a pixel in the same order, kept apart from the colour (which is never
-  // composited): empty for an image without one, so that only images with alpha pay for it.
+  // composited): empty for an image without one, and for one whose alpha is 255 everywhere (many models' RGBA
+  // textures), which `opaqueAlpha` marks instead: only images with see-through pixels pay for it, and a cut-out of
+  // an opaque image hides nothing rather than falling back to the grey level.
   std::vector<std::uint8_t> alpha;
+  bool opaqueAlpha = false;
 
   bool operator==(const Texture&) const = default;
 };
