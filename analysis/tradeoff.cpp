@@ -296,7 +296,7 @@ bool TradeoffRun::buildGeometry() {
     if (cancelled()) return false;
     tell("building the " + std::string(toString(r.settings.accel)) + " BVH");
     built = prepareGeometry(sceneGeometry_, parameters_.camera.position, r.settings.accel, BvhBuild::Interactive,
-                            cancel_ ? buildCancelled : nullptr, const_cast<std::atomic<bool>*>(cancel_));
+                            cancel_ ? buildCancelled : nullptr, const_cast<std::atomic<bool>*>(cancel_), &parameters_);
     if (!built || cancelled()) return false;
     report_.buildMs[static_cast<int>(r.settings.accel)] = built->buildMs;
   }

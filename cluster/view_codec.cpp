@@ -9,7 +9,7 @@ namespace rayview::cluster {
 namespace {
 
 // Bumped with any change of the layout: a rank of another build is refused rather than misread.
-constexpr std::uint32_t kGeometryMagic = 0x52564732;  // "RVG2"
+constexpr std::uint32_t kGeometryMagic = 0x52564733;  // "RVG3"
 constexpr std::uint32_t kSnapshotMagic = 0x52565332;  // "RVS2"
 
 template <class T>
@@ -35,12 +35,15 @@ void checkEnd(std::size_t at, std::size_t size) {
 
 }  // namespace
 
-Bytes encodeGeometry(const SceneGeometry& g, const glm::dvec3& origin, AccelKind accel) {
+Bytes encodeGeometry(const SceneGeometry& g, const glm::dvec3& origin, AccelKind accel,
+                     const SceneParameters* parameters) {
   Bytes out;
   put(out, kGeometryMagic);
   put(out, origin);
   put(out, static_cast<std::uint8_t>(accel));
   rayview::encodeGeometry(g, out);
+  put(out, static_cast<std::uint8_t>(parameters != nullptr));
+  if (parameters) encodeParameters(*parameters, out);
   return out;
 }
 
@@ -53,6 +56,9 @@ ShippedGeometry decodeGeometry(const std::uint8_t* data, std::size_t size) {
   if (accel >= kAccelKindCount) throw CodecError("unknown traversal");
   shipped.accel = static_cast<AccelKind>(accel);
   shipped.geometry = std::make_shared<SceneGeometry>(rayview::decodeGeometry(data, size, at));
+  const auto withParameters = take<std::uint8_t>(data, size, at);
+  if (withParameters > 1) throw CodecError("malformed geometry message");
+  if (withParameters) shipped.parameters = decodeParameters(data, size, at);
   checkEnd(at, size);
   return shipped;
 }

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -23,9 +24,13 @@ struct ShippedGeometry {
   std::shared_ptr<SceneGeometry> geometry;
   glm::dvec3 origin{0.0};  // the traversal's origin (prepareGeometry's): rank 0's, not recomputed
   AccelKind accel = AccelKind::Embree;
+  // The parameters sent with it, for the materials its cut-outs come from (the viewer's workers build their BVH
+  // before any snapshot); none when the sender gave none.
+  std::optional<SceneParameters> parameters;
 };
 
-Bytes encodeGeometry(const SceneGeometry& geometry, const glm::dvec3& origin, AccelKind accel);
+Bytes encodeGeometry(const SceneGeometry& geometry, const glm::dvec3& origin, AccelKind accel,
+                     const SceneParameters* parameters = nullptr);
 ShippedGeometry decodeGeometry(const std::uint8_t* data, std::size_t size);
 
 struct Snapshot {

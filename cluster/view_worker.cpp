@@ -98,7 +98,8 @@ class ViewWorker {
     std::exception_ptr failure;
     whileAlive([&] {
       try {
-        prepared = prepareGeometry(geometry, shipped.origin, shipped.accel, BvhBuild::Interactive);
+        prepared = prepareGeometry(geometry, shipped.origin, shipped.accel, BvhBuild::Interactive, nullptr, nullptr,
+                                   shipped.parameters ? &*shipped.parameters : nullptr);
       } catch (...) {
         failure = std::current_exception();  // rethrown here, where a std::bad_alloc is reported to rank 0
       }

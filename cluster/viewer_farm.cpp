@@ -250,7 +250,8 @@ void ViewerFarm::ship(const TracedImage& image, std::uint64_t generation) {
     ++geometrySerial_;
     const PreparedGeometry& geometry = *shippedGeometry_;
     Bytes bytes = bytesOf(geometrySerial_);
-    const Bytes body = encodeGeometry(*geometry.source, geometry.shading.origin, geometry.accel->kind());
+    const Bytes body =
+        encodeGeometry(*geometry.source, geometry.shading.origin, geometry.accel->kind(), image.parameters().get());
     bytes.insert(bytes.end(), body.begin(), body.end());
     sendToAll(kTagViewGeometry, std::move(bytes));
   }

@@ -60,10 +60,11 @@ std::shared_ptr<const PreparedGeometry> prepareScene(std::shared_ptr<const Scene
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const SceneGeometry> geometry,
                                                         const glm::dvec3& origin, AccelKind kind, BvhBuild build,
-                                                        BuildProgress progress, void* progressUser) {
+                                                        BuildProgress progress, void* progressUser,
+                                                        const SceneParameters* materials) {
   const auto start = Clock::now();
   const AccelKind within = accelWithinRange(*geometry, availableAccel(kind), origin);
-  return prepare(std::move(geometry), nullptr, origin, within, build, 0, progress, progressUser, start);
+  return prepare(std::move(geometry), materials, origin, within, build, 0, progress, progressUser, start);
 }
 
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const Scene> scene, AccelKind kind,

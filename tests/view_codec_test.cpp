@@ -62,6 +62,15 @@ TEST(ViewCodec, TheGeometryComesBackExactly) {
   static_cast<SceneGeometry&>(rebuilt) = *back.geometry;
   EXPECT_EQ(sceneHash(rebuilt), sceneHash(scene)) << "every array, mesh and the texture";
   EXPECT_EQ(back.geometry->textureImage, scene.textureImage);
+  EXPECT_FALSE(back.parameters.has_value());
+  // With the parameters, as the viewer sends its workers the materials their cut-outs come from.
+  Scene withCutOut = scene;
+  withCutOut.materials.at(0).alphaImage = "leaf.png";
+  withCutOut.materials.at(0).alphaCutoff = 0.25f;
+  const Bytes both = encodeGeometry(withCutOut.geometry(), origin, AccelKind::Packet, &withCutOut.parameters());
+  const ShippedGeometry again = decodeGeometry(both.data(), both.size());
+  ASSERT_TRUE(again.parameters.has_value());
+  EXPECT_EQ(*again.parameters, withCutOut.parameters());
 }
 
 TEST(ViewCodec, TruncatedOrTamperedBytesAreRefused) {

@@ -43,9 +43,11 @@ enum class BvhBuild {
 
 // Builds the accelerator relative to `origin` (the camera's position: coordinates relative to the camera,
 // taken in double before anything becomes float, SPEC section 6). Returns nullptr when `progress` cancels.
+// `materials`: the parameters whose materials give the cut-outs (null: none, drawn opaque).
 std::shared_ptr<const PreparedGeometry> prepareGeometry(std::shared_ptr<const SceneGeometry> geometry,
                                                         const glm::dvec3& origin, AccelKind kind, BvhBuild build,
-                                                        BuildProgress progress = nullptr, void* progressUser = nullptr);
+                                                        BuildProgress progress = nullptr, void* progressUser = nullptr,
+                                                        const SceneParameters* materials = nullptr);
 // The same for a loaded scene, relative to its camera, with its cut-outs (rayview/cut_outs.h, from the materials as
 // they are now: an edit of a material's cut-out needs a new build); shares `scene` (no copy of its meshes). Embree is
 // used only when every ray of the scene stays in its range (embreeRangeProblem), else the reference BVH and
