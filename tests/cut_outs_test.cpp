@@ -13,14 +13,15 @@
 
 #include "accel_backends.h"
 #include "rayview/build_features.h"
-#include "rayview/image.h"
-#include "rayview/texture_image.h"
 #include "rayview/cut_outs.h"
-#include "rayview/scene_codec.h"
+#include "rayview/image.h"
 #include "rayview/scene_loader.h"
 #include "rayview/scene_writer.h"
+#include "rayview/texture_image.h"
 #include "rayview/tracer.h"
 #include "support/rgba_png.h"
+#include "support/scene_compare.h"
+#include "support/test_directory.h"
 
 namespace rayview {
 namespace {
@@ -59,11 +60,7 @@ std::string quadSceneXml(const std::string& cutOut) {
 class CutOutScene : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("rayview_cut_outs_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    dir_ = testing::freshTestDirectory("rayview_cut_outs");
     std::ofstream(dir_ / "leaf.png", std::ios::binary)
         << testing::encodePngWithAlpha(4, 1, 4, testing::leftHalfClear(4, 1, 0, 255, 0));
   }
@@ -256,12 +253,9 @@ TEST_F(CutOutScene, TheWriterAndTheCodecKeepTheCutOut) {
   const auto b = makeReferenceAccel(again.scene, again.scene.camera.position, nullptr, nullptr, copied.get());
   EXPECT_EQ(render(scene, *a, false), render(again.scene, *b, false));
 
-  Bytes bytes;
-  encodeParameters(scene.parameters(), bytes);
-  encodeGeometry(scene.geometry(), bytes);
-  std::size_t at = 0;
-  const SceneParameters parameters = decodeParameters(bytes.data(), bytes.size(), at);
-  const SceneGeometry geometry = decodeGeometry(bytes.data(), bytes.size(), at);
+  const Scene decoded = testing::throughTheCodec(scene);
+  const SceneParameters& parameters = decoded.parameters();
+  const SceneGeometry& geometry = decoded.geometry();
   EXPECT_TRUE(parameters == scene.parameters());
   EXPECT_EQ(parameters.materials[1].alphaImage, "leaf.png");
   EXPECT_EQ(parameters.materials[1].alphaCutoff, 0.25f);

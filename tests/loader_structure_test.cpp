@@ -13,6 +13,7 @@
 
 #include "rayview/scene_loader.h"
 #include "support/loader_scenes.h"
+#include "support/test_directory.h"
 
 namespace rayview {
 namespace {
@@ -314,9 +315,7 @@ TEST(Loader, ShadowRayEpsilonExtension) {
 class LoaderTexture : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rayview_loader_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-                                        "_" + ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    dir_ = testing::freshTestDirectory("rayview_loader_test");
     fs::create_directories(dir_ / "repo" / "assets" / "scenes");
     fs::create_directories(dir_ / "repo" / "assets" / "textures");
     // A 2 x 1 binary PPM: red, green.

@@ -15,6 +15,7 @@
 #include "support/image_compare.h"
 #include "support/numerics_scenes.h"
 #include "support/scene_compare.h"
+#include "support/test_directory.h"
 
 namespace rayview {
 namespace {
@@ -62,10 +63,7 @@ std::string threeQuads(const std::string& own1, const std::string& own2, const s
 class MaterialTextures : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("rayview_material_textures_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
+    dir_ = testing::freshTestDirectory("rayview_material_textures");
     fs::create_directories(dir_ / "scene" / "maps");
     writePixel(dir_ / "scene" / "maps" / "red.ppm", 255, 0, 0);
     writePixel(dir_ / "scene" / "maps" / "blue.ppm", 0, 0, 255);
@@ -140,13 +138,9 @@ TEST_F(MaterialTextures, SavedElsewhereTheFileStillFindsEveryImage) {
 
 TEST_F(MaterialTextures, TheCodecCarriesNamesAndImages) {
   const Scene scene = loadWritten(threeQuads("maps/red.ppm", "maps/blue.ppm", "green.ppm")).scene;
-  Bytes bytes;
-  encodeParameters(scene.parameters(), bytes);
-  encodeGeometry(scene.geometry(), bytes);
-  std::size_t at = 0;
-  const SceneParameters parameters = decodeParameters(bytes.data(), bytes.size(), at);
-  const SceneGeometry geometry = decodeGeometry(bytes.data(), bytes.size(), at);
-  EXPECT_EQ(at, bytes.size());
+  const Scene decoded = testing::throughTheCodec(scene);
+  const SceneParameters& parameters = decoded.parameters();
+  const SceneGeometry& geometry = decoded.geometry();
   EXPECT_TRUE(parameters == scene.parameters());
   EXPECT_TRUE(geometry.materialTextures == scene.materialTextures);
   EXPECT_EQ(geometry.textureImage, scene.textureImage);

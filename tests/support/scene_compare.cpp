@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include "rayview/scene_codec.h"
+
 namespace rayview::testing {
 
 void expectSameGeometry(const SceneGeometry& a, const SceneGeometry& b) {
@@ -40,6 +42,18 @@ void expectSameGeometry(const SceneGeometry& a, const SceneGeometry& b) {
   ASSERT_EQ(a.materialTextures.size(), b.materialTextures.size());
   for (std::size_t i = 0; i < a.materialTextures.size(); ++i)
     EXPECT_TRUE(a.materialTextures[i].image == b.materialTextures[i].image) << a.materialTextures[i].name;
+}
+
+Scene throughTheCodec(const Scene& scene) {
+  Bytes bytes;
+  encodeParameters(scene.parameters(), bytes);
+  encodeGeometry(scene.geometry(), bytes);
+  std::size_t at = 0;
+  Scene out;
+  out.parameters() = decodeParameters(bytes.data(), bytes.size(), at);
+  static_cast<SceneGeometry&>(out) = decodeGeometry(bytes.data(), bytes.size(), at);
+  EXPECT_EQ(at, bytes.size());
+  return out;
 }
 
 }  // namespace rayview::testing

@@ -10,4 +10,8 @@ namespace rayview::testing {
 // differing array element (ASSERT inside), naming it.
 void expectSameGeometry(const SceneGeometry& a, const SceneGeometry& b);
 
+// The scene after the codec (rayview/scene_codec.h): its parameters and geometry encoded one after the other and
+// decoded, every byte read (a test failure otherwise).
+Scene throughTheCodec(const Scene& scene);
+
 }  // namespace rayview::testing
