@@ -14,6 +14,10 @@ import time
 SKIP = 77
 
 
+# How many times a case that needs rank 0's message under plain mpirun runs before it fails (under_plain_mpirun).
+MPIRUN_TRIES = 4
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--rayview", required=True)
@@ -218,16 +222,30 @@ class Tester:
                    f"killed batch: exit {job.returncode}, files {written}, same {same}:\n{stderr}")
         self.check(not any(rank_process(job.pid, r) for r in range(3)), "killed batch: a rank is still running")
 
+    def under_plain_mpirun(self, name, attempt, said):
+        """Whether to run a case that needs rank 0's message under plain mpirun again: OpenMPI 4.1 ends the other
+        ranks with SIGTERM and SIGKILL a second later, but now and then (1 run in 2 to 6 here, loaded or not; a bash
+        rank that traps SIGTERM shows it too) with SIGKILL at once, and then no process can say anything. The message
+        must come in one of MPIRUN_TRIES runs."""
+        if said or attempt == MPIRUN_TRIES:
+            return False
+        print(f"{name}: no message from rank 0 (mpirun ended it with SIGKILL?): try {attempt + 1}")
+        return True
+
     def killed_turntable(self, scene_args):
         """Rank 1 killed in a turntable under plain mpirun: the job ends, the frames written stay whole, and a rerun
         renders only the others."""
         directory = os.path.join(self.args.scratch, "killed_turntable")
         spread = os.path.join(directory, "f_%02d.png")
         frames = ["--turntable", "12"]
-        ended = self.kill_rank_one(self.mpirun(3, [*scene_args, *frames, "-o", spread, "--threads", "1"]),
-                                   "killed turntable", 30)
-        if ended is None:
-            return
+        for attempt in range(1, MPIRUN_TRIES + 1):
+            shutil.rmtree(directory, ignore_errors=True)
+            ended = self.kill_rank_one(self.mpirun(3, [*scene_args, *frames, "-o", spread, "--threads", "1"]),
+                                       "killed turntable", 30)
+            if ended is None:
+                return
+            if not self.under_plain_mpirun("killed turntable", attempt, "frames written" in ended[1]):
+                break
         job, stderr, _ = ended
         written = sorted(os.listdir(directory)) if os.path.isdir(directory) else []
         self.check(job.returncode != 0 and "frames written" in stderr and len(written) < 12,
@@ -281,9 +299,12 @@ class Tester:
         name = "recovered" if recovery else "killed"
         output = self.out(name)
         extra = ["--enable-recovery"] if recovery else []
-        ended = self.kill_rank_one(self.mpirun(3, [*scene_args, "-o", output, "--threads", "1"], extra), name, 30)
-        if ended is None:
-            return
+        for attempt in range(1, MPIRUN_TRIES + 1):
+            ended = self.kill_rank_one(self.mpirun(3, [*scene_args, "-o", output, "--threads", "1"], extra), name, 30)
+            if ended is None:
+                return
+            if recovery or not self.under_plain_mpirun(name, attempt, "not finished" in ended[1]):
+                break
         job, stderr, seconds = ended
         # Ending is bounded; finishing (recovery) takes the survivors' render time, which a sanitizer build stretches.
         if not recovery:
