@@ -20,7 +20,8 @@
 // the whole image that keeps the recorded (tile) order. Shadow and reflection rays are cast from memory,
 // so their generation and all shading are outside the Embree time: that is what makes it a ceiling.
 //
-// Usage: ceiling_bench [--threads N] [--repeat R] SCENE.xml...
+// Usage: ceiling_bench [--threads N] [--repeat R] [--accel embree|packet|reference] SCENE.xml...
+// --accel: rayview's traversal, as `rayview render --accel` takes it (default embree).
 // Prints a Markdown table, one row per scene, then the median and worst share (Embree time / render time) against
 // single rays and against 16-wide camera packets, and whether the packet goal holds.
 #include <embree3/rtcore.h>
@@ -40,6 +41,7 @@
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
 #include "rayview/prepared_scene.h"
+#include "rayview/render_settings.h"
 #include "rayview/scene_loader.h"
 #include "rayview/thread_pool.h"
 #include "rayview/tiles.h"
@@ -351,7 +353,7 @@ struct SceneResult {
   double packetShare() const { return renderMs > 0.0 ? 100.0 * packetMs / renderMs : 0.0; }
 };
 
-SceneResult measure(const std::filesystem::path& path, ThreadPool& pool, int repeat) {
+SceneResult measure(const std::filesystem::path& path, ThreadPool& pool, int repeat, AccelKind accel) {
   SceneResult result;
   result.name = path.stem().string();
   const Scene scene = loadSceneFile(path).scene;
@@ -360,7 +362,7 @@ SceneResult measure(const std::filesystem::path& path, ThreadPool& pool, int rep
   result.height = scene.camera.height;
 
   // rayview, as `rayview render` sets it up.
-  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
+  std::shared_ptr<const PreparedGeometry> geometry = prepareGeometry(scene, accel, BvhBuild::Interactive);
   result.rayviewBuildMs = geometry->buildMs;
   const Tracer tracer(scene, *geometry->accel, geometry->shading, RenderSettings{});
 
@@ -407,7 +409,7 @@ SceneResult measure(const std::filesystem::path& path, ThreadPool& pool, int rep
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: ceiling_bench [--threads N] [--repeat R] SCENE.xml...\n");
+  std::fprintf(stderr, "usage: ceiling_bench [--threads N] [--repeat R] [--accel embree|packet|reference] SCENE.xml...\n");
   return 2;
 }
 
@@ -417,6 +419,7 @@ int usage() {
 int main(int argc, char** argv) {
   using namespace rayview;
   int threads = 0, repeat = 3;
+  AccelKind accel = AccelKind::Embree;
   std::vector<std::filesystem::path> scenes;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -424,6 +427,8 @@ int main(int argc, char** argv) {
       const int value = std::atoi(argv[++i]);
       if (value < (arg == "--threads" ? 0 : 1)) return usage();
       (arg == "--threads" ? threads : repeat) = value;
+    } else if (arg == "--accel" && i + 1 < argc) {
+      if (!parseAccelKind(argv[++i], accel)) return usage();
     } else if (arg.starts_with("-")) {
       return usage();
     } else {
@@ -433,9 +438,9 @@ int main(int argc, char** argv) {
   if (scenes.empty()) return usage();
 
   ThreadPool pool(threads);
-  std::printf("%d threads, median of %d rounds; share = Embree cast time / rayview render time. Embree casts exactly\n"
+  std::printf("%d threads, rayview's traversal %s, median of %d rounds; share = Embree cast time / rayview render time. Embree casts exactly\n"
               "rayview's count of each kind: ray k of N is generated ray floor(k*M/N) of the M its Whitted generator made.\n\n",
-              pool.size(), repeat);
+              pool.size(), std::string(toString(accel)).c_str(), repeat);
   std::printf("| scene | triangles | image | camera rays | shadow rays | reflection rays | generated shadow / reflection "
               "| build ms rayview / Embree HIGH | rayview render ms | Embree 1-ray ms | Embree packet ms | share 1-ray "
               "| share packet |\n");
@@ -444,7 +449,7 @@ int main(int argc, char** argv) {
   for (const auto& path : scenes) {
     SceneResult r;
     try {
-      r = measure(path, pool, repeat);
+      r = measure(path, pool, repeat, accel);
     } catch (const std::exception& error) {
       std::fprintf(stderr, "ceiling_bench: %s: %s\n", path.c_str(), error.what());
       return 1;
