@@ -38,7 +38,8 @@ def wall_ms(cmd, cwd):
 
 def rayview_ms(rayview, scene, threads):
     with tempfile.TemporaryDirectory() as d:
-        return wall_ms([rayview, "render", scene, "-o", f"{d}/image.png", "--threads", str(threads), "--quiet"], d)
+        cmd = [rayview, "render", os.path.abspath(scene), "-o", f"{d}/image.png", "--threads", str(threads), "--quiet"]
+        return wall_ms(cmd, d)
 
 
 def peer_ms(template, scene, threads, cwd):
@@ -59,7 +60,7 @@ def main():
     rayview = os.path.abspath(a.rayview)
     load = "%.2f %.2f %.2f" % os.getloadavg()
     ratios = []
-    print(f"| scene | rayview ms | peer ms | peer / rayview |\n|---|---:|---:|---:|")
+    print("| scene | rayview ms | peer ms | peer / rayview |\n|---|---:|---:|---:|")
     for scene in a.scenes or SEVEN:
         ours, theirs = [], []
         for _ in range(a.runs):
