@@ -224,8 +224,8 @@ class Tester:
 
     def under_plain_mpirun(self, name, attempt, said):
         """Whether to run a case that needs rank 0's message under plain mpirun again: OpenMPI 4.1 ends the other
-        ranks with SIGTERM and SIGKILL a second later, but now and then (1 run in 2 to 6 here, loaded or not; a bash
-        rank that traps SIGTERM shows it too) with SIGKILL at once, and then no process can say anything. The message
+        ranks with SIGTERM and SIGKILL a second later, but now and then (a bash rank that traps SIGTERM shows it
+        too) with SIGKILL at once, and then no process can say anything. The message
         must come in one of MPIRUN_TRIES runs."""
         if said or attempt == MPIRUN_TRIES:
             return False

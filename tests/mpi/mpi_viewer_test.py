@@ -6,6 +6,7 @@ Needs xvfb-run and mpirun (exit 77, skipped, without them)."""
 import argparse
 import glob
 import os
+import pathlib
 import re
 import shutil
 import signal
@@ -126,7 +127,6 @@ def killed_worker(args, scene):
     return failures
 
 
-
 def killed_worker_plain(args, scene):
     """Under plain mpirun (the README's command), a worker killed after an edit: OpenMPI 4.1 ends the whole job
     (only mpirun's own --enable-recovery, or OMPI_MCA_orte_enable_recovery=1 in its environment, lets it go on), so
@@ -151,7 +151,7 @@ def killed_worker_plain(args, scene):
         if "mpirun is ending the job" in text and kept and os.path.exists(kept.group(1)):
             break
         files = glob.glob(os.path.join(state, "rayview", "*.recovery.xml"))
-        if attempt == mpi_test.MPIRUN_TRIES or not files or "0.25 0.5 0.75" not in open(files[0]).read():
+        if attempt == mpi_test.MPIRUN_TRIES or not files or "0.25 0.5 0.75" not in pathlib.Path(files[0]).read_text():
             return [f"plain mpirun: the window should say why it closes and where the edits are:\n{text}"]
         print(f"plain mpirun: no message from the window (ended by SIGKILL?), edits kept: try {attempt + 1}")
     restore = os.path.join(args.scratch, "plain_restore.txt")
