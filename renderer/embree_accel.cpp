@@ -22,6 +22,7 @@
 #include "embree_library.h"
 #include "float_rays.h"
 #include "float_steps.h"
+#include "isa_clones.h"
 #include "watertight_lanes.h"
 #include "watertight_triangle.h"
 
@@ -199,7 +200,7 @@ void testLanes(const QueryContext& query, const int* valid, unsigned N, RTCRayN*
 }
 
 template <bool kCutOuts>
-void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
+RAYVIEW_HOT void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
   QueryLane* lanes = query.lanes;
@@ -224,7 +225,7 @@ void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
 }
 
 template <bool kCutOuts>
-void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
+RAYVIEW_HOT void occludeTriangle(const RTCOccludedFunctionNArguments* args) {
   const auto& data = *static_cast<const TriangleData*>(args->geometryUserPtr);
   const QueryContext& query = *reinterpret_cast<QueryContext*>(args->context);
   testLanes<kCutOuts>(query, args->valid, args->N, args->ray, data.corners(args->primID), args->primID, data.cutOuts,
@@ -416,8 +417,9 @@ class EmbreeAccel final : public Accel {
   // FloatSteps.FourWideAgreeWithTheScalarSteps, and Packets.AnswerEachRayAsItsOwnQueryDoes for the whole query).
   // Lanes from `count` on are left out as well.
   template <class Without>
-  static bool fillPacket(const Ray* rays, int count, QueryLane* lanes, WatertightLanes<kRayPacket>& packed,
-                         RTCRay16& packet, int* valid, Without&& without) {
+  RAYVIEW_HOT static bool fillPacket(const Ray* rays, int count, QueryLane* lanes,
+                                     WatertightLanes<kRayPacket>& packed, RTCRay16& packet, int* valid,
+                                     Without&& without) {
     bool any = false;
     int first = 0;
     for (; first < count; first += kWatertightWidth) {

@@ -18,6 +18,7 @@
 #include "accel_backends.h"
 #include "float_rays.h"
 #include "float_steps.h"
+#include "isa_clones.h"
 #include "watertight_lanes.h"
 #include "watertight_triangle.h"
 
@@ -38,6 +39,11 @@ Float8 max8(Float8 a, Float8 b) { return a < b ? b : a; }
 unsigned bits8(Int8 m) {
 #ifdef __AVX__
   return static_cast<unsigned>(__builtin_ia32_movmskps256(reinterpret_cast<Float8>(m)));
+#elif defined(__SSE__)
+  __m128 low, high;  // SSE's sign-bit mask takes four lanes: both halves, rather than a branch a lane
+  std::memcpy(&low, &m, sizeof low);
+  std::memcpy(&high, reinterpret_cast<const char*>(&m) + sizeof low, sizeof high);
+  return static_cast<unsigned>(_mm_movemask_ps(low)) | static_cast<unsigned>(_mm_movemask_ps(high)) << 4;
 #else
   unsigned b = 0;
   for (int j = 0; j < 8; ++j)
@@ -390,7 +396,7 @@ class PacketBvhAccel final : public Accel {
   // the same float rays). Lanes without a ray keep what an earlier query left: the returned bits, which every box
   // test is masked with, leave them out.
   template <class Without>
-  static unsigned fill(Packet& p, const Ray* rays, int count, Without&& without) {
+  RAYVIEW_HOT static unsigned fill(Packet& p, const Ray* rays, int count, Without&& without) {
     unsigned lanes = 0;
     p.rays = rays;
     for (int first = 0; first < count; first += kWatertightWidth) {
@@ -450,7 +456,7 @@ class PacketBvhAccel final : public Accel {
   // Every triangle whose box the packet's lanes meet, tested against those lanes; onHit(k, triangle, hit, active)
   // for each lane k that hits it within its interval (it may take lanes out of `active`).
   template <class OnHit>
-  void traverse(Packet& p, unsigned active, OnHit&& onHit) const {
+  RAYVIEW_HOT void traverse(Packet& p, unsigned active, OnHit&& onHit) const {
     // Each entry: a node and the lanes that met its box when its parent was visited (both children's boxes are
     // tested then, from one cache line). A lane that has since found a closer hit may still be in the mask: its
     // tests are bounded by its current interval all the same.

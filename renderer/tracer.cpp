@@ -7,6 +7,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "isa_clones.h"
 #include "light_samples.h"
 #include "rayview/light_types.h"
 #include "rayview/prepared_scene.h"
@@ -294,8 +295,8 @@ Color Tracer::tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t
   return followPath(cameraRay, firstHit, 0, pixelSeed, counts);
 }
 
-Color Tracer::followPath(const Ray& firstRay, const Hit& firstHit, int firstDepth, std::uint32_t pixelSeed,
-                         RayCounts& counts) const {
+RAYVIEW_HOT Color Tracer::followPath(const Ray& firstRay, const Hit& firstHit, int firstDepth,
+                                     std::uint32_t pixelSeed, RayCounts& counts) const {
   constexpr int kInline = 16;  // deeper paths (facing mirrors) spill to the heap
   PathVertex inlineVertices[kInline];
   std::vector<PathVertex> spilled;
@@ -325,8 +326,8 @@ Color Tracer::followPath(const Ray& firstRay, const Hit& firstHit, int firstDept
   return foldPath(0, last, vertexAt);
 }
 
-void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits, const std::uint32_t* pixelSeeds,
-                        int count, Color* out, RayCounts& counts) const {
+RAYVIEW_HOT void Tracer::tracePaths(const Ray* cameraRays, const std::optional<Hit>* firstHits,
+                                    const std::uint32_t* pixelSeeds, int count, Color* out, RayCounts& counts) const {
   // tracePath for each lane with a hit, every lane's depth d before any lane's depth d + 1.
   // The buffers stay with the thread: no allocation per block once they have grown (~10 % of car's time).
   // So do the lanes' mirror rays and hits (on the stack, their initialisation was ~5 KB of zeroing per block).
