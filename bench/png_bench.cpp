@@ -1,6 +1,6 @@
-// PNG writing against render time, so that the write stays a small part of a render: rayview's encoder (zlib in
-// parallel parts, through stb_image_write) against stb_image_write's own deflate, on the images the scenes render to,
-// in one run.
+// PNG writing against render time, so that the write stays a small part of a render: rayview's encoder
+// (renderer/png_encode.cpp: ISA-L at level 1, zlib above, in parallel parts) against stb_image_write's own, on the
+// images the scenes render to, in one run.
 //
 // Usage: png_bench [--threads N] [--repeat R] SCENE.xml...
 // For each scene: render it (renderFrame, N threads), then encode the image with each variant R times
@@ -151,7 +151,8 @@ int main(int argc, char** argv) {
           std::fprintf(stderr, "png_bench: level %d, %d threads: does not decode to the image\n", level, t);
           status = 1;
         }
-        row("rayview: unfiltered rows (stb), zlib level " + std::to_string(level) + ", " + std::to_string(t) +
+        row(std::string("rayview: unfiltered rows, ") + (level == 1 ? "ISA-L" : "zlib") + " level " +
+                std::to_string(level) + ", " + std::to_string(t) +
                 " thread" + (t == 1 ? "" : "s") + (level == kDefaultPngLevel && t == n ? " (default)" : ""),
             timeIt(repeat, [&] { return encodePng(image, options).size(); }));
       }

@@ -1,6 +1,6 @@
-// PNG output (renderer/image_io.cpp): zlib deflate in parallel parts, spliced into one stream. Whatever the
-// size, level and number of parts, the file must decode (with stb_image, an independent reader) to exactly
-// the pixels written.
+// PNG output (renderer/png_encode.cpp): ISA-L's or zlib's deflate in parallel parts, spliced into one stream.
+// Whatever the size, level and number of parts, the file must decode (libpng, through the texture decoder: an
+// independent reader) to exactly the pixels written.
 #include <gtest/gtest.h>
 
 #include <cstdint>

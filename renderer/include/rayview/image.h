@@ -28,10 +28,9 @@ class ImageIoError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// How PNG files are deflated: zlib at `level` (1 fastest .. 9 smallest), in up to `threads` parts at once
-// (0: one per hardware thread; parts are at least 256 KiB); rows unfiltered. Level 1: the fastest measured; car's
-// file 3 % smaller than stb_image_write's own (best-of-five filters, level 8) and ~47 % larger than zlib level 6
-// (docs/PERFORMANCE.md, "PNG writing").
+// How PNG files are deflated: `level` 1 (fastest) is ISA-L's level 1, 2 .. 9 (smallest) zlib's, in up to `threads`
+// parts at once (0: one per hardware thread; parts are at least 256 KiB); rows unfiltered (png_encode.cpp). Level
+// 1: the fastest measured, files 1-5 % larger than zlib's level 1 (docs/PERFORMANCE.md, "PNG writing").
 inline constexpr int kDefaultPngLevel = 1;
 struct PngOptions {
   int level = kDefaultPngLevel;
