@@ -3,10 +3,10 @@
 side in one run: the median of RUNS runs at 2 threads, old and new alternating so that a change of machine
 load hits both alike. Prints a Markdown table with the ratio old/new.
 
-    bench/end_to_end.py [--runs 5] [--threads 2] [--stage load|build|render] OLD_RAYVIEW NEW_RAYVIEW [SCENE...]
+    bench/end_to_end.py [--runs 5] [--threads 2] [--stage load|build|render|write] OLD_RAYVIEW NEW_RAYVIEW [SCENE...]
 
 --stage compares one stage instead, as each process's summary reports it ("time  load X ms, BVH build Y ms,
-render Z ms"), from the same alternating runs.
+render Z ms, write W ms"), from the same alternating runs.
 
 Default scenes: the seven of bench_scenes.py. docs/PERFORMANCE.md records runs against 7f2ad53."""
 import argparse
@@ -18,8 +18,8 @@ import time
 
 from bench_scenes import SEVEN, name
 
-TIME_LINE = re.compile(r"time\s+load ([\d.]+) ms, BVH build ([\d.]+) ms, render ([\d.]+) ms")
-STAGES = {"load": 1, "build": 2, "render": 3}
+TIME_LINE = re.compile(r"time\s+load ([\d.]+) ms, BVH build ([\d.]+) ms, render ([\d.]+) ms, write ([\d.]+) ms")
+STAGES = {"load": 1, "build": 2, "render": 3, "write": 4}
 
 
 def measure(rayview, scene, out, threads, stage):
