@@ -6,6 +6,8 @@
 #include <mutex>
 #include <string>
 
+#include <glm/common.hpp>
+
 #include "accel_backends.h"
 #include "rayview/build_features.h"
 #ifdef RAYVIEW_HAVE_EMBREE
@@ -61,6 +63,56 @@ std::string beyond(const Reach& reach, double epsilon) {
 }
 
 }  // namespace
+
+Accel::Accel(const glm::dvec3& origin, const SceneGeometry& scene) : origin_(origin) {
+  // Relative to the origin as each back-end makes its corners: the same rounding.
+  const auto relative = [&](const glm::dvec3& v, glm::dvec3& p) {
+    p = v - origin;
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+  };
+  const std::size_t triangles = scene.triangles.size();
+  if (triangles > kBoxedTriangles) {
+    AccelBox& box = boxes_.emplace_back();
+    glm::dvec3 p;
+    for (const glm::dvec3& vertex : scene.vertices)
+      if (relative(vertex, p)) box.lower = glm::min(box.lower, p), box.upper = glm::max(box.upper, p);
+    return;
+  }
+  // Where each run starts: at every mesh (up to kAccelBoxes meshes; more are grouped), the rest of the boxes
+  // spread over the triangles.
+  std::vector<std::size_t> starts;
+  const std::size_t meshes = scene.meshes.size();
+  if (meshes >= kAccelBoxes) {
+    for (std::size_t g = 0; g < kAccelBoxes; ++g) starts.push_back(scene.meshes[g * meshes / kAccelBoxes].firstTriangle);
+  } else {
+    const std::size_t run = std::max<std::size_t>(1, (triangles + kAccelBoxes - meshes - 1) / (kAccelBoxes - meshes));
+    for (const Mesh& mesh : scene.meshes)
+      for (std::size_t at = mesh.firstTriangle; at < std::size_t{mesh.firstTriangle} + mesh.triangleCount; at += run)
+        starts.push_back(at);
+    if (meshes == 0)
+      for (std::size_t at = run; at < triangles; at += run) starts.push_back(at);
+  }
+  // Every triangle in one run whatever the meshes say: from 0, in order, to the end.
+  starts.push_back(0);
+  std::sort(starts.begin(), starts.end());
+  starts.erase(std::unique(starts.begin(), starts.end()), starts.end());
+  starts.push_back(triangles);
+  const glm::dvec3* vertices = scene.vertices.data();
+  const std::size_t count = scene.vertices.size();
+  for (std::size_t k = 0; k + 1 < starts.size(); ++k) {
+    AccelBox box;
+    for (std::size_t t = starts[k]; t < starts[k + 1] && t < triangles; ++t) {
+      const Triangle& triangle = scene.triangles[t];
+      glm::dvec3 corners[3];
+      bool usable = true;
+      for (int c = 0; c < 3; ++c)
+        usable = usable && triangle.vertex[c] < count && relative(vertices[triangle.vertex[c]], corners[c]);
+      if (!usable) continue;
+      for (const glm::dvec3& p : corners) box.lower = glm::min(box.lower, p), box.upper = glm::max(box.upper, p);
+    }
+    if (!box.empty()) boxes_.push_back(box);
+  }
+}
 
 std::string embreeRangeProblem(const SceneParameters& parameters, const SceneGeometry& geometry,
                                const glm::dvec3& origin) {

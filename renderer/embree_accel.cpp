@@ -266,7 +266,7 @@ class EmbreeAccel final : public Accel {
  public:
   EmbreeAccel(const SceneGeometry& scene, const glm::dvec3& origin, RTCDevice device, EmbreeLayout layout,
               BuildProgress progress, void* progressUser, const CutOuts* cutOuts)
-      : Accel(origin), rtc_(embree()) {
+      : Accel(origin, scene), rtc_(embree()) {
     scene_ = rtc_.NewScene(device);
     // ROBUST: watertight triangle tests (SPEC section 6). MEDIUM build quality: the viewer must show
     // a freshly loaded 1M-triangle scene quickly; HIGH builds take several times longer for ~10 % faster rays.

@@ -61,7 +61,11 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
   const std::vector<Tile> tiles = makeTiles(ceilDiv(image.width, stride), ceilDiv(image.height, stride), pool.size());
   std::mutex raysMutex;
   std::atomic<bool> cancelled{false};
-  pool.parallelFor(tiles.size(), [&](std::size_t index) {
+  // Held in locals: through the references, every byte stored below would make them be read again.
+  std::uint8_t* const rgb = image.rgb.data();
+  const std::size_t width = static_cast<std::size_t>(image.width);
+  const Quantization quantize = quantization;
+  pool.parallelFor(tiles.size(), [&, rgb, width, quantize](std::size_t index) {
     if (stopped && stopped()) {
       cancelled.store(true, std::memory_order_relaxed);
       return;
@@ -75,10 +79,10 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
       if (count == 0) return;
       pixels(batch, count, colors, counts);
       for (int n = 0; n < count; ++n) {
-        std::uint8_t* out = image.pixel(batch[n].x, batch[n].y);
-        out[0] = quantizeChannel(colors[n].x, quantization);
-        out[1] = quantizeChannel(colors[n].y, quantization);
-        out[2] = quantizeChannel(colors[n].z, quantization);
+        std::uint8_t* out = rgb + (static_cast<std::size_t>(batch[n].y) * width + static_cast<std::size_t>(batch[n].x)) * 3;
+        out[0] = quantizeChannel(colors[n].x, quantize);
+        out[1] = quantizeChannel(colors[n].y, quantize);
+        out[2] = quantizeChannel(colors[n].z, quantize);
       }
       count = 0;
     };

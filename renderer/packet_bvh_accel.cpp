@@ -300,7 +300,7 @@ class PacketBvhAccel final : public Accel {
  public:
   PacketBvhAccel(const SceneGeometry& scene, const glm::dvec3& origin, unsigned buildThreads, std::size_t leafMax,
                  const CutOuts* cutOuts)
-      : Accel(origin), scene_(scene), cutOuts_(cutOuts) {
+      : Accel(origin, scene), scene_(scene), cutOuts_(cutOuts) {
     if (leafMax > 1)
       build<CentroidComputed>(buildThreads, leafMax);
     else

@@ -12,7 +12,8 @@ bool isFinite(const glm::dvec3& v) { return std::isfinite(v.x) && std::isfinite(
 
 class ReferenceAccel final : public Accel {
  public:
-  ReferenceAccel(const glm::dvec3& origin, std::unique_ptr<ReferenceBvh> bvh) : Accel(origin), bvh_(std::move(bvh)) {}
+  ReferenceAccel(const glm::dvec3& origin, const SceneGeometry& scene, std::unique_ptr<ReferenceBvh> bvh)
+      : Accel(origin, scene), bvh_(std::move(bvh)) {}
 
   std::optional<Hit> closestHit(const Ray& ray) const override {
     BvhRay r;
@@ -52,7 +53,7 @@ std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm:
   std::unique_ptr<ReferenceBvh> bvh = ReferenceBvh::build(relative, scene.triangles, progress, progressUser);
   if (!bvh) return nullptr;
   bvh->setCutOuts(cutOuts);
-  return std::make_unique<ReferenceAccel>(origin, std::move(bvh));
+  return std::make_unique<ReferenceAccel>(origin, scene, std::move(bvh));
 }
 
 }  // namespace rayview

@@ -179,6 +179,7 @@ Tracer::Tracer(const SceneParameters& parameters, const SceneGeometry& meshes, c
   for (int i = 0; i < camera.width; ++i) columnParts_[i] = pixelColumnPart(camera, basis_, i);
   for (int j = 0; j < camera.height; ++j) rowParts_[j] = pixelRowPart(camera, basis_, j);
   eyeRelative_ = parameters.camera.position - accel.origin();
+  cull_.emplace(camera, basis_, eyeRelative_, accel.boxes());
   lights_ = parameters.lights.prepare(accel.origin(), settings);
   pointLightsOnly_ = std::get<std::vector<TriangularLightShading>>(lights_).empty();
   for (const Material& material : parameters.materials) {
@@ -233,6 +234,16 @@ void Tracer::sampleRay(int i, int j, int k, std::uint32_t& seed, Ray& ray) const
 void Tracer::tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts& counts) const {
   const int samples = pixelSamples();
   if (samples == 1) return traceSamples(pixels, count, 0, out, counts);
+  if (cameraMisses(pixels, count)) {
+    // The background as each pixel's samples would sum it, bit for bit.
+    for (int n = 0; n < count; ++n) {
+      Color sum(0.0f);
+      for (int k = 0; k < samples; ++k) sum += parameters_.background;
+      out[n] = sum / static_cast<float>(samples);
+    }
+    counts.camera += static_cast<std::uint64_t>(count) * static_cast<std::uint64_t>(samples);
+    return;
+  }
   // Each pixel's samples together (as coherent as rays get), summed in tracePixel's order.
   for (int n = 0; n < count; ++n) {
     Color sum(0.0f);
@@ -252,11 +263,27 @@ void Tracer::tracePixels(const PixelXY* pixels, int count, Color* out, RayCounts
 void Tracer::traceSamples(const PixelXY* pixels, int count, int k, Color* out, RayCounts& counts) const {
   for (int first = 0; first < count; first += kRayPacket) {
     const int n = std::min(kRayPacket, count - first);
+    if (cameraMisses(pixels + first, n)) {
+      std::fill_n(out + first, n, parameters_.background);
+      counts.camera += static_cast<std::uint64_t>(n);
+      continue;
+    }
     thread_local Ray rays[kRayPacket];  // every field written by sampleRay: no zeroing per packet (~1 KB)
     std::uint32_t seeds[kRayPacket];
     for (int m = 0; m < n; ++m) sampleRay(pixels[first + m].x, pixels[first + m].y, k, seeds[m], rays[m]);
     traceCameraRays(rays, seeds, n, out + first, counts);
   }
+}
+
+bool Tracer::cameraMisses(const PixelXY* pixels, int count) const {
+  if (count <= 0) return false;
+  int x0 = pixels[0].x, x1 = x0, y0 = pixels[0].y, y1 = y0;
+  for (int n = 1; n < count; ++n) {
+    x0 = std::min(x0, pixels[n].x), x1 = std::max(x1, pixels[n].x);
+    y0 = std::min(y0, pixels[n].y), y1 = std::max(y1, pixels[n].y);
+  }
+  // Half a pixel around the centres: every sample's ray (sampleRay's offsets are within it).
+  return cull_->misses(x0 - 0.5, x1 + 0.5, y0 - 0.5, y1 + 0.5);
 }
 
 void Tracer::traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int count, Color* out,

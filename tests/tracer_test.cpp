@@ -2,6 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
+#include <random>
 #include <string>
 #include <thread>
 
@@ -10,8 +12,10 @@
 #include "accel_backends.h"
 #include "rayview/lean_memory.h"
 #include "rayview/knobs.h"
+#include "rayview/camera_cull.h"
 #include "rayview/camera_rays.h"
 #include "rayview/frame_renderer.h"
+#include "rayview/grid_render.h"
 #include "rayview/prepared_scene.h"
 #include "support/scene_builder.h"
 
@@ -416,6 +420,179 @@ Image renderWith(const Scene& scene, const RenderSettings& settings, int threads
   EXPECT_TRUE(renderFrame(tracer, scene.camera.width, scene.camera.height, pool, image, stats));
   if (rays) *rays = stats.rays;
   return image;
+}
+
+// Whether the ray from `eye` along `direction` meets the closed box, in long double (the slab test with no
+// widening): what CameraCull::misses must never contradict.
+bool rayMeetsBox(const glm::dvec3& eye, const glm::dvec3& direction, const AccelBox& box) {
+  long double near = 0.0L, far = std::numeric_limits<long double>::infinity();
+  for (int axis = 0; axis < 3; ++axis) {
+    const long double o = eye[axis], d = direction[axis], lo = box.lower[axis], hi = box.upper[axis];
+    if (d == 0.0L) {
+      if (o < lo || o > hi) return false;
+      continue;
+    }
+    long double t0 = (lo - o) / d, t1 = (hi - o) / d;
+    if (t0 > t1) std::swap(t0, t1);
+    near = std::max(near, t0);
+    far = std::min(far, t1);
+  }
+  return near <= far;
+}
+
+// Random cameras (turned, off-centre or mirrored near planes, far from the origin) and boxes placed near the edge
+// of a random rectangle of image coordinates: whenever the cull says the rectangle's rays miss the box, none of a
+// dense grid of them (edges included) meets it; and it does cull, often, what plainly lies outside.
+TEST(CameraCull, NeverCullsARayThatMeetsTheBox) {
+  std::mt19937_64 random(477);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  auto vector = [&] { return glm::dvec3(unit(random), unit(random), unit(random)); };
+  int culled = 0, culledReachingBehind = 0;
+  for (int trial = 0; trial < 4000; ++trial) {
+    Camera camera;
+    const double far = trial % 4 == 0 ? 1e7 : 1.0;
+    camera.position = vector() * far;
+    camera.gaze = vector();
+    camera.up = vector();
+    camera.left = unit(random) - 0.5, camera.right = unit(random) + 0.5;
+    camera.bottom = unit(random) - 0.5, camera.top = unit(random) + 0.5;
+    if (trial % 3 == 0) std::swap(camera.left, camera.right);
+    camera.nearDistance = 0.1 + 2.0 * std::fabs(unit(random));
+    camera.width = 64, camera.height = 48;
+    if (!cameraProblem(camera).empty()) continue;
+    const CameraBasis basis = cameraBasis(camera);
+    const glm::dvec3 origin = camera.position + vector();  // the accel's origin, near the camera
+    const glm::dvec3 eye = camera.position - origin;
+    const double i0 = 64 * std::fabs(unit(random)) - 0.5, j0 = 48 * std::fabs(unit(random)) - 0.5;
+    const double i1 = i0 + 4 * std::fabs(unit(random)), j1 = j0 + 4 * std::fabs(unit(random));
+    // A point just outside the rectangle's cone (or inside it), at a random depth, and a box around it.
+    const double pi = trial % 2 ? i1 + 1e-7 * unit(random) : i0 + 3 * unit(random);
+    const double pj = trial % 5 ? j0 + 1e-7 * unit(random) : j1 + 3 * unit(random);
+    const glm::dvec3 p = eye + pixelDirection(camera, basis, pi, pj) * (0.5 + 3.0 * std::fabs(unit(random)));
+    const double size = trial % 7 == 0 ? 1e-9 : 0.2 * std::fabs(unit(random));
+    AccelBox box;
+    box.lower = p - size * glm::abs(vector()), box.upper = p + size * glm::abs(vector());
+    if (trial % 3 == 1) {  // reaching behind the eye, as a floor under the camera does
+      const glm::dvec3 back = p + 10.0 * glm::normalize(camera.gaze) * unit(random) - 20.0 * glm::normalize(camera.gaze);
+      box.lower = glm::min(box.lower, back), box.upper = glm::max(box.upper, back);
+    }
+    if (!CameraCull(camera, basis, eye, {box}).misses(i0, i1, j0, j1)) continue;
+    ++culled;
+    culledReachingBehind += trial % 3 == 1;
+    for (int a = 0; a <= 16; ++a)
+      for (int b = 0; b <= 16; ++b) {
+        const double i = i0 + (i1 - i0) * a / 16, j = j0 + (j1 - j0) * b / 16;
+        ASSERT_FALSE(rayMeetsBox(eye, glm::normalize(pixelDirection(camera, basis, i, j)), box))
+            << "trial " << trial << ": culled, yet the ray through (" << i << ", " << j << ") meets the box";
+      }
+  }
+  EXPECT_GT(culled, 400) << "the cull should answer most rectangles that lie off the box";
+  EXPECT_GT(culledReachingBehind, 10) << "and boxes that reach behind the eye";
+}
+
+TEST(CameraCull, AnswersWhatLiesBehindBesideAndInFront) {
+  Camera camera = testing::frontCamera(8);  // at the origin, down -z, the near plane [-1, 1]^2 at 1
+  const CameraBasis basis = cameraBasis(camera);
+  AccelBox ahead;
+  ahead.lower = {-0.1, -0.1, -3.0}, ahead.upper = {0.1, 0.1, -2.0};
+  const CameraCull seeing(camera, basis, glm::dvec3(0.0), {ahead});
+  EXPECT_FALSE(seeing.misses(3, 4, 3, 4)) << "the centre pixels see it";
+  EXPECT_TRUE(seeing.misses(0, 1, 0, 1)) << "a corner does not";
+  EXPECT_TRUE(seeing.misses(6, 7, 3, 4)) << "nor the right edge";
+
+  AccelBox behind;
+  behind.lower = {-5.0, -5.0, 1.0}, behind.upper = {5.0, 5.0, 2.0};
+  EXPECT_TRUE(CameraCull(camera, basis, glm::dvec3(0.0), {behind}).misses(-0.5, 7.5, -0.5, 7.5));
+  AccelBox floor;  // under the eye and reaching behind it: seen in the lower half only
+  floor.lower = {-5.0, -1.0, -10.0}, floor.upper = {5.0, -1.0, 10.0};
+  const CameraCull under(camera, basis, glm::dvec3(0.0), {floor});
+  EXPECT_TRUE(under.misses(0, 7, 0, 3)) << "the upper half looks above it";
+  EXPECT_FALSE(under.misses(0, 7, 4, 7));
+  AccelBox around;  // holding the eye: every ray starts inside it
+  around.lower = glm::dvec3(-1.0), around.upper = glm::dvec3(1.0);
+  EXPECT_FALSE(CameraCull(camera, basis, glm::dvec3(0.0), {around}).misses(0, 1, 0, 1));
+  EXPECT_FALSE(CameraCull(camera, basis, glm::dvec3(0.0), {behind, ahead}).misses(3, 4, 3, 4)) << "any box seen counts";
+  EXPECT_TRUE(CameraCull(camera, basis, glm::dvec3(0.0), {}).misses(0, 1, 0, 1)) << "no box: no triangle";
+}
+
+// The batched path culls the background; pixel by pixel, nothing is culled: both give the same colours bit for bit
+// and count the same camera rays, with one sample and with several, for a small model at the image's side, whose
+// box edge lies between pixels of one block.
+TEST(CameraCull, BatchedPixelsEqualPixelByPixel) {
+  Scene scene;
+  scene.camera = testing::frontCamera(16);
+  scene.background = Color(0.1f, 0.3f, 0.7f);
+  Material m = testing::plainMaterial();
+  scene.materials.push_back(m);
+  scene.ambientLight = Color(50.0f);
+  scene.lights.of<PointLight>().push_back({"1", glm::dvec3(0.0, 0.0, 1.0), Color(500.0f)});
+  testing::addTriangle(scene, {0.3, 0.05, -1.0}, {0.6, 0.2, -1.0}, {0.35, 0.4, -1.0}, 0);
+  testing::addQuadFacingZ(scene, -2.5, -2.5, -1.0, -1.5, -3.0, 0);  // a second mesh, a box of its own
+  for (int samples : {1, 3}) {
+    RenderSettings settings;
+    settings.pixelSamples = samples;
+    auto geometry = prepareGeometry(scene, settings.accel, BvhBuild::Interactive);
+    const Tracer tracer(scene, *geometry->accel, geometry->shading, settings);
+    std::vector<PixelXY> pixels;
+    for (int y = 0; y < 16; ++y)
+      for (int x = 0; x < 16; ++x) pixels.push_back({x, y});
+    std::vector<Color> batched(pixels.size());
+    RayCounts batchedRays, singleRays;
+    for (std::size_t at = 0; at < pixels.size(); at += kPixelBatch)
+      tracer.tracePixels(pixels.data() + at, kPixelBatch, batched.data() + at, batchedRays);
+    int background = 0;
+    for (std::size_t n = 0; n < pixels.size(); ++n) {
+      const Color single = tracer.tracePixel(pixels[n].x, pixels[n].y, singleRays);
+      EXPECT_EQ(batched[n], single) << "pixel " << pixels[n].x << ", " << pixels[n].y << ", " << samples << " samples";
+      background += single == scene.background;
+    }
+    EXPECT_EQ(batchedRays.camera, singleRays.camera);
+    EXPECT_EQ(batchedRays.shadow, singleRays.shadow);
+    EXPECT_GT(background, 200) << "most of the image is background";
+    EXPECT_LT(background, 248) << "both meshes are seen";
+  }
+}
+
+// Every triangle a ray can hit lies in one of the accel's boxes, for each back-end; meshes far apart get boxes of
+// their own, and triangles with a corner that is not finite are left out.
+TEST(AccelBoxes, HoldEveryTriangleAndKeepMeshesApart) {
+  Scene scene;
+  scene.camera = testing::frontCamera(8);
+  scene.materials.push_back(testing::plainMaterial());
+  std::mt19937 random(3);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  for (int mesh = 0; mesh < 3; ++mesh) {
+    const glm::dvec3 centre(100.0 * mesh, 0.0, -10.0);
+    Mesh m{std::to_string(mesh), 0, static_cast<std::uint32_t>(scene.triangles.size()), 0};
+    for (int t = 0; t < 300 + 200 * mesh; ++t) {
+      const auto first = static_cast<std::uint32_t>(scene.vertices.size());
+      for (int c = 0; c < 3; ++c) scene.vertices.push_back(centre + glm::dvec3(unit(random), unit(random), unit(random)));
+      scene.triangles.push_back(Triangle{{first, first + 1, first + 2}});
+      ++m.triangleCount;
+    }
+    scene.meshes.push_back(m);
+  }
+  scene.vertices[0].x = std::numeric_limits<double>::quiet_NaN();  // its triangle is left out
+  for (AccelKind kind : {AccelKind::Embree, AccelKind::Packet, AccelKind::Reference}) {
+    auto geometry = prepareGeometry(scene, kind, BvhBuild::Interactive);
+    const Accel& accel = *geometry->accel;
+    const std::vector<AccelBox>& boxes = accel.boxes();
+    ASSERT_GE(boxes.size(), 3u);
+    EXPECT_LE(boxes.size(), kAccelBoxes + 1);
+    for (const AccelBox& box : boxes) EXPECT_LT(box.upper.x - box.lower.x, 10.0) << "a box spans two meshes";
+    for (std::size_t t = 1; t < scene.triangles.size(); ++t) {
+      bool held = false;
+      for (const AccelBox& box : boxes) {
+        bool all = true;
+        for (std::uint32_t v : scene.triangles[t].vertex) {
+          const glm::dvec3 p = scene.vertices[v] - accel.origin();
+          all = all && glm::all(glm::greaterThanEqual(p, box.lower)) && glm::all(glm::lessThanEqual(p, box.upper));
+        }
+        held = held || all;
+      }
+      EXPECT_TRUE(held) << "triangle " << t << " is in no box";
+    }
+  }
 }
 
 TEST(AntiAliasing, EdgePixelsBlendAndTheImageIsTheSameForAnyThreadCount) {

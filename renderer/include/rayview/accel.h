@@ -5,9 +5,11 @@
 // how far the scene sits from the world origin.
 
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <glm/vec3.hpp>
 
@@ -34,6 +36,13 @@ struct Ray {
   std::uint32_t excludedTriangle = kNoTriangle;  // never reported as a hit (the triangle a ray leaves)
 };
 
+// A box relative to Accel::origin().
+struct AccelBox {
+  glm::dvec3 lower{std::numeric_limits<double>::infinity()};
+  glm::dvec3 upper{-std::numeric_limits<double>::infinity()};
+  bool empty() const { return !(lower.x <= upper.x); }
+};
+
 struct Hit {
   double t = 0.0;
   std::uint32_t triangle = 0;  // index into Scene::triangles
@@ -58,13 +67,22 @@ class Accel {
 
   // The world point that ray coordinates are relative to.
   const glm::dvec3& origin() const { return origin_; }
+  // At most kAccelBoxes boxes that together hold every triangle a ray can hit (one whose corners are finite: every
+  // back-end leaves the others out): a ray that misses them all hits nothing. Each a run of triangles, split at
+  // mesh starts, so a model and the floor under it get boxes of their own; one box around every vertex above
+  // kBoxedTriangles, where the pass over the triangles would cost more than the camera rays it spares.
+  const std::vector<AccelBox>& boxes() const { return boxes_; }
 
  protected:
-  explicit Accel(const glm::dvec3& origin) : origin_(origin) {}
+  Accel(const glm::dvec3& origin, const SceneGeometry& scene);
 
  private:
   glm::dvec3 origin_;
+  std::vector<AccelBox> boxes_;
 };
+
+inline constexpr std::size_t kAccelBoxes = 16;
+inline constexpr std::size_t kBoxedTriangles = 1u << 18;
 
 // Progress in [0, 1]; return false to cancel the build (buildAccel then returns nullptr).
 using BuildProgress = bool (*)(void* user, double fraction);

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rayview/accel.h"
+#include "rayview/camera_cull.h"
 #include "rayview/camera_rays.h"
 #include "rayview/metal_rough.h"
 #include "rayview/render_settings.h"
@@ -107,6 +108,9 @@ class Tracer {
   void setCameraRay(const glm::dvec3& direction, Ray& ray) const;
   // The camera ray of sample k of pixel (i, j) and the seed of its light samples.
   void sampleRay(int i, int j, int k, std::uint32_t& seed, Ray& ray) const;
+  // Whether every camera ray of these pixels' samples passes beside the scene (CameraCull): their colour is the
+  // background, as traced.
+  bool cameraMisses(const PixelXY* pixels, int count) const;
   // The colours of `count` <= kRayPacket camera rays traced together.
   void traceCameraRays(const Ray* rays, const std::uint32_t* seeds, int count, Color* out, RayCounts& counts) const;
   Color tracePath(const Ray& cameraRay, const Hit& firstHit, std::uint32_t pixelSeed, RayCounts& counts) const;
@@ -149,6 +153,7 @@ class Tracer {
   CameraBasis basis_;
   std::vector<glm::dvec3> columnParts_, rowParts_;  // pixelColumnPart / pixelRowPart of each pixel centre
   glm::dvec3 eyeRelative_{0.0};
+  std::optional<CameraCull> cull_;  // set once the eye is known
   SceneLights::Prepared lights_;  // by type, in the order of light_types.h
   bool pointLightsOnly_ = false;  // so a block's hits are lit four at a time (shadePointLights)
   std::vector<const Texture*> textures_;  // per material: SceneGeometry::textureOf, once per render
