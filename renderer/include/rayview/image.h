@@ -30,7 +30,7 @@ class ImageIoError : public std::runtime_error {
 
 // How PNG files are deflated: `level` 1 (fastest) is ISA-L's level 1, 2 .. 9 (smallest) zlib's, in up to `threads`
 // parts at once (0: one per hardware thread; parts are at least 256 KiB); rows unfiltered (png_encode.cpp). Level
-// 1: the fastest measured, files 1-5 % larger than zlib's level 1 (docs/PERFORMANCE.md, "PNG writing").
+// 1: the fastest measured, files 1-6 % larger than zlib's level 1 (docs/PERFORMANCE.md, "PNG writing").
 inline constexpr int kDefaultPngLevel = 1;
 struct PngOptions {
   int level = kDefaultPngLevel;
