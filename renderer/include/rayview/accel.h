@@ -67,10 +67,11 @@ class Accel {
 
   // The world point that ray coordinates are relative to.
   const glm::dvec3& origin() const { return origin_; }
-  // At most kAccelBoxes boxes that together hold every triangle a ray can hit (one whose corners are finite: every
-  // back-end leaves the others out): a ray that misses them all hits nothing. Each a run of triangles, split at
-  // mesh starts, so a model and the floor under it get boxes of their own; one box around every vertex above
-  // kBoxedTriangles, where the pass over the triangles would cost more than the camera rays it spares.
+  // Boxes that together hold every triangle a ray can hit (one whose corners are finite: every back-end leaves the
+  // others out): a ray that misses them all hits nothing. Up to kAccelBoxes (one more when the meshes leave triangle
+  // 0 out), each a run of triangles split at mesh starts, so a model and the floor under it get boxes of their own;
+  // one box around every vertex above kBoxedTriangles, where the pass over the triangles would cost more than the
+  // camera rays it spares.
   const std::vector<AccelBox>& boxes() const { return boxes_; }
 
  protected:
