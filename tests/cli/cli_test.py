@@ -13,6 +13,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from image_files import same_content, same_file  # noqa: E402
+
 
 def run(args, rayview):
     result = subprocess.run([rayview] + args, capture_output=True, text=True, timeout=300)
@@ -74,7 +77,7 @@ def main():
     r = run(["render", scene, "-o", os.path.join(a.scratch, "one.png"), "--threads", "1", "--quiet"], a.rayview)
     check(r.returncode == 0 and r.stdout == "", "--quiet prints nothing on success")
     with open(os.path.join(a.scratch, "one.png"), "rb") as f:
-        check(f.read() == png, "1 and 2 threads write the same bytes")
+        check(same_content(f.read(), png), "1 and 2 threads write the same image")
 
     r = run(["render", skeleton, "-o", out_png], a.rayview)
     check(r.returncode == 2 and "skeleton_2024.xml:2: error:" in r.stderr, "a bad scene exits 2 with file:line")
@@ -212,8 +215,7 @@ def check_embree_loaded_only_when_needed(a):
                         os.path.join(a.scratch, "car_packet.png"), "--threads", "2"],
                        capture_output=True, text=True, timeout=300, env=env)
     warnings = [line for line in r.stderr.splitlines() if "cannot load Embree" in line]
-    with open(os.path.join(a.scratch, "car.png"), "rb") as f, open(os.path.join(a.scratch, "car_packet.png"), "rb") as g:
-        same = f.read() == g.read()
+    same = same_file(os.path.join(a.scratch, "car.png"), os.path.join(a.scratch, "car_packet.png"))
     check(r.returncode == 0 and len(warnings) == 1 and "packet BVH instead" in warnings[0] and "accel packet" in r.stdout
           and same, "without a loadable Embree, car warns once and renders the same image with the packet BVH")
 
@@ -242,8 +244,7 @@ def check_ceng477_camera(a):
     r = run(["render", original, "--camera", "2", "-o", ours, "--quiet"], a.rayview)
     check(r.returncode == 0, "a CENG477 file renders with --camera 2 (exit 0)")
     run(["render", os.path.join(folder, "scienceTree_1080x1080.xml"), "-o", theirs, "--quiet"], a.rayview)
-    with open(ours, "rb") as f, open(theirs, "rb") as g:
-        check(f.read() == g.read(), "its camera 2 gives the image of its conversion, byte for byte")
+    check(same_file(ours, theirs), "its camera 2 gives the image of its conversion, pixel for pixel")
     missing = os.path.join(a.scratch, "tree_9.png")
     r = run(["render", original, "--camera", "9", "-o", missing], a.rayview)
     check(r.returncode == 2 and "camera 9 was asked for, but <Cameras> has 3 cameras" in r.stderr
@@ -287,8 +288,7 @@ def check_lean_scene(a):
         check(r.returncode == 0 and "100352 triangles" in r.stdout and f"accel {accel}" in r.stdout
               and mode in r.stdout and "B/triangle" in r.stdout, f"a scene of 100 352 triangles renders to {name}")
     for other in ("fast.png", "lean_packet.png"):
-        with open(outputs["lean.png"], "rb") as f, open(outputs[other], "rb") as g:
-            check(f.read() == g.read(), f"the lean image equals {other}")
+        check(same_file(outputs["lean.png"], outputs[other]), f"the lean image equals {other}")
     r = run(["compare", outputs["lean.png"], outputs["lean.ppm"]], a.rayview)
     check(r.returncode == 0 and "exact=100" in r.stdout, "its PNG and its PPM hold the same pixels")
 

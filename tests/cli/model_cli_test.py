@@ -15,6 +15,9 @@ import subprocess
 import sys
 import zlib
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from image_files import same_file  # noqa: E402
+
 
 def run(args, rayview):
     result = subprocess.run([rayview] + args, capture_output=True, text=True, timeout=300)
@@ -228,7 +231,7 @@ def check_texture_outside_the_folder(rayview, s):
           "../tex/wood.png" in open(scene).read() and "--copy-textures" in r.stderr,
           "import names an outside texture where it lies, copies nothing and says how to copy: " + r.stderr.strip())
     r = run(["render", scene, "-o", s("outside/far_scene.png")], rayview)
-    check(r.returncode == 0 and open(s("outside/far_scene.png"), "rb").read() == open(s("outside/far.png"), "rb").read(),
+    check(r.returncode == 0 and same_file(s("outside/far_scene.png"), s("outside/far.png")),
           "the imported scene finds the texture where it lies and renders as the model did: " + r.stderr.strip())
     copied = s("outside/out/copied.xml")
     r = run(["import", s("outside/model/far.obj"), "-o", copied, "--copy-textures"], rayview)
@@ -250,7 +253,7 @@ def check_windows_texture_paths(rayview, s):
         textured_obj(in_windows, name, written)
         r = run(["render", in_windows(name + ".obj"), "-o", in_windows(name + ".png")], rayview)
         check(r.returncode == 0 and "is not where the model says" in r.stderr and "wood2.png" in r.stderr and
-              open(in_windows(name + ".png"), "rb").read() == open(in_windows("plain.png"), "rb").read(),
+              same_file(in_windows(name + ".png"), in_windows("plain.png")),
               f"the Windows path {written} finds the texture beside the model, with a warning: " + r.stderr.strip())
 
 

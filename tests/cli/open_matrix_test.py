@@ -2,8 +2,8 @@
 """Every command x every input kind x every option of opening a scene, as docs/inputs-and-options.md tables them.
 
 The table in that doc is read here: each of its cells must have a check below and each check a cell. Under mpirun
-(when mpirun is found) every run is also compared with one process's: the same exit code, the same files byte for
-byte, the same first message.
+(when mpirun is found) every run is also compared with one process's: the same exit code, the same files (images by
+their pixels: tests/support/image_files.py), the same first message.
 
 Usage: open_matrix_test.py --rayview PATH --source DIR --scratch DIR
 """
@@ -17,6 +17,9 @@ import shutil
 import struct
 import subprocess
 import sys
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from image_files import same_content, same_files  # noqa: E402
 
 HANDOUT = """<scene>
   <maxraytracedepth>1</maxraytracedepth>
@@ -84,8 +87,8 @@ def write_ply(path):
 
 
 class Run:
-    def __init__(self, code, stderr, files):
-        self.code, self.stderr, self.files = code, stderr, files
+    def __init__(self, code, stderr, files, out):
+        self.code, self.stderr, self.files, self.out = code, stderr, files, out
 
     def first_message(self):
         lines = [l for l in self.stderr.splitlines() if "error" in l]
@@ -143,7 +146,7 @@ class Rows:
                     continue
                 with open(os.path.join(root, name), "rb") as f:
                     files[os.path.relpath(os.path.join(root, name), out)] = f.read()
-        return Run(result.returncode, result.stderr, files)
+        return Run(result.returncode, result.stderr, files, out)
 
     def render_args(self, shape, kind, options, out):
         source = self.inputs[kind]
@@ -237,7 +240,7 @@ def cell_checks(rows, row):
         stopped = refused(three, "camera 3")
         if export:
             return one.code == 0 and two.code == 0 and stopped, f"exit {one.code} {two.code} {three.code}"
-        differ = one.code == 0 and two.code == 0 and one.files != two.files and one.files and two.files
+        differ = one.code == 0 and two.code == 0 and not same_files(one.files, two.files) and one.files and two.files
         if row.endswith("DIR/`"):
             differ = differ and len(two.files) == 1
         return differ and stopped, f"exit {one.code} {two.code} {three.code}: {three.stderr[-300:]}"
@@ -246,12 +249,13 @@ def cell_checks(rows, row):
         a, b = run(kind, *pair[0]), run(kind, *pair[1])
         if export:
             return a.code == 0 and b.code == 0, f"exit {a.code} {b.code}"
-        return a.code == 0 and b.code == 0 and a.files and a.files != b.files, f"exit {a.code} {b.code} {b.stderr[-300:]}"
+        return (a.code == 0 and b.code == 0 and a.files and not same_files(a.files, b.files),
+                f"exit {a.code} {b.code} {b.stderr[-300:]}")
 
     def memory():
         lean, fast = run("handout XML", "--memory", "lean"), run("handout XML", "--memory", "fast")
         if renders:
-            return lean.code == 0 and lean.files and lean.files == fast.files, f"exit {lean.code} {fast.code}"
+            return lean.code == 0 and lean.files and same_files(lean.files, fast.files), f"exit {lean.code} {fast.code}"
         return lean.code == 2 and "does not apply" in lean.stderr and not lean.files, f"exit {lean.code}"
 
     checks = {
@@ -306,7 +310,7 @@ def main():
     parser.add_argument("--scratch", required=True)
     # ctest runs the viewer's row on its own (it needs the one virtual display) while the commands run beside others.
     parser.add_argument("--rows", choices=("all", "commands", "viewer"), default="all")
-    # The sanitizers a build has ("" for none): the mpirun rows, byte-for-byte comparisons of code the single-process
+    # The sanitizers a build has ("" for none): the mpirun rows, comparisons with one process of code the single-process
     # rows already run, are left to the plain build there.
     parser.add_argument("--sanitizers", default="")
     args = parser.parse_args()
@@ -322,7 +326,7 @@ def main():
             left.append(row)
             continue
         if mpi and args.sanitizers:
-            print(f"  left to the build without sanitizers: {row} (compared byte for byte with one process there)")
+            print(f"  left to the build without sanitizers: {row} (compared with one process there)")
             left.append(row)
             continue
         if mpi and not rows.mpirun:
@@ -344,11 +348,15 @@ def main():
             if mpi:
                 single = singles.get((row.replace("mpirun ", ""), column), [])
                 for (kind, options, m), (_, _, s) in zip(runs[start:], single):
-                    same = m.code == s.code and m.files == s.files and m.first_message() == s.first_message()
+                    same = m.code == s.code and same_files(m.files, s.files) and m.first_message() == s.first_message()
                     if not same:
+                        # Both runs' folders stay in the scratch folder, named here, to compare their files.
+                        names = set(m.files) | set(s.files)
+                        differ = sorted(n for n in names if not same_content(m.files.get(n), s.files.get(n)))
                         failures.append(f"{row} x {column} {kind} {' '.join(options)}: mpirun exit {m.code} "
-                                        f"files {sorted(m.files)} '{m.first_message()}'; one process exit {s.code} "
-                                        f"files {sorted(s.files)} '{s.first_message()}'")
+                                        f"files {sorted(m.files)} '{m.first_message()}' in {m.out}; one process "
+                                        f"exit {s.code} files {sorted(s.files)} '{s.first_message()}' in {s.out}; "
+                                        f"differing files {differ}")
             else:
                 singles[(row, column)] = runs[start:]
     rows.close()

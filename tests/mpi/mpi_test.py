@@ -11,6 +11,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from image_files import same_content, same_file  # noqa: E402
+
 SKIP = 77
 
 
@@ -121,7 +124,7 @@ class Tester:
         # One rank is a single process (nothing to share; MPI is not even started): its usual summary.
         summary = f"rank {ranks - 1}" in run.stdout and "balance" in run.stdout if ranks > 1 else "rays" in run.stdout
         self.check(summary, f"{what}: summary:\n{run.stdout}")
-        same = os.path.exists(spread) and open(single, "rb").read() == open(spread, "rb").read()
+        same = os.path.exists(spread) and same_file(single, spread)
         self.check(same, f"{what}: the image differs from the single process's")
 
     def frames(self, scene, ranks, count):
@@ -143,8 +146,7 @@ class Tester:
         whole = sum(int(row[1].split()[0]) for row in rows if len(row) == 3 and "whole frames" in row[1])
         self.check(len(rows) == ranks and whole == count - (ranks - 1),
                    f"{what}: {whole} frames rendered whole, not {count - (ranks - 1)}:\n{run.stdout}")
-        same = lambda: all(os.path.exists(spread % k) and open(spread % k, "rb").read() == open(single % k, "rb").read()
-                           for k in range(count))
+        same = lambda: all(os.path.exists(spread % k) and same_file(spread % k, single % k) for k in range(count))
         self.check(same(), f"{what}: frames differ from the single process's")
         os.remove(spread % 1)
         run = subprocess.run(self.mpirun(ranks, [scene, *options, "-o", spread]), capture_output=True, text=True,
@@ -169,8 +171,7 @@ class Tester:
         rows = [line.split(",") for line in run.stdout.splitlines() if line.startswith("rank ")]
         whole = sum(int(row[1].split()[0]) for row in rows if len(row) == 4 and "scene" in row[1])
         self.check(len(rows) == ranks and whole == len(scenes), f"{what}: {whole} scenes rendered whole:\n{run.stdout}")
-        same = lambda: all(os.path.exists(spread + n) and open(spread + n, "rb").read() == open(single + n, "rb").read()
-                           for n in names)
+        same = lambda: all(os.path.exists(spread + n) and same_file(spread + n, single + n) for n in names)
         self.check(same(), f"{what}: images differ from the single process's")
         for n in names[1:3]:
             os.remove(spread + n)
@@ -217,7 +218,8 @@ class Tester:
         job, stderr, _ = ended
         expected = open(single, "rb").read()
         written = sorted(os.listdir(out)) if os.path.isdir(out) else []
-        same = written == [f"m{k}.png" for k in range(4)] and all(open(out + n, "rb").read() == expected for n in written)
+        same = written == [f"m{k}.png" for k in range(4)] and all(same_content(open(out + n, "rb").read(), expected)
+                                                                   for n in written)
         self.check(job.returncode == 0 and same and "rank 1 fell silent" in stderr,
                    f"killed batch: exit {job.returncode}, files {written}, same {same}:\n{stderr}")
         self.check(not any(rank_process(job.pid, r) for r in range(3)), "killed batch: a rank is still running")
@@ -315,7 +317,7 @@ class Tester:
         if recovery:
             single = self.out("recovered_single")
             subprocess.run([self.args.rayview, "render", *scene_args, "-o", single, "--quiet"], check=True)
-            same = os.path.exists(output) and open(output, "rb").read() == open(single, "rb").read()
+            same = os.path.exists(output) and same_file(output, single)
             self.check(job.returncode == 0 and same, f"{name}: exit {job.returncode}, same image {same}:\n{stderr}")
             self.check("rank 1 fell silent" in stderr, f"{name}: no message naming rank 1:\n{stderr}")
         else:

@@ -17,6 +17,9 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import mpi_test  # noqa: E402  (the render test's preparation, beside this file)
 
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from image_files import same_file  # noqa: E402
+
 SKIP = 77
 
 
@@ -85,7 +88,7 @@ def edited_render_matches(args, scene, name, edits, options):
                        check=False)
         shown = out(f"{stage}.png")
         if not (os.path.exists(shown) and os.path.exists(reference)
-                and open(shown, "rb").read() == open(reference, "rb").read()):
+                and same_file(shown, reference)):
             failures.append(f"{name}: the {stage} final pass is not `rayview render`'s image ({shown}, {reference})")
     return failures
 
@@ -120,7 +123,7 @@ def killed_worker(args, scene):
         failures.append(f"killed worker: the summary should say rank 1 was lost, not list it as working:\n{text}")
     reference = os.path.join(args.scratch, "killed_render.png")
     subprocess.run([args.rayview, "render", scene, "--samples", "12", "-o", reference, "--quiet"], check=False)
-    if not (os.path.exists(out) and open(out, "rb").read() == open(reference, "rb").read()):
+    if not (os.path.exists(out) and same_file(out, reference)):
         failures.append(f"killed worker: the final pass is not `rayview render`'s image ({out})")
     if job_rank(marker, 2) is not None:
         failures.append("killed worker: rank 2 still runs after the window closed")
