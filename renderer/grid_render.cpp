@@ -57,7 +57,8 @@ void traceColors(const PixelBatchFunction& trace, const std::vector<PixelXY>& pi
 }
 
 bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, ThreadPool& pool, Image& image,
-                RayCounts& rays, const std::function<bool()>& stopped, Quantization quantization) {
+                RayCounts& rays, const std::function<bool()>& stopped, Quantization quantization,
+                const std::function<void(std::int64_t pixels)>& tileDone) {
   const std::vector<Tile> tiles = makeTiles(ceilDiv(image.width, stride), ceilDiv(image.height, stride), pool.size());
   std::mutex raysMutex;
   std::atomic<bool> cancelled{false};
@@ -75,6 +76,7 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
     PixelXY batch[kPixelBatch];
     Color colors[kPixelBatch];
     int count = 0;
+    std::int64_t traced = 0;
     auto flush = [&] {
       if (count == 0) return;
       pixels(batch, count, colors, counts);
@@ -84,12 +86,14 @@ bool renderGrid(const PixelBatchFunction& pixels, int stride, int skipStride, Th
         out[1] = quantizeChannel(colors[n].y, quantize);
         out[2] = quantizeChannel(colors[n].z, quantize);
       }
+      traced += count;
       count = 0;
     };
     visitTilePixels(tile, stride, skipStride, [&](int x, int y) {
       batch[count++] = {x, y};
       if (count == kPixelBatch) flush();
     }, flush);
+    if (tileDone) tileDone(traced);
     std::lock_guard lock(raysMutex);
     rays += counts;
   });

@@ -163,6 +163,10 @@ PassProgress ProgressiveRenderer::passProgress() const {
   return p;
 }
 
+std::function<void(std::int64_t)> ProgressiveRenderer::tileCounter() {
+  return [this](std::int64_t pixels) { passPixelsDone_.fetch_add(pixels, std::memory_order_relaxed); };
+}
+
 void ProgressiveRenderer::startCounting(std::uint64_t generation, int stride, std::int64_t pixels) {
   passPixelsDone_.store(0, std::memory_order_relaxed);
   passPixelsPlanned_.store(pixels, std::memory_order_relaxed);
@@ -190,18 +194,16 @@ bool ProgressiveRenderer::renderPass(const PixelSource& source, std::uint64_t ge
     renderGrid(
         [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
           source.samples(pixels, count, 0, out, counts);
-          passPixelsDone_.fetch_add(count, std::memory_order_relaxed);
           for (int n = 0; n < count; ++n)
             sums_[static_cast<std::size_t>(pixels[n].y) * samples_.width + pixels[n].x] = out[n];
         },
-        stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
+        stride, previousStride, pool_, samples_, rays, stopped, source.quantization(), tileCounter());
   } else {
     renderGrid(
         [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
           source.pixels(pixels, count, out, counts);
-          passPixelsDone_.fetch_add(count, std::memory_order_relaxed);
         },
-        stride, previousStride, pool_, samples_, rays, stopped, source.quantization());
+        stride, previousStride, pool_, samples_, rays, stopped, source.quantization(), tileCounter());
   }
   return generation_.load() == generation;
 }
@@ -214,7 +216,6 @@ bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_
   renderGrid(
       [&](const PixelXY* pixels, int n, Color* out, RayCounts& counts) {
         source.samples(pixels, n, k, out, counts);
-        passPixelsDone_.fetch_add(n, std::memory_order_relaxed);
         for (int m = 0; m < n; ++m) {
           Color& sum = sums_[static_cast<std::size_t>(pixels[m].y) * samples_.width + pixels[m].x];
           sum += out[m];
@@ -222,7 +223,7 @@ bool ProgressiveRenderer::accumulatePass(const PixelSource& source, std::uint64_
         }
       },
       1, 0, pool_, samples_, rays, [&] { return generation_.load(std::memory_order_relaxed) != generation; },
-      source.quantization());
+      source.quantization(), tileCounter());
   return generation_.load() == generation;
 }
 

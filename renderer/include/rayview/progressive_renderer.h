@@ -125,6 +125,8 @@ class ProgressiveRenderer {
   std::atomic<int> passStride_{0};
   std::atomic<std::int64_t> passPixelsPlanned_{0}, passPixelsDone_{0};
   void startCounting(std::uint64_t generation, int stride, std::int64_t pixels);
+  // What renderGrid calls with each finished tile's pixel count: the pass's progress, one atomic add a tile.
+  std::function<void(std::int64_t)> tileCounter();
 
   mutable std::mutex mutex_;
   mutable std::condition_variable changed_;
