@@ -217,8 +217,8 @@ RAYVIEW_HOT void intersectTriangle(const RTCIntersectFunctionNArguments* args) {
               lane.hit = hit;
               lane.triangle = args->primID;
               query.tFar[id] = std::min(lane.ray->tFar, tieSearchLimit(hit.t));
-              // Embree culls by the float tfar: round up, so a triangle tied with this one is still visited.
-              RTCRayN_tfar(rays, args->N, i) = nextFloatUp(static_cast<float>(query.tFar[id]));
+              // Embree culls by the float tfar: widened, so a triangle tied with this one is still visited.
+              RTCRayN_tfar(rays, args->N, i) = widenedFar(query.tFar[id]);
               RTCHitN_primID(hits, args->N, i) = args->primID;
               RTCHitN_geomID(hits, args->N, i) = args->geomID;
             });

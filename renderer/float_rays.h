@@ -60,8 +60,8 @@ inline bool floatTraversable(const Ray& ray) {
   return ray.tNear >= 0.0 && !std::isnan(ray.tFar);
 }
 
-// A float ray: origin and direction rounded to nearest, the interval widened to the next floats outwards (never
-// below 0).
+// A float ray: origin and direction rounded to nearest, the interval widened outwards (widenedNear, widenedFar:
+// never below 0).
 struct FloatRay {
   float origin[3], direction[3], tNear, tFar;
 };
@@ -72,8 +72,8 @@ inline FloatRay floatRay(const Ray& ray) {
     f.origin[k] = static_cast<float>(ray.origin[k]);
     f.direction[k] = static_cast<float>(ray.direction[k]);
   }
-  f.tNear = std::max(0.0f, nextFloatDown(static_cast<float>(ray.tNear)));
-  f.tFar = nextFloatUp(static_cast<float>(ray.tFar));
+  f.tNear = widenedNear(ray.tNear);
+  f.tFar = widenedFar(ray.tFar);
   return f;
 }
 
@@ -112,9 +112,8 @@ template <int kLanes>
   // floatRay(), lane by lane.
   auto toFloat = [&](Double4 v) { return f.usable ? __builtin_convertvector(v, Float4) : Float4{}; };
   const Float4 zero{};
-  f.tNear = nextFloatDown4(toFloat(near));
-  f.tNear = zero < f.tNear ? f.tNear : zero;
-  f.tFar = f.usable ? nextFloatUp4(__builtin_convertvector(far, Float4)) : zero;
+  f.tNear = widenedNear4(toFloat(near));
+  f.tFar = f.usable ? widenedFar4(__builtin_convertvector(far, Float4)) : zero;
   for (int axis = 0; axis < 3; ++axis) {
     f.origin[axis] = toFloat(o[axis]);
     f.direction[axis] = toFloat(d[axis]);

@@ -2,6 +2,7 @@
 // The neighbouring floats of a float, without a libm call: std::nextafter is an out-of-line call that
 // showed as 10 % of a render's profile (two per ray). Same results as std::nextafter(x, +-INFINITY).
 
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <limits>
@@ -33,5 +34,19 @@ inline Float4 nextFloatUp4(Float4 x) {
 }
 
 inline Float4 nextFloatDown4(Float4 x) { return -nextFloatUp4(-x); }
+
+// A float traversal's interval ends, widened by 2^-20 of themselves and a float step: Embree's SSE4.2 packet kernel
+// on an Intel Xeon culled a triangle hit 7e-15 before a ray's end (45.4) when the end was one float step out. The
+// hits are then decided in double against the ray's own interval, so only what is visited changes.
+inline constexpr float kIntervalWidening = 0x1p-20f;
+inline float widenedFar(double t) { return nextFloatUp(static_cast<float>(t) * (1.0f + kIntervalWidening)); }
+inline float widenedNear(double t) {
+  return std::max(0.0f, nextFloatDown(static_cast<float>(t) * (1.0f - kIntervalWidening)));
+}
+inline Float4 widenedFar4(Float4 t) { return nextFloatUp4(t * (1.0f + kIntervalWidening)); }
+inline Float4 widenedNear4(Float4 t) {
+  const Float4 near = nextFloatDown4(t * (1.0f - kIntervalWidening)), zero{};
+  return zero < near ? near : zero;
+}
 
 }  // namespace rayview

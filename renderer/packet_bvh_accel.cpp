@@ -330,7 +330,7 @@ class PacketBvhAccel final : public Accel {
         p.hit[k] = hit;
         p.triangle[k] = t.id;
         p.packed.tFar[k] = std::min(p.rays[k].tFar, tieSearchLimit(hit.t));
-        p.tFar[k] = nextFloatUp(static_cast<float>(p.packed.tFar[k]));
+        p.tFar[k] = widenedFar(p.packed.tFar[k]);
       });
     for (int k = 0; k < count; ++k) {
       if (!(lanes & (1u << k))) continue;
