@@ -5,12 +5,13 @@ import ctypes.util
 import os
 import queue
 import shutil
-import struct
 import subprocess
 import sys
 import threading
 import time
-import zlib
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "support"))
+from image_files import decode_png  # noqa: E402
 
 SKIP = 77
 SCREEN = "-screen 0 1600x1000x24"
@@ -32,48 +33,10 @@ def read_png(path):
     """(width, height, bytes RGB) of an 8-bit RGB or RGBA, non-interlaced PNG."""
     with open(path, "rb") as f:
         data = f.read()
-    if data[:8] != b"\x89PNG\r\n\x1a\n":
-        raise Failure(f"{path}: not a PNG file")
-    pos, idat, header = 8, b"", None
-    while pos < len(data):
-        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + length]
-        if kind == b"IHDR":
-            header = struct.unpack(">IIBBBBB", body)
-        elif kind == b"IDAT":
-            idat += body
-        elif kind == b"IEND":
-            break
-        pos += 12 + length
-    width, height, depth, colour, _, _, interlace = header
-    if depth != 8 or colour not in (2, 6) or interlace:
-        raise Failure(f"{path}: unsupported PNG (depth {depth}, colour type {colour}, interlace {interlace})")
-    channels = 3 if colour == 2 else 4
-    raw = zlib.decompress(idat)
-    stride = width * channels
-    rows, previous = [], bytearray(stride)
-    for y in range(height):
-        start = y * (stride + 1)
-        kind, line = raw[start], bytearray(raw[start + 1:start + 1 + stride])
-        # Filter 0 (none), what the viewer's screenshots use on every row: the bytes as they are, without the
-        # per-byte loop below (0.75 s of a 1280x800 screenshot's decoding).
-        for x in range(stride) if kind else ():
-            a = line[x - channels] if x >= channels else 0
-            b = previous[x]
-            c = previous[x - channels] if x >= channels else 0
-            if kind == 1:
-                line[x] = (line[x] + a) & 255
-            elif kind == 2:
-                line[x] = (line[x] + b) & 255
-            elif kind == 3:
-                line[x] = (line[x] + (a + b) // 2) & 255
-            elif kind == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(bytes(line))
-        previous = line
-    pixels = b"".join(rows)
+    try:
+        width, height, channels, pixels = decode_png(data)
+    except ValueError as error:
+        raise Failure(f"{path}: {error}") from None
     if channels == 4:
         rgb = bytearray(width * height * 3)
         for c in range(3):
