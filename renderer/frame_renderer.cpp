@@ -14,7 +14,7 @@ namespace rayview {
 bool renderFrame(const Tracer& tracer, int width, int height, ThreadPool& pool, Image& image, FrameStats& stats,
                  const std::atomic<bool>* stop) {
   const auto start = std::chrono::steady_clock::now();
-  if (image.width != width || image.height != height) image = Image(width, height);
+  if (image.width != width || image.height != height) image = Image::unfilled(width, height);
   stats.rays = {};
   const bool complete = renderGrid(
       [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
@@ -39,7 +39,7 @@ void renderFrameDeflated(const Tracer& tracer, int width, int height, ThreadPool
   Image band;
   for (int top = 0; top < height; top += bandRows) {
     const int rows = std::min(bandRows, height - top);
-    if (band.height != rows || band.width != width) band = Image(width, rows);
+    if (band.height != rows || band.width != width) band = Image::unfilled(width, rows);
     renderGrid(
         [&](const PixelXY* pixels, int count, Color* out, RayCounts& counts) {
           PixelXY inImage[kPixelBatch];

@@ -47,7 +47,9 @@ Image readImageFile(const std::filesystem::path& path, std::string_view role) {
   std::string reason;
   std::optional<Texture> texture = detail::readTextureImage(path, reason, role);
   if (!texture) throw ImageIoError("cannot read " + path.string() + ": " + reason);
-  Image image(texture->width, texture->height);
+  Image image;
+  image.width = texture->width;
+  image.height = texture->height;
   image.rgb = std::move(texture->rgb);
   return image;
 }

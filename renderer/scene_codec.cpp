@@ -18,8 +18,8 @@ class Writer {
     pod(static_cast<std::uint64_t>(value.size()));
     raw(value.data(), value.size());
   }
-  template <class T>
-  void array(const std::vector<T>& values) {
+  template <class T, class Allocator>
+  void array(const std::vector<T, Allocator>& values) {
     static_assert(std::is_trivially_copyable_v<T>);
     pod(static_cast<std::uint64_t>(values.size()));
     raw(values.data(), values.size() * sizeof(T));
@@ -50,9 +50,9 @@ class Reader {
     raw(value.data(), value.size());
     return value;
   }
-  template <class T>
-  std::vector<T> array() {
-    std::vector<T> values(count(sizeof(T)));
+  template <class T, class Allocator = std::allocator<T>>
+  std::vector<T, Allocator> array() {
+    std::vector<T, Allocator> values(count(sizeof(T)));
     raw(values.data(), values.size() * sizeof(T));
     return values;
   }
@@ -161,7 +161,7 @@ std::optional<Texture> readTexture(Reader& r) {
   Texture texture;
   texture.width = r.pod<int>();
   texture.height = r.pod<int>();
-  texture.rgb = r.array<std::uint8_t>();
+  texture.rgb = r.array<std::uint8_t, PixelAllocator<std::uint8_t>>();
   texture.alpha = r.array<std::uint8_t>();
   texture.opaqueAlpha = r.pod<std::uint8_t>() != 0;
   const std::size_t pixels = static_cast<std::size_t>(texture.width) * static_cast<std::size_t>(texture.height);

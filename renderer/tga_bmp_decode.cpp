@@ -77,7 +77,7 @@ std::optional<Texture> decodeBmp(std::string_view b, long long maxPixels, std::s
     return reason = "a truncated BMP (fewer pixels than its header says)", std::nullopt;
   const std::string_view palette = b.substr(14 + headerSize, offset > 14 + headerSize ? offset - 14 - headerSize : 0);
   Texture t{width, static_cast<int>(height),
-            std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3), {}};
+            PixelBytes(static_cast<std::size_t>(width) * height * 3), {}};
   for (long long y = 0; y < height; ++y) {
     const long long stored = signedHeight < 0 ? y : height - 1 - y;  // bottom-up unless the height is negative
     const auto* row = reinterpret_cast<const unsigned char*>(b.data()) + offset + rowBytes * static_cast<std::size_t>(stored);
@@ -124,7 +124,7 @@ std::optional<Texture> decodeTga(std::string_view b, long long maxPixels, std::s
                       std::all_of(storedAlpha.begin(), storedAlpha.end(), [](std::uint8_t a) { return a == 255; });
   if (opaque) storedAlpha = {};
   const bool alpha = !storedAlpha.empty();
-  Texture t{width, height, std::vector<std::uint8_t>(pixels * 3), std::vector<std::uint8_t>(storedAlpha.size()), opaque};
+  Texture t{width, height, PixelBytes(pixels * 3), std::vector<std::uint8_t>(storedAlpha.size()), opaque};
   const std::size_t rowBytes = static_cast<std::size_t>(width) * 3, w = static_cast<std::size_t>(width);
   for (int y = 0; y < height; ++y) {  // bottom-up unless the descriptor says top-down
     const auto from = static_cast<std::size_t>(topDown ? y : height - 1 - y), to = static_cast<std::size_t>(y);

@@ -152,13 +152,13 @@ TEST(ImageReaders, PpmSamplesAreScaledFromTheirMaximumValue) {
   std::string reason;
   const auto white1 = decode(std::string("P6\n2 1\n1\n") + std::string("\1\1\1\0\0\0", 6), reason);
   ASSERT_TRUE(white1) << reason;
-  EXPECT_EQ(white1->rgb, (std::vector<std::uint8_t>{255, 255, 255, 0, 0, 0}));
+  EXPECT_EQ(white1->rgb, (PixelBytes{255, 255, 255, 0, 0, 0}));
   const auto grey16 = decode(std::string("P5\n2 1\n65535\n") + std::string("\xff\xff\x80\x00", 4), reason);
   ASSERT_TRUE(grey16) << reason;
-  EXPECT_EQ(grey16->rgb, (std::vector<std::uint8_t>{255, 255, 255, 128, 128, 128}));
+  EXPECT_EQ(grey16->rgb, (PixelBytes{255, 255, 255, 128, 128, 128}));
   const auto mid = decode(std::string("P5\n3 1\n4\n") + std::string("\0\2\4", 3), reason);
   ASSERT_TRUE(mid) << reason;
-  EXPECT_EQ(mid->rgb, (std::vector<std::uint8_t>{0, 0, 0, 128, 128, 128, 255, 255, 255}));
+  EXPECT_EQ(mid->rgb, (PixelBytes{0, 0, 0, 128, 128, 128, 255, 255, 255}));
   EXPECT_FALSE(decode(std::string("P5\n1 1\n4\n") + std::string("\5", 1), reason));  // over maxval
 }
 

@@ -206,7 +206,7 @@ TEST(ObjReader, AnOpacityMapIsACutOut) {
   EXPECT_EQ(m.alphaCutoff, 0.5f);
   const Texture* mask = model.scene.textureNamed(m.alphaImage);
   ASSERT_TRUE(mask);
-  EXPECT_EQ(mask->rgb, (std::vector<std::uint8_t>{0, 0, 0, 255, 255, 255}));
+  EXPECT_EQ(mask->rgb, (PixelBytes{0, 0, 0, 255, 255, 255}));
 }
 
 }  // namespace

@@ -140,7 +140,7 @@ TEST(TextureFormats, PngKeepsItsAlphaApartAndItsColourAsItIs) {
   const std::optional<Texture> grey =
       detail::decodeImage(testing::encodePngWithAlpha(2, 1, 2, {10, 0, 250, 255}), reason);
   ASSERT_TRUE(grey) << reason;
-  EXPECT_EQ(grey->rgb, (std::vector<std::uint8_t>{10, 10, 10, 250, 250, 250}));
+  EXPECT_EQ(grey->rgb, (PixelBytes{10, 10, 10, 250, 250, 250}));
   EXPECT_EQ(grey->alpha, (std::vector<std::uint8_t>{0, 255}));
   // Opaque everywhere: no alpha to carry.
   const std::optional<Texture> opaque =

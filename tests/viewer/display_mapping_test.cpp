@@ -78,7 +78,7 @@ TEST(DisplayMapping, MapsEveryChannelOfTheImageOnItsOwn) {
   const Image brighter = mapForDisplay(raw, DisplayMapping{1.0f, 1.0f});
   EXPECT_EQ(brighter.width, 2);
   EXPECT_EQ(brighter.height, 1);
-  EXPECT_EQ(brighter.rgb, (std::vector<std::uint8_t>{0, 20, 200, 254, 255, 255}));
+  EXPECT_EQ(brighter.rgb, (PixelBytes{0, 20, 200, 254, 255, 255}));
   EXPECT_EQ(raw.rgb[2], 100);  // the raw image is left as it is
 }
 

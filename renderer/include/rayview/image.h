@@ -8,6 +8,8 @@
 #include <string_view>
 #include <vector>
 
+#include "rayview/pixel_bytes.h"
+
 namespace rayview {
 
 struct Texture;  // rayview/scene.h
@@ -15,10 +17,18 @@ struct Texture;  // rayview/scene.h
 struct Image {
   int width = 0;
   int height = 0;
-  std::vector<std::uint8_t> rgb;  // width * height * 3
+  PixelBytes rgb;  // width * height * 3
 
   Image() = default;
-  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}
+  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0) {}  // black
+  // An image whose every pixel the caller writes before reading any: its bytes are left as the allocation gives them.
+  static Image unfilled(int w, int h) {
+    Image image;
+    image.width = w;
+    image.height = h;
+    image.rgb.resize(static_cast<std::size_t>(w) * h * 3);
+    return image;
+  }
   std::uint8_t* pixel(int x, int y) { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
   const std::uint8_t* pixel(int x, int y) const { return &rgb[(static_cast<std::size_t>(y) * width + x) * 3]; }
 };

@@ -20,6 +20,7 @@
 
 #include "rayview/color.h"
 #include "rayview/light_types.h"
+#include "rayview/pixel_bytes.h"
 
 namespace rayview {
 
@@ -141,7 +142,7 @@ struct Mesh {
 struct Texture {
   int width = 0;
   int height = 0;
-  std::vector<std::uint8_t> rgb;
+  PixelBytes rgb;
   // The image's alpha channel, one byte a pixel in the same order, kept apart from the colour (which is never
   // composited): empty for an image without one, and for one whose alpha is 255 everywhere (many models' RGBA
   // textures), which `opaqueAlpha` marks instead: only images with see-through pixels pay for it, and a cut-out of

@@ -1,0 +1,63 @@
+#include "rayview/pixel_bytes.h"
+
+#include <mutex>
+#include <utility>
+
+#include <sys/mman.h>
+
+namespace rayview {
+namespace {
+
+constexpr std::size_t kHugePage = std::size_t{1} << 21;
+
+std::size_t roundedUp(std::size_t bytes) { return (bytes + kHugePage - 1) / kHugePage * kHugePage; }
+
+// The last mapping freed, kept for the next request of its size: a viewer's per-pass copies of a frame (display
+// mapping, differences) reuse pages already touched, as the heap's reuse would give them, instead of a fresh
+// mapping's faults every pass.
+struct KeptMapping {
+  std::mutex mutex;
+  void* pages = nullptr;
+  std::size_t size = 0;
+};
+KeptMapping& kept() {
+  static KeptMapping* const mapping = new KeptMapping;  // never destroyed: frees may come during exit
+  return *mapping;
+}
+
+}  // namespace
+
+void* allocateOwnPages(std::size_t bytes) {
+  if (bytes > SIZE_MAX - 2 * kHugePage) throw std::bad_alloc();
+  const std::size_t size = roundedUp(bytes);
+  {
+    KeptMapping& k = kept();
+    const std::lock_guard lock(k.mutex);
+    if (k.pages && k.size == size) return std::exchange(k.pages, nullptr);
+  }
+  // Mapped a huge page longer than needed, then trimmed to a 2 MiB-aligned start: mmap itself aligns to 4 KiB only.
+  void* mapped = ::mmap(nullptr, size + kHugePage, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  if (mapped == MAP_FAILED) throw std::bad_alloc();
+  const auto start = reinterpret_cast<std::uintptr_t>(mapped);
+  const std::uintptr_t aligned = (start + kHugePage - 1) / kHugePage * kHugePage;
+  if (aligned > start) ::munmap(mapped, aligned - start);
+  const std::uintptr_t tail = aligned + size, end = start + size + kHugePage;
+  if (end > tail) ::munmap(reinterpret_cast<void*>(tail), end - tail);
+  // Advice only: where the kernel has no huge page to give (or THP is off) the pages are 4 KiB ones, as from malloc.
+  ::madvise(reinterpret_cast<void*>(aligned), size, MADV_HUGEPAGE);
+  return reinterpret_cast<void*>(aligned);
+}
+
+void freeOwnPages(void* p, std::size_t bytes) {
+  void* released = p;
+  std::size_t releasedSize = roundedUp(bytes);
+  {
+    KeptMapping& k = kept();
+    const std::lock_guard lock(k.mutex);
+    std::swap(released, k.pages);  // this one is kept; the one kept before, if any, goes back
+    std::swap(releasedSize, k.size);
+  }
+  if (released) ::munmap(released, releasedSize);
+}
+
+}  // namespace rayview
