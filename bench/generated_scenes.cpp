@@ -52,7 +52,7 @@ Scene heightfieldScene(int triangles, int width, int height) {
       scene.vertices.push_back({x, 0.4 * std::sin(1.3 * x) * std::cos(0.9 * z) + 0.15 * std::sin(4.1 * x + 2.3 * z), z});
     }
   auto vertex = [&](int i, int j) { return static_cast<std::uint32_t>(j * (n + 1) + i); };
-  std::vector<Triangle> lake;  // a mesh of its own: the file format gives materials per mesh
+  SceneArray<Triangle> lake;  // a mesh of its own: the file format gives materials per mesh
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) {
       const std::uint32_t material = (i < n / 3 && j < n / 3) ? 1u : 0u;
@@ -63,7 +63,7 @@ Scene heightfieldScene(int triangles, int width, int height) {
       b.vertex[0] = vertex(i, j);
       b.vertex[1] = vertex(i + 1, j + 1);
       b.vertex[2] = vertex(i + 1, j);
-      std::vector<Triangle>& into = material == 1u ? lake : scene.triangles;
+      SceneArray<Triangle>& into = material == 1u ? lake : scene.triangles;
       into.push_back(a);
       into.push_back(b);
     }

@@ -66,8 +66,8 @@ void resetPeak() {
 // What an array holds: its size, not its capacity. The loader reserves generously (from the text's length)
 // so that blocks parse straight into place; reserved pages never written are not resident, and counting the
 // capacity put the sphere's 1e7 arrays at 3.9 GB in a process whose whole peak was 2.4 GB.
-template <class T>
-double bytesOf(const std::vector<T>& v) {
+template <class T, class Allocator>
+double bytesOf(const std::vector<T, Allocator>& v) {
   return static_cast<double>(v.size() * sizeof(T));
 }
 double sceneArrayBytes(const SceneGeometry& s) {

@@ -26,8 +26,8 @@ class Hasher {
     if (bytes > 0) std::memcpy(&tail, p, bytes);
     mix(tail);
   }
-  template <class T>
-  void addArray(const std::vector<T>& values) {
+  template <class T, class Allocator>
+  void addArray(const std::vector<T, Allocator>& values) {
     add(values.data(), values.size() * sizeof(T));
   }
   void addText(const std::string& text) { add(text.data(), text.size()); }

@@ -52,8 +52,8 @@ Outcome load(std::string_view text, rayview::LoadOptions options, bool stream) {
   return out;
 }
 
-template <class T>
-bool sameBits(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T, class Allocator>
+bool sameBits(const std::vector<T, Allocator>& a, const std::vector<T, Allocator>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0);
 }
 

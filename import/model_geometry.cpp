@@ -148,7 +148,7 @@ void fail(const std::filesystem::path& path, const std::string& message) {
   throwSceneError(SourceLocation{path.string(), 0}, message);
 }
 
-Bounds boundsOf(const std::vector<glm::dvec3>& vertices) {
+Bounds boundsOf(const SceneArray<glm::dvec3>& vertices) {
   Bounds b;
   for (const glm::dvec3& v : vertices) {
     b.lo = b.empty ? v : glm::min(b.lo, v);

@@ -26,7 +26,7 @@ struct Bounds {
   glm::dvec3 lo{0.0}, hi{0.0};
   bool empty = true;
 };
-Bounds boundsOf(const std::vector<glm::dvec3>& vertices);
+Bounds boundsOf(const SceneArray<glm::dvec3>& vertices);
 
 // Assimp's meshes as instanced by its node tree, transformed to world space. Each Mesh's `material` is Assimp's
 // material index until mapMaterials renumbers it. Throws SceneError for non-finite vertices, bad indices, too much.

@@ -110,8 +110,8 @@ bool relayProgress(void* ptr, double fraction) {
 // the indices, 24-84 B per triangle less (docs/PERFORMANCE.md, "Memory per triangle"). A triangle's corners relative to
 // the origin are computed per test, in double, exactly as a stored relative copy held them.
 struct TriangleData {
-  const std::vector<glm::dvec3>* vertices = nullptr;  // world positions
-  const std::vector<Triangle>* triangles = nullptr;
+  const SceneArray<glm::dvec3>* vertices = nullptr;  // world positions
+  const SceneArray<Triangle>* triangles = nullptr;
   glm::dvec3 origin{0.0};
   const CutOuts* cutOuts = nullptr;  // null for a scene without cut-outs
 

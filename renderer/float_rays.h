@@ -25,7 +25,7 @@ struct TriangleCorners {
   glm::dvec3 a, b, c;
 };
 
-inline TriangleCorners cornersOf(const std::vector<glm::dvec3>& vertices, const Triangle& triangle,
+inline TriangleCorners cornersOf(const SceneArray<glm::dvec3>& vertices, const Triangle& triangle,
                                  const glm::dvec3& origin) {
   const auto& v = triangle.vertex;
   return {vertices[v[0]] - origin, vertices[v[1]] - origin, vertices[v[2]] - origin};

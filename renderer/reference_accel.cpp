@@ -47,7 +47,7 @@ class ReferenceAccel final : public Accel {
 std::unique_ptr<Accel> makeReferenceAccel(const SceneGeometry& scene, const glm::dvec3& origin, BuildProgress progress,
                                           void* progressUser, const CutOuts* cutOuts) {
   // Relative to the origin in double, once; the traversal never sees world coordinates.
-  std::vector<glm::dvec3> relative;
+  SceneArray<glm::dvec3> relative;
   relative.reserve(scene.vertices.size());
   for (const glm::dvec3& v : scene.vertices) relative.push_back(v - origin);
   std::unique_ptr<ReferenceBvh> bvh = ReferenceBvh::build(relative, scene.triangles, progress, progressUser);

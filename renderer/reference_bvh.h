@@ -36,8 +36,8 @@ class ReferenceBvh {
 
   // `vertices` are relative to the accelerator's origin. Triangles that are degenerate (exactly zero
   // area), non-finite or out of range are left out. Returns nullptr when `progress` cancels.
-  static std::unique_ptr<ReferenceBvh> build(const std::vector<glm::dvec3>& vertices,
-                                             const std::vector<Triangle>& triangles, BuildProgress progress,
+  static std::unique_ptr<ReferenceBvh> build(const SceneArray<glm::dvec3>& vertices,
+                                             const SceneArray<Triangle>& triangles, BuildProgress progress,
                                              void* progressUser);
   // A hit `cutOuts` hides is no hit (null, the default, for a scene without cut-outs); it must outlive the BVH.
   void setCutOuts(const CutOuts* cutOuts) { cutOuts_ = cutOuts; }

@@ -66,8 +66,8 @@ struct Split {
 
 class ReferenceBvhBuilder {
  public:
-  ReferenceBvhBuilder(ReferenceBvh& bvh, const std::vector<glm::dvec3>& vertices,
-                      const std::vector<Triangle>& triangles, BuildProgress progress, void* progressUser)
+  ReferenceBvhBuilder(ReferenceBvh& bvh, const SceneArray<glm::dvec3>& vertices,
+                      const SceneArray<Triangle>& triangles, BuildProgress progress, void* progressUser)
       : bvh_(bvh), vertices_(vertices), triangles_(triangles), progress_(progress), progressUser_(progressUser) {}
 
   bool run() {
@@ -225,8 +225,8 @@ class ReferenceBvhBuilder {
 
  private:
   ReferenceBvh& bvh_;
-  const std::vector<glm::dvec3>& vertices_;
-  const std::vector<Triangle>& triangles_;
+  const SceneArray<glm::dvec3>& vertices_;
+  const SceneArray<Triangle>& triangles_;
   BuildProgress progress_;
   void* progressUser_;
   std::vector<Primitive> primitives_;
@@ -234,8 +234,8 @@ class ReferenceBvhBuilder {
   std::size_t nextReport_ = 0;
 };
 
-std::unique_ptr<ReferenceBvh> ReferenceBvh::build(const std::vector<glm::dvec3>& vertices,
-                                                  const std::vector<Triangle>& triangles, BuildProgress progress,
+std::unique_ptr<ReferenceBvh> ReferenceBvh::build(const SceneArray<glm::dvec3>& vertices,
+                                                  const SceneArray<Triangle>& triangles, BuildProgress progress,
                                                   void* progressUser) {
   auto bvh = std::make_unique<ReferenceBvh>();
   ReferenceBvhBuilder builder(*bvh, vertices, triangles, progress, progressUser);

@@ -103,7 +103,7 @@ std::string parametersProblem(const SceneParameters& p) {
   return "";
 }
 
-void appendFace(std::vector<Triangle>& triangles, std::vector<FaceAttributes>& faceAttributes, const Triangle& triangle,
+void appendFace(SceneArray<Triangle>& triangles, std::vector<FaceAttributes>& faceAttributes, const Triangle& triangle,
                 const FaceAttributes& attributes) {
   if (attributes.any() || !faceAttributes.empty()) {
     // Room for as many as the triangles have (the loader reserves those from the text's size): no reallocation.

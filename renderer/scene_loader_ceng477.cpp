@@ -280,7 +280,7 @@ void Loader::readCeng477Triangle(const XMLElement* indices, PendingMesh& mesh) {
   if (streamed_ && streamed_->triangleCount != 0) throw StreamAbandoned{};
   std::int64_t v[3];
   readIntegers(indices, 3, v, 0, "3 vertex indices");
-  std::vector<Triangle>& triangles = result_.scene.triangles;
+  SceneArray<Triangle>& triangles = result_.scene.triangles;
   if (triangles.size() > static_cast<std::size_t>(UINT32_MAX / 2) || v[0] > INT32_MAX || v[1] > INT32_MAX || v[2] > INT32_MAX)
     fail(indices->GetLineNum(), mesh.label + ": too many triangles, or an index beyond any vertex");
   mesh.firstTriangle = static_cast<std::uint32_t>(triangles.size());
@@ -310,7 +310,7 @@ void Loader::readPlyFaces(PendingMesh& mesh, const std::string& plyFile) {
   }
   if (ply.skippedFaces > 0)
     warn(line, written + ": " + plural(ply.skippedFaces, "face", "faces") + " of fewer than three vertices skipped");
-  std::vector<Triangle>& triangles = result_.scene.triangles;
+  SceneArray<Triangle>& triangles = result_.scene.triangles;
   if (plyVertices_.size() + ply.vertices.size() > static_cast<std::size_t>(INT32_MAX) ||
       triangles.size() + ply.triangles.size() > static_cast<std::size_t>(UINT32_MAX / 2))
     fail(line, written + ": too many vertices or triangles");
@@ -346,7 +346,7 @@ void Loader::finishCeng477() {
       }
     }
   scene.vertices.insert(scene.vertices.end(), plyVertices_.begin(), plyVertices_.end());
-  std::vector<glm::dvec3>().swap(plyVertices_);
+  SceneArray<glm::dvec3>().swap(plyVertices_);
 }
 
 }  // namespace rayview::scene_loading

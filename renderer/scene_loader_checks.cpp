@@ -69,7 +69,7 @@ void Loader::resolveIndices(int rootLine) {
                   "face indices are 0-based (" + zeroBased + " indices include 0 and never reach the count); "
                   "read as 0-based, the format's indices start at 1");
 
-  std::vector<Triangle>& triangles = scene.triangles;
+  SceneArray<Triangle>& triangles = scene.triangles;
   std::vector<FaceAttributes>& attributes = scene.faceAttributes;  // empty, or one per triangle
   const bool hasAttributes = !attributes.empty();
   std::size_t kept = 0;
@@ -120,7 +120,7 @@ void Loader::resolveIndices(int rootLine) {
 // face indices keyed by their sorted vertices: linear time and 6-12 bytes per face, where sorting 16-byte keys took
 // 6 ms of killeroo_2020's load (92 000 faces) and 16 bytes per face at the load's peak.
 void Loader::warnAboutDuplicatedFaces() {
-  const std::vector<Triangle>& triangles = result_.scene.triangles;
+  const SceneArray<Triangle>& triangles = result_.scene.triangles;
   if (triangles.size() < 2) return;
   using Key = std::array<std::uint32_t, 3>;
   auto keyOf = [&](std::uint32_t face) {
@@ -132,7 +132,7 @@ void Loader::warnAboutDuplicatedFaces() {
   };
   int bits = 1;  // slots: a power of two, at most two thirds full
   while ((std::size_t{1} << bits) < triangles.size() + triangles.size() / 2) ++bits;
-  std::vector<std::uint32_t> slots(std::size_t{1} << bits, 0);  // face index + 1; 0: empty
+  SceneArray<std::uint32_t> slots(std::size_t{1} << bits, 0);  // face index + 1; 0: empty
   const std::size_t mask = slots.size() - 1;
   std::size_t repeats = 0;
   std::uint32_t firstRepeat = 0;  // faces come in order: the first repeat found is the earliest

@@ -166,7 +166,7 @@ struct StreamedBlock {
   Tag tag = Tag::Unknown;
   std::uint64_t begin = 0, end = 0;  // the text's bytes in the file
   int line = 0;                      // the line of its first byte
-  std::vector<glm::dvec3> vertices;  // <vertexdata>
+  SceneArray<glm::dvec3> vertices;  // <vertexdata>
   std::vector<glm::vec2> texCoords;  // <texturedata>
   std::vector<glm::vec3> normals;    // <normaldata>
   std::uint32_t firstTriangle = 0, triangleCount = 0;  // <faces>: its range of StreamedBlocks::triangles
@@ -180,7 +180,7 @@ using ReadAt = std::function<long(std::uint64_t offset, char* into, std::size_t 
 struct StreamedBlocks {
   std::string skeleton;
   std::vector<StreamedBlock> blocks;  // in file order; the marker names the index
-  std::vector<Triangle> triangles;    // every <faces> block's, in file order, raw (file numbering)
+  SceneArray<Triangle> triangles;    // every <faces> block's, in file order, raw (file numbering)
   std::vector<FaceAttributes> faceAttributes;  // theirs, as SceneGeometry::faceAttributes (raw)
   std::uint64_t triangleCount = 0;
 };
@@ -486,7 +486,7 @@ class Loader {
   bool ceng477_ = false;                 // the file is in the CENG477 dialect
   int firstDroppedObject_ = 0;           // the line of its first object rayview cannot render, and its name
   std::string firstDroppedName_;
-  std::vector<glm::dvec3> plyVertices_;  // the dialect's PLY meshes' vertices, in order, until finishCeng477
+  SceneArray<glm::dvec3> plyVertices_;  // the dialect's PLY meshes' vertices, in order, until finishCeng477
   StreamedBlocks* streamed_ = nullptr;  // when loading from a skeleton
   std::uint64_t claimedTriangles_ = 0;
   bool streamedTrianglesTaken_ = false;

@@ -299,7 +299,7 @@ void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read) {
   }
   const std::size_t estimate = detail::estimatedItems(sampleOf(read, faceBlocks), faceBytes, 3) + faceBlocks.size();
   Buffer buffer(longest);
-  std::vector<Triangle>& triangles = streamed.triangles;
+  SceneArray<Triangle>& triangles = streamed.triangles;
   triangles.reserve(estimate);
 
   for (StreamedBlock& block : streamed.blocks) {

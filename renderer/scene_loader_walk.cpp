@@ -346,7 +346,7 @@ std::string Loader::meshName(const PendingMesh& mesh) const {
 // Face tokens: v, v/t, v//n or v/t/n; stored raw (file numbering) until the index base is known.
 void Loader::readFaces(PendingMesh& mesh) {
   const XMLElement* e = mesh.faces;
-  std::vector<Triangle>& triangles = result_.scene.triangles;
+  SceneArray<Triangle>& triangles = result_.scene.triangles;
   if (StreamedBlock* block = streamedBlock(e, Tag::Faces)) {
     // The stream's faces, in file order: the first block brings them all, each mesh takes its range in turn.
     if (block->firstTriangle != claimedTriangles_) throw StreamAbandoned{};

@@ -153,7 +153,7 @@ class Agreement {
  private:
   // The watertight test in double on one triangle, with its exact or float-rounded vertices.
   std::optional<double> test(const Ray& ray, std::uint32_t triangle, bool rounded) const {
-    const std::vector<glm::dvec3>& v = rounded ? rounded_ : exact_;
+    const SceneArray<glm::dvec3>& v = rounded ? rounded_ : exact_;
     const Triangle& t = scene_.triangles[triangle];
     const WatertightRay w = prepareWatertightRay(glm::dvec3(ray.origin), glm::dvec3(ray.direction));
     TriangleHit hit;
@@ -189,7 +189,7 @@ class Agreement {
   const Scene& scene_;
   const Accel& embree_;
   const Accel& reference_;
-  std::vector<glm::dvec3> exact_, rounded_;
+  SceneArray<glm::dvec3> exact_, rounded_;
   glm::dvec3 lower_{INFINITY}, upper_{-INFINITY};
   double sceneScale_ = 0.0;
 };

@@ -1,29 +1,22 @@
 #pragma once
-// The bytes of an image: an allocator that leaves value-less construction unwritten and gives big buffers pages of
-// their own, advised for huge pages. A fresh process pays for every 4 KiB page it first touches (a fault each,
-// 0.3-13 us on the machines measured); a frame rendered whole is written by the threads that render it, not zeroed
-// by one thread first, and its faults are one per 2 MiB where the kernel has huge pages to give
-// (docs/PERFORMANCE.md, "Fresh pages").
+// The bytes of an image: pages of their own from 1 MiB on (rayview/own_pages.h, rounded up to whole huge pages), and
+// value-less construction leaves them unwritten, so that a frame rendered whole is first touched by the threads that
+// render it, not zeroed page by page by one thread first (docs/PERFORMANCE.md, "Fresh pages").
 
 #include <cstddef>
 #include <cstdint>
-#include <memory>
 #include <new>
 #include <utility>
 #include <vector>
 
+#include "rayview/own_pages.h"
+
 namespace rayview {
 
-// Buffers from this size on get a mapping of their own, rounded up to whole huge pages (at most 2 MiB more).
-inline constexpr std::size_t kOwnPagesBytes = std::size_t{1} << 20;
-
-// A mapping of at least `bytes` (>= kOwnPagesBytes), aligned to 2 MiB and advised for huge pages (the kernel may
-// still give 4 KiB pages). Throws std::bad_alloc.
-void* allocateOwnPages(std::size_t bytes);
-void freeOwnPages(void* p, std::size_t bytes);
+inline constexpr std::size_t kOwnPixelPagesBytes = std::size_t{1} << 20;
 
 template <class T>
-struct PixelAllocator : std::allocator<T> {
+struct PixelAllocator : OwnPagesAllocator<T, OwnPages::RoundedUp, kOwnPixelPagesBytes> {
   template <class U>
   struct rebind {
     using other = PixelAllocator<U>;
@@ -32,17 +25,6 @@ struct PixelAllocator : std::allocator<T> {
   template <class U>
   PixelAllocator(const PixelAllocator<U>&) noexcept {}
 
-  T* allocate(std::size_t n) {
-    if (n >= kOwnPagesBytes / sizeof(T)) {
-      if (n > SIZE_MAX / sizeof(T)) throw std::bad_array_new_length();
-      return static_cast<T*>(allocateOwnPages(n * sizeof(T)));
-    }
-    return std::allocator<T>::allocate(n);
-  }
-  void deallocate(T* p, std::size_t n) noexcept {
-    if (n >= kOwnPagesBytes / sizeof(T)) return freeOwnPages(p, n * sizeof(T));
-    std::allocator<T>::deallocate(p, n);
-  }
   template <class U>
   void construct(U* p) noexcept {
     ::new (static_cast<void*>(p)) U;  // default-initialised: a byte is left as it is

@@ -20,11 +20,11 @@
 namespace rayview::detail {
 
 struct PlyMesh {
-  std::vector<glm::dvec3> vertices;
+  SceneArray<glm::dvec3> vertices;
   std::vector<glm::vec3> normals;      // one per vertex as the file gives it (not normalized), or none
   std::vector<glm::vec2> texCoords;    // one per vertex, or none
   std::vector<glm::vec3> colors;       // one per vertex (red, green, blue in 0..1 for integer colours), or none
-  std::vector<Triangle> triangles;     // 0-based indices into `vertices`
+  SceneArray<Triangle> triangles;     // 0-based indices into `vertices`
   std::size_t skippedFaces = 0;        // faces of fewer than three vertices
 };
 

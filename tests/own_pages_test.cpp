@@ -1,6 +1,7 @@
-// The bytes of an image (rayview/pixel_bytes.h): a big buffer has pages of its own, aligned and advised for huge
-// pages, and none of them is touched before a pixel is written; the next buffer of the same size reuses them; filled
-// construction still gives black; contents survive growth from the heap to pages of their own and back.
+// Big arrays on pages of their own (rayview/own_pages.h). An image's bytes (rayview/pixel_bytes.h): a big buffer is
+// aligned and advised for huge pages, none of its pages is touched before a pixel is written, and the next buffer of
+// the same size reuses them; filled construction still gives black; contents survive growth from the heap to pages of
+// their own and back. A scene's arrays: a mapping no longer than asked for, its whole huge pages advised.
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -8,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "rayview/image.h"
+#include "rayview/scene.h"
 
 namespace rayview {
 namespace {
@@ -15,6 +17,7 @@ namespace {
 // What /proc/self/smaps says of the mapping holding `address`.
 struct Mapping {
   bool found = false;
+  long sizeKb = -1;
   long residentKb = -1;
   int hugePageEligible = -1;  // THPeligible
 };
@@ -35,6 +38,7 @@ Mapping mappingOf(const void* address) {
     }
     if (!inside) continue;
     long value = 0;
+    if (std::sscanf(line.c_str(), "Size: %ld kB", &value) == 1) mapping.sizeKb = value;
     if (std::sscanf(line.c_str(), "Rss: %ld kB", &value) == 1) mapping.residentKb = value;
     if (std::sscanf(line.c_str(), "THPeligible: %ld", &value) == 1) mapping.hugePageEligible = static_cast<int>(value);
   }
@@ -91,12 +95,29 @@ TEST(PixelBytes, AFrameOfTheSameSizeAgainReusesThePagesOfTheLast) {
 TEST(PixelBytes, ContentsSurviveGrowthAndShrinking) {
   PixelBytes bytes;
   for (int i = 0; i < 1000; ++i) bytes.push_back(static_cast<std::uint8_t>(i * 7));
-  bytes.resize(kOwnPagesBytes * 3);  // from the heap to pages of its own
+  bytes.resize(kOwnPixelPagesBytes * 3);  // from the heap to pages of its own
   bytes.back() = 9;
   bytes.resize(1000);
   bytes.shrink_to_fit();  // and back
   ASSERT_EQ(bytes.size(), 1000u);
   for (int i = 0; i < 1000; ++i) ASSERT_EQ(bytes[static_cast<std::size_t>(i)], static_cast<std::uint8_t>(i * 7)) << i;
+}
+
+TEST(OwnPages, ASceneArrayMapsNoMoreThanItHoldsAndAdvisesItsWholeHugePages) {
+  SceneArray<glm::dvec3> vertices;
+  vertices.reserve(200000);  // 4.6 MiB: two whole huge pages and a tail
+  vertices.emplace_back(1.0, 2.0, 3.0);
+  const Mapping mapping = mappingOf(vertices.data());
+  ASSERT_TRUE(mapping.found);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(vertices.data()) % kHugePageBytes, 0u) << "2 MiB-aligned";
+  EXPECT_LE(mapping.sizeKb * 1024, static_cast<long>(200000 * sizeof(glm::dvec3) + 4095)) << "rounded up past 4 KiB";
+  if (kernelGivesHugePages() && mapping.hugePageEligible >= 0) {
+    EXPECT_EQ(mapping.hugePageEligible, 1);
+  }
+  const SceneArray<Triangle> few(10);  // value-initialised, as any vector's
+  EXPECT_EQ(few[9].vertex[2], 0u);
+  const SceneArray<std::uint32_t> slots(std::size_t{1} << 20, 0);  // on pages of their own, still zeroed
+  EXPECT_TRUE(std::all_of(slots.begin(), slots.end(), [](std::uint32_t v) { return v == 0; }));
 }
 
 }  // namespace

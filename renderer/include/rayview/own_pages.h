@@ -1,0 +1,53 @@
+#pragma once
+// Big arrays on pages of their own, advised for huge pages. A fresh process pays for every 4 KiB page it first touches
+// (a fault each, 0.3-13 us on the machines measured); in a 2 MiB huge page it pays once for 512 of them
+// (docs/PERFORMANCE.md, "Fresh pages"). The advice is only advice: where the kernel has no huge page to give, or
+// THP is off, the pages are 4 KiB ones, as from malloc.
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <new>
+
+namespace rayview {
+
+inline constexpr std::size_t kHugePageBytes = std::size_t{1} << 21;
+
+// How a mapping of its own is advised. Exact: only the whole huge pages inside it, so the process never holds more
+// than it asked for (the scene's arrays, whose bytes per triangle are a promise); RoundedUp: up to the next whole huge
+// page, at most 2 MiB more, and the last one freed is kept for the next of its size (a frame's pixels, which a viewer
+// copies every pass).
+enum class OwnPages { Exact, RoundedUp };
+
+// A 2 MiB-aligned mapping of at least `bytes`. Throws std::bad_alloc.
+void* allocateOwnPages(std::size_t bytes, OwnPages kind);
+void freeOwnPages(void* p, std::size_t bytes, OwnPages kind) noexcept;
+
+// std::allocator, except that arrays of at least `MinBytes` are mappings of their own.
+template <class T, OwnPages Kind = OwnPages::Exact, std::size_t MinBytes = kHugePageBytes>
+struct OwnPagesAllocator : std::allocator<T> {
+  template <class U>
+  struct rebind {
+    using other = OwnPagesAllocator<U, Kind, MinBytes>;
+  };
+  OwnPagesAllocator() = default;
+  template <class U>
+  OwnPagesAllocator(const OwnPagesAllocator<U, Kind, MinBytes>&) noexcept {}
+
+  static bool ownPages(std::size_t n) { return n >= MinBytes / sizeof(T); }
+  T* allocate(std::size_t n) {
+    if (!ownPages(n)) return std::allocator<T>::allocate(n);
+    if (n > SIZE_MAX / sizeof(T)) throw std::bad_array_new_length();
+    return static_cast<T*>(allocateOwnPages(n * sizeof(T), Kind));
+  }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (ownPages(n)) return freeOwnPages(p, n * sizeof(T), Kind);
+    std::allocator<T>::deallocate(p, n);
+  }
+};
+template <class T, class U, OwnPages Kind, std::size_t MinBytes>
+bool operator==(const OwnPagesAllocator<T, Kind, MinBytes>&, const OwnPagesAllocator<U, Kind, MinBytes>&) noexcept {
+  return true;
+}
+
+}  // namespace rayview
