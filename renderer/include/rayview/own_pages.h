@@ -1,6 +1,6 @@
 #pragma once
 // Big arrays on pages of their own, advised for huge pages. A fresh process pays for every 4 KiB page it first touches
-// (a fault each, 0.3-13 us on the machines measured); in a 2 MiB huge page it pays once for 512 of them
+// (a fault each, 11-13 us on the VMs measured here); in a 2 MiB huge page it pays once for 512 of them
 // (docs/PERFORMANCE.md, "Fresh pages"). The advice is only advice: where the kernel has no huge page to give, or
 // THP is off, the pages are 4 KiB ones, as from malloc.
 
