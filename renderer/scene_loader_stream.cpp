@@ -13,6 +13,9 @@ namespace {
 
 // The pieces the file is read in: large enough that reading costs nothing, small enough not to matter.
 constexpr std::size_t kPiece = std::size_t{1} << 20;
+// What the skeleton is given at a time: a block's text after its opening tag is taken back out of it, so the
+// skeleton never first holds (and touches) a whole piece of the text it leaves out.
+constexpr std::size_t kSkeletonStep = std::size_t{1} << 16;
 
 [[noreturn]] void abandon() { throw StreamAbandoned{}; }
 
@@ -93,11 +96,11 @@ class SkeletonReader {
         mustClose_ = true;
         scan_ = s.size();
       }
-      const std::size_t appendedAt = s.size();
-      s.append(buffer.data() + pos, length - pos);
+      const std::size_t appendedAt = s.size(), step = std::min(length - pos, kSkeletonStep);
+      s.append(buffer.data() + pos, step);
       const std::size_t contentAt = scan();
       if (contentAt == std::string::npos) {
-        pos = length;
+        pos += step;
         continue;
       }
       // The block's text starts right after its opening tag, which ended in the bytes just appended.

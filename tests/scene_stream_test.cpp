@@ -69,15 +69,20 @@ void expectSame(const Outcome& streamed, const Outcome& dom, const std::string& 
   testing::expectSameGeometry(streamed.scene, dom.scene);
 }
 
-// Does the stream read this text by itself (no fallback to the ordinary reading)?
-bool streams(const std::string& xml, bool strict = false) {
-  using namespace scene_loading;
-  const ReadAt read = [&](std::uint64_t offset, char* into, std::size_t count) -> long {
+// Reads `xml` as the stream reads a file; `xml` must outlive it.
+scene_loading::ReadAt readerOf(const std::string& xml) {
+  return [&xml](std::uint64_t offset, char* into, std::size_t count) -> long {
     if (offset >= xml.size()) return 0;
     const std::size_t n = std::min<std::uint64_t>(count, xml.size() - offset);
     std::memcpy(into, xml.data() + offset, n);
     return static_cast<long>(n);
   };
+}
+
+// Does the stream read this text by itself (no fallback to the ordinary reading)?
+bool streams(const std::string& xml, bool strict = false) {
+  using namespace scene_loading;
+  const ReadAt read = readerOf(xml);
   const std::string name = "s.xml";
   LoadOptions options;
   options.strict = strict;
@@ -175,10 +180,10 @@ TEST(SceneStream, RepairedTagsAroundBlocksAreStreamed) {
   expectSameText(with("</vertexdata>", "</vertexdta>"), false, "strict: the repair is an error", true);
 }
 
-TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
-  // Past the 1 MiB pieces the file is read in, with numbers and lines that straddle them.
+// A scene whose blocks are longer than the 1 MiB pieces the file is read in, with numbers and lines that straddle
+// them: n vertices and about n faces.
+std::string longBlocksXml(int n) {
   std::string vertices, faces;
-  const int n = 120000;
   char number[96];
   for (int i = 0; i < n; ++i) {
     std::snprintf(number, sizeof number, "%.17g %.17g %.17g\n", i * 0.001 - 3.0, (i % 977) * 1e-3, -2.0 - i * 1e-6);
@@ -188,8 +193,13 @@ TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
       faces += number;
     }
   }
-  std::string xml = with("-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n", vertices);
-  xml = with("1 2 3\n1 3 4\n", faces, xml);
+  const std::string xml = with("-1 -1 -2\n1 -1 -2\n1 1 -2\n-1 1 -2\n", vertices);
+  return with("1 2 3\n1 3 4\n", faces, xml);
+}
+
+TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
+  const int n = 120000;
+  const std::string xml = longBlocksXml(n);
   ASSERT_GT(xml.size(), 3u << 20);
   expectSameText(xml, true, "long blocks");
 
@@ -202,6 +212,18 @@ TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
   EXPECT_EQ(streamed.scene.vertices.size(), static_cast<std::size_t>(n));
   EXPECT_GT(streamed.scene.triangles.size(), static_cast<std::size_t>(n / 2));  // less the degenerate ones
   expectSame(streamed, loadFile(file, false), "long file");
+}
+
+TEST(SceneStream, TheSkeletonNeverHoldsABlocksText) {
+  // The first pass takes each block's text back out of the skeleton; it must not first copy a whole piece of it in,
+  // touching a megabyte of fresh memory only to give it back.
+  const std::string xml = longBlocksXml(120000);
+  const scene_loading::StreamedBlocks streamed = scene_loading::streamSkeleton(readerOf(xml), xml.size());
+  ASSERT_EQ(streamed.blocks.size(), 2u);
+  const auto lines = static_cast<std::size_t>(std::count(xml.begin(), xml.end(), '\n'));
+  EXPECT_LE(streamed.skeleton.size(), lines + 4096) << "the markup, and a newline for each line of a block's text";
+  EXPECT_LT(streamed.skeleton.capacity(), 2 * streamed.skeleton.size() + (std::size_t{256} << 10))
+      << "grown no further than what it holds asks";
 }
 
 TEST(SceneStream, ArraysHoldAboutWhatTheBlocksGive) {
