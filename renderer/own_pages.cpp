@@ -14,7 +14,8 @@ std::size_t roundedTo(std::size_t bytes, std::size_t unit) { return (bytes + uni
 
 // The length of the mapping made for `bytes`.
 std::size_t mappedBytes(std::size_t bytes, OwnPages kind) {
-  return roundedTo(bytes, kind == OwnPages::RoundedUp ? kHugePageBytes : kSmallPage);
+  if (kind == OwnPages::Exact && bytes > kHugePageBytes) return roundedTo(bytes, kSmallPage);
+  return roundedTo(bytes, kHugePageBytes);
 }
 
 // The last RoundedUp mapping freed, kept for the next request of its size: a viewer's per-pass copies of a frame

@@ -19,6 +19,7 @@
 #include "float_rays.h"
 #include "float_steps.h"
 #include "isa_clones.h"
+#include "rayview/own_pages.h"
 #include "watertight_lanes.h"
 #include "watertight_triangle.h"
 
@@ -79,6 +80,23 @@ struct Node {
 constexpr std::uint32_t kInner = 0x80000000u;
 static_assert(sizeof(Node) == 32);
 
+// The nodes, 64-byte aligned so that a node's two children share a cache line, and not zero-filled; a big array is on
+// pages of its own (rayview/own_pages.h).
+struct FreeNodes {
+  std::size_t bytes = 0;
+  void operator()(Node* p) const {
+    if (bytes >= kOwnPagesMinBytes) return freeOwnPages(p, bytes, OwnPages::Exact);
+    std::free(p);
+  }
+};
+using Nodes = std::unique_ptr<Node[], FreeNodes>;
+Nodes allocateNodes(std::size_t bytes) {
+  void* p = bytes >= kOwnPagesMinBytes ? allocateOwnPages(bytes, OwnPages::Exact)
+                                       : std::aligned_alloc(64, (bytes + 63) / 64 * 64);
+  if (!p) throw std::bad_alloc();
+  return Nodes(static_cast<Node*>(p), FreeNodes{bytes});
+}
+
 struct LeafTriangle {
   glm::dvec3 a, b, c;  // relative to the accel's origin, as the Embree back-end computes them per test
   std::uint32_t id;
@@ -125,7 +143,7 @@ static_assert(sizeof(CentroidComputed) == 28 && sizeof(CentroidKept) == 40);
 template <class BuildTriangle>
 class Builder {
  public:
-  Builder(std::vector<BuildTriangle>& triangles, Node* nodes, unsigned threads, std::size_t leafMax)
+  Builder(BigArray<BuildTriangle>& triangles, Node* nodes, unsigned threads, std::size_t leafMax)
       : triangles_(triangles), nodes_(nodes), leafMax_(leafMax) {
     if (threads == 0) threads = std::thread::hardware_concurrency();
     for (; threads > 1; threads /= 2) ++parallelDepth_;
@@ -269,7 +287,7 @@ class Builder {
 
   static constexpr std::size_t kParallelMin = std::size_t{1} << 15;
 
-  std::vector<BuildTriangle>& triangles_;
+  BigArray<BuildTriangle>& triangles_;
   Node* nodes_;
   std::size_t leafMax_;
   int parallelDepth_ = 0;  // nodes above this depth build their two halves at once: log2 of the hardware threads
@@ -364,7 +382,7 @@ class PacketBvhAccel final : public Accel {
   // Builds the nodes and the leaves' triangle order, with `BuildTriangle` the build's layout of a triangle.
   template <class BuildTriangle>
   void build(unsigned buildThreads, std::size_t leafMax) {
-    std::vector<BuildTriangle> triangles;
+    BigArray<BuildTriangle> triangles;
     triangles.reserve(scene_.triangles.size());
     for (std::uint32_t i = 0; i < scene_.triangles.size(); ++i) {
       // The Embree back-end's box for the triangle (float_rays.h).
@@ -379,8 +397,7 @@ class PacketBvhAccel final : public Accel {
     }
     if (!triangles.empty()) {
       const std::size_t bytes = (2 * triangles.size() + 2) * sizeof(Node);
-      nodes_.reset(static_cast<Node*>(std::aligned_alloc(64, (bytes + 63) / 64 * 64)));
-      if (!nodes_) throw std::bad_alloc();
+      nodes_ = allocateNodes(bytes);
       Builder<BuildTriangle>(triangles, nodes_.get(), buildThreads, leafMax).build();
     }
     leafTriangles_.reserve(triangles.size());
@@ -549,14 +566,11 @@ class PacketBvhAccel final : public Accel {
                                           [this](std::uint32_t i) { return corners(i); });
   }
 
-  struct Free {
-    void operator()(Node* p) const { std::free(p); }
-  };
-  std::unique_ptr<Node[], Free> nodes_;  // nodes_[1] is the root (nodes_[0] unused); null without triangles
-  std::vector<std::uint32_t> leafTriangles_;  // in leaf order
-  std::vector<LeafTriangle> leafCorners_;     // the same, with their corners: empty beyond kKeptCornersTriangles
-  const SceneGeometry& scene_;               // outlives the accel (buildAccel's contract)
-  const CutOuts* cutOuts_;                   // null for a scene without cut-outs; outlives the accel too
+  Nodes nodes_;                            // nodes_[1] is the root (nodes_[0] unused); null without triangles
+  BigArray<std::uint32_t> leafTriangles_;  // in leaf order
+  BigArray<LeafTriangle> leafCorners_;     // the same, with their corners: empty beyond kKeptCornersTriangles
+  const SceneGeometry& scene_;             // outlives the accel (buildAccel's contract)
+  const CutOuts* cutOuts_;                 // null for a scene without cut-outs; outlives the accel too
 };
 
 }  // namespace

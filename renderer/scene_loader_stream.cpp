@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rayview/file_read.h"
+#include "rayview/own_pages.h"
 #include "scene_loader_internal.h"
 
 namespace rayview::scene_loading {
@@ -20,18 +21,24 @@ constexpr std::size_t kSkeletonStep = std::size_t{1} << 16;
 [[noreturn]] void abandon() { throw StreamAbandoned{}; }
 
 // A piece's buffer, not zero-filled (the reads fill it), no larger than what it will hold: a small scene
-// does not pay for a megabyte.
+// does not pay for a megabyte. A big one is on pages of its own, which the second pass's buffer takes over from
+// the first's (rayview/own_pages.h).
 class Buffer {
  public:
   explicit Buffer(std::uint64_t wanted)
-      : size_(static_cast<std::size_t>(std::clamp<std::uint64_t>(wanted, 16, kPiece))), data_(new char[size_]) {}
-  char* data() { return data_.get(); }
+      : size_(static_cast<std::size_t>(std::clamp<std::uint64_t>(wanted, 16, kPiece))),
+        data_(Pages().allocate(size_)) {}
+  ~Buffer() { Pages().deallocate(data_, size_); }
+  Buffer(const Buffer&) = delete;
+  Buffer& operator=(const Buffer&) = delete;
+  char* data() { return data_; }
   char operator[](std::size_t i) const { return data_[i]; }
   std::size_t size() const { return size_; }
 
  private:
+  using Pages = OwnPagesAllocator<char, OwnPages::RoundedUp>;
   std::size_t size_;
-  std::unique_ptr<char[]> data_;
+  char* data_;
 };
 
 bool isNameStart(char c) {

@@ -1,7 +1,8 @@
 // Big arrays on pages of their own (rayview/own_pages.h). An image's bytes (rayview/pixel_bytes.h): a big buffer is
 // aligned and advised for huge pages, none of its pages is touched before a pixel is written, and the next buffer of
 // the same size reuses them; filled construction still gives black; contents survive growth from the heap to pages of
-// their own and back. A scene's arrays: a mapping no longer than asked for, its whole huge pages advised.
+// their own and back. A scene's arrays: past a huge page, a mapping no longer than asked for, its whole huge pages
+// advised; under one, one whole huge page; under kOwnPagesMinBytes, the heap.
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -95,7 +96,7 @@ TEST(PixelBytes, AFrameOfTheSameSizeAgainReusesThePagesOfTheLast) {
 TEST(PixelBytes, ContentsSurviveGrowthAndShrinking) {
   PixelBytes bytes;
   for (int i = 0; i < 1000; ++i) bytes.push_back(static_cast<std::uint8_t>(i * 7));
-  bytes.resize(kOwnPixelPagesBytes * 3);  // from the heap to pages of its own
+  bytes.resize(kOwnPagesMinBytes * 3);  // from the heap to pages of its own
   bytes.back() = 9;
   bytes.resize(1000);
   bytes.shrink_to_fit();  // and back
@@ -118,6 +119,27 @@ TEST(OwnPages, ASceneArrayMapsNoMoreThanItHoldsAndAdvisesItsWholeHugePages) {
   EXPECT_EQ(few[9].vertex[2], 0u);
   const SceneArray<std::uint32_t> slots(std::size_t{1} << 20, 0);  // on pages of their own, still zeroed
   EXPECT_TRUE(std::all_of(slots.begin(), slots.end(), [](std::uint32_t v) { return v == 0; }));
+}
+
+TEST(OwnPages, AnArrayUnderAHugePageTakesAWholeOneAndASmallOneStaysOnTheHeap) {
+  // Its 4 KiB pages would cost more faults than one huge page's zeroing: a BVH's nodes, a mid-sized scene's arrays.
+  SceneArray<Triangle> triangles;
+  triangles.reserve(kOwnPagesMinBytes / sizeof(Triangle) + 1);
+  triangles.emplace_back();
+  const Mapping mapping = mappingOf(triangles.data());
+  ASSERT_TRUE(mapping.found);
+  EXPECT_EQ(reinterpret_cast<std::uintptr_t>(triangles.data()) % kHugePageBytes, 0u) << "2 MiB-aligned";
+  EXPECT_EQ(mapping.sizeKb * 1024, static_cast<long>(kHugePageBytes)) << "one whole huge page";
+  if (kernelGivesHugePages() && mapping.hugePageEligible >= 0) {
+    EXPECT_EQ(mapping.hugePageEligible, 1);
+  }
+  BigArray<std::uint32_t> small;
+  small.reserve(kOwnPagesMinBytes / sizeof(std::uint32_t) / 4);
+  small.push_back(7);
+  EXPECT_FALSE(OwnPagesAllocator<std::uint32_t>::ownPages(small.capacity()));
+  const Mapping heap = mappingOf(small.data());
+  ASSERT_TRUE(heap.found);
+  EXPECT_NE(heap.sizeKb * 1024, static_cast<long>(kHugePageBytes)) << "not a mapping of its own";
 }
 
 }  // namespace

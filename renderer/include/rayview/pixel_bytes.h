@@ -1,5 +1,5 @@
 #pragma once
-// The bytes of an image: pages of their own from 1 MiB on (rayview/own_pages.h, rounded up to whole huge pages), and
+// The bytes of an image: pages of their own from 512 KiB on (rayview/own_pages.h, rounded up to whole huge pages), and
 // value-less construction leaves them unwritten, so that a frame rendered whole is first touched by the threads that
 // render it, not zeroed page by page by one thread first (docs/PERFORMANCE.md, "Fresh pages").
 
@@ -13,10 +13,8 @@
 
 namespace rayview {
 
-inline constexpr std::size_t kOwnPixelPagesBytes = std::size_t{1} << 20;
-
 template <class T>
-struct PixelAllocator : OwnPagesAllocator<T, OwnPages::RoundedUp, kOwnPixelPagesBytes> {
+struct PixelAllocator : OwnPagesAllocator<T, OwnPages::RoundedUp> {
   template <class U>
   struct rebind {
     using other = PixelAllocator<U>;

@@ -162,10 +162,10 @@ struct NamedTexture {
   bool operator==(const NamedTexture&) const = default;
 };
 
-// A scene's big arrays: from 2 MiB on, on pages of their own advised for huge pages (rayview/own_pages.h), which a
-// million-triangle load first touches 512 times less often.
+// A scene's big arrays: from 512 KiB on, on pages of their own advised for huge pages (rayview/own_pages.h), which a
+// load first touches up to 512 times less often.
 template <class T>
-using SceneArray = std::vector<T, OwnPagesAllocator<T>>;
+using SceneArray = BigArray<T>;
 
 struct SceneGeometry {
   SceneArray<glm::dvec3> vertices;
