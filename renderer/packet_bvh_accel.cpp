@@ -5,6 +5,7 @@
 // BVH for small scenes").
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -69,7 +70,7 @@ struct Box {
   }
 };
 
-// A node: a leaf's triangles are leafTriangles_[first, first + count); an inner node's children are nodes first and
+// A node: a leaf's triangles are [first, first + count) in leaf order; an inner node's children are nodes first and
 // first + 1, split along `axis`.
 struct Node {
   float lower[3];
@@ -78,29 +79,32 @@ struct Node {
   std::uint32_t countOrAxis;  // a leaf's count, or kInner | axis
 };
 constexpr std::uint32_t kInner = 0x80000000u;
-static_assert(sizeof(Node) == 32);
+static_assert(sizeof(Node) == 32 && alignof(Node) <= 64);
 
-// The nodes, 64-byte aligned so that a node's two children share a cache line, and not zero-filled; a big array is on
-// pages of its own (rayview/own_pages.h).
-struct FreeNodes {
+// The BVH's arrays in one block of bytes, not zero-filled: the nodes, then the leaves' corners or their triangles'
+// indices. 64-byte aligned, so that a node's two children share a cache line. One block, so that a small scene's
+// arrays together reach kOwnPagesMinBytes and take pages of their own (rayview/own_pages.h): bunny's three, apart on
+// the heap, were 930 KB first touched 4 KiB at a time.
+struct FreeBlock {
   std::size_t bytes = 0;
-  void operator()(Node* p) const {
+  void operator()(std::byte* p) const {
     if (bytes >= kOwnPagesMinBytes) return freeOwnPages(p, bytes, OwnPages::Exact);
     std::free(p);
   }
 };
-using Nodes = std::unique_ptr<Node[], FreeNodes>;
-Nodes allocateNodes(std::size_t bytes) {
+using Block = std::unique_ptr<std::byte[], FreeBlock>;
+Block allocateBlock(std::size_t bytes) {
   void* p = bytes >= kOwnPagesMinBytes ? allocateOwnPages(bytes, OwnPages::Exact)
                                        : std::aligned_alloc(64, (bytes + 63) / 64 * 64);
   if (!p) throw std::bad_alloc();
-  return Nodes(static_cast<Node*>(p), FreeNodes{bytes});
+  return Block(static_cast<std::byte*>(p), FreeBlock{bytes});
 }
 
 struct LeafTriangle {
   glm::dvec3 a, b, c;  // relative to the accel's origin, as the Embree back-end computes them per test
   std::uint32_t id;
 };
+static_assert(alignof(LeafTriangle) <= 64);
 
 constexpr int kMaxDepth = 64;
 constexpr int kBins = 16;
@@ -395,16 +399,21 @@ class PacketBvhAccel final : public Accel {
       if (!finite) continue;
       triangles.emplace_back(box, i);
     }
-    if (!triangles.empty()) {
-      const std::size_t bytes = (2 * triangles.size() + 2) * sizeof(Node);
-      nodes_ = allocateNodes(bytes);
-      Builder<BuildTriangle>(triangles, nodes_.get(), buildThreads, leafMax).build();
-    }
-    leafTriangles_.reserve(triangles.size());
-    for (const BuildTriangle& t : triangles) leafTriangles_.push_back(t.id);
-    if (leafMax == 1 && triangles.size() <= kKeptCornersTriangles) {
-      leafCorners_.reserve(triangles.size());
-      for (const BuildTriangle& t : triangles) leafCorners_.push_back(corners(t.id));
+    const std::size_t n = triangles.size();
+    if (n == 0) return;
+    const bool keepCorners = leafMax == 1 && n <= kKeptCornersTriangles;
+    const std::size_t nodeBytes = (2 * n + 2) * sizeof(Node);  // a whole number of cache lines
+    block_ = allocateBlock(nodeBytes + n * (keepCorners ? sizeof(LeafTriangle) : sizeof(std::uint32_t)));
+    nodes_ = reinterpret_cast<Node*>(block_.get());
+    for (std::size_t i = 0; i < 2 * n + 2; ++i) ::new (static_cast<void*>(nodes_ + i)) Node;  // writes nothing
+    Builder<BuildTriangle>(triangles, nodes_, buildThreads, leafMax).build();
+    std::byte* const leaves = block_.get() + nodeBytes;
+    if (keepCorners) {
+      leafCorners_ = reinterpret_cast<LeafTriangle*>(leaves);
+      for (std::size_t i = 0; i < n; ++i) ::new (static_cast<void*>(leafCorners_ + i)) LeafTriangle(corners(triangles[i].id));
+    } else {
+      leafTriangles_ = reinterpret_cast<std::uint32_t*>(leaves);
+      for (std::size_t i = 0; i < n; ++i) leafTriangles_[i] = triangles[i].id;
     }
   }
 
@@ -491,7 +500,7 @@ class PacketBvhAccel final : public Accel {
       const unsigned lanes = entry.lanes & active;
       if (!lanes) continue;
       if (!(n.countOrAxis & kInner)) {
-        if (!leafCorners_.empty()) {
+        if (leafCorners_) {
           for (std::uint32_t i = n.first; i < n.first + n.countOrAxis; ++i) {
             const LeafTriangle& t = leafCorners_[i];
             testLanes(p, t, lanes & active, [&](int k, const TriangleHit& hit) { keptHit(k, t, hit, active, onHit); });
@@ -566,11 +575,12 @@ class PacketBvhAccel final : public Accel {
                                           [this](std::uint32_t i) { return corners(i); });
   }
 
-  Nodes nodes_;                            // nodes_[1] is the root (nodes_[0] unused); null without triangles
-  BigArray<std::uint32_t> leafTriangles_;  // in leaf order
-  BigArray<LeafTriangle> leafCorners_;     // the same, with their corners: empty beyond kKeptCornersTriangles
-  const SceneGeometry& scene_;             // outlives the accel (buildAccel's contract)
-  const CutOuts* cutOuts_;                 // null for a scene without cut-outs; outlives the accel too
+  Block block_;                             // holds the three below; null without triangles
+  Node* nodes_ = nullptr;                   // nodes_[1] is the root (nodes_[0] unused)
+  LeafTriangle* leafCorners_ = nullptr;     // the triangles in leaf order with their corners (kKeptCornersTriangles),
+  std::uint32_t* leafTriangles_ = nullptr;  // or their indices only
+  const SceneGeometry& scene_;              // outlives the accel (buildAccel's contract)
+  const CutOuts* cutOuts_;                  // null for a scene without cut-outs; outlives the accel too
 };
 
 }  // namespace
