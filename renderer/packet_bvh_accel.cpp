@@ -410,7 +410,8 @@ class PacketBvhAccel final : public Accel {
     std::byte* const leaves = block_.get() + nodeBytes;
     if (keepCorners) {
       leafCorners_ = reinterpret_cast<LeafTriangle*>(leaves);
-      for (std::size_t i = 0; i < n; ++i) ::new (static_cast<void*>(leafCorners_ + i)) LeafTriangle(corners(triangles[i].id));
+      for (std::size_t i = 0; i < n; ++i)
+        ::new (static_cast<void*>(leafCorners_ + i)) LeafTriangle(corners(triangles[i].id));
     } else {
       leafTriangles_ = reinterpret_cast<std::uint32_t*>(leaves);
       for (std::size_t i = 0; i < n; ++i) leafTriangles_[i] = triangles[i].id;
