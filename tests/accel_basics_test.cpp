@@ -108,8 +108,12 @@ TEST(FloatSteps, WidenedIntervalsHoldTheDoubleOnesWithRoom) {
   for (double t : ends) {
     const float far = widenedFar(t), near = widenedNear(t);
     EXPECT_GE(static_cast<double>(far), t * (1.0 + 0x1p-21)) << t;
-    if (t < INFINITY) EXPECT_GT(static_cast<double>(far), t) << t;
-    if (t > 0.0 && t < INFINITY) EXPECT_LE(static_cast<double>(near), t * (1.0 - 0x1p-21)) << t;
+    if (t < INFINITY) {
+      EXPECT_GT(static_cast<double>(far), t) << t;
+    }
+    if (t > 0.0 && t < INFINITY) {
+      EXPECT_LE(static_cast<double>(near), t * (1.0 - 0x1p-21)) << t;
+    }
     EXPECT_GE(near, 0.0f) << t;
   }
   EXPECT_EQ(widenedFar(INFINITY), INFINITY);
