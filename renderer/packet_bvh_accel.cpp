@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <memory>
 #include <new>
@@ -81,23 +80,22 @@ struct Node {
 constexpr std::uint32_t kInner = 0x80000000u;
 static_assert(sizeof(Node) == 32 && alignof(Node) <= 64);
 
-// The BVH's arrays in one block of bytes, not zero-filled: the nodes, then the leaves' corners or their triangles'
-// indices. 64-byte aligned, so that a node's two children share a cache line. One block, so that a small scene's
-// arrays together reach kOwnPagesMinBytes and take pages of their own (rayview/own_pages.h): bunny's three, apart on
-// the heap, were 930 KB first touched 4 KiB at a time.
-struct FreeBlock {
-  std::size_t bytes = 0;
-  void operator()(std::byte* p) const {
-    if (bytes >= kOwnPagesMinBytes) return freeOwnPages(p, bytes, OwnPages::Exact);
-    std::free(p);
-  }
+// The BVH's arrays in one block of cache lines, not zero-filled: the nodes, then the leaves' corners or their
+// triangles' indices. Cache lines, so that a node's two children share one; one block, so that a small scene's arrays
+// together reach kOwnPagesMinBytes and take pages of their own (rayview/own_pages.h): bunny's three, apart on the heap,
+// were 930 KB first touched 4 KiB at a time.
+struct alignas(64) CacheLine {
+  std::byte bytes[64];
 };
-using Block = std::unique_ptr<std::byte[], FreeBlock>;
+using BlockPages = OwnPagesAllocator<CacheLine>;
+struct FreeBlock {
+  std::size_t lines = 0;
+  void operator()(CacheLine* p) const { BlockPages().deallocate(p, lines); }
+};
+using Block = std::unique_ptr<CacheLine[], FreeBlock>;
 Block allocateBlock(std::size_t bytes) {
-  void* p = bytes >= kOwnPagesMinBytes ? allocateOwnPages(bytes, OwnPages::Exact)
-                                       : std::aligned_alloc(64, (bytes + 63) / 64 * 64);
-  if (!p) throw std::bad_alloc();
-  return Block(static_cast<std::byte*>(p), FreeBlock{bytes});
+  const std::size_t lines = (bytes + sizeof(CacheLine) - 1) / sizeof(CacheLine);
+  return Block(BlockPages().allocate(lines), FreeBlock{lines});
 }
 
 struct LeafTriangle {
@@ -404,10 +402,11 @@ class PacketBvhAccel final : public Accel {
     const bool keepCorners = leafMax == 1 && n <= kKeptCornersTriangles;
     const std::size_t nodeBytes = (2 * n + 2) * sizeof(Node);  // a whole number of cache lines
     block_ = allocateBlock(nodeBytes + n * (keepCorners ? sizeof(LeafTriangle) : sizeof(std::uint32_t)));
-    nodes_ = reinterpret_cast<Node*>(block_.get());
+    std::byte* const block = block_.get()->bytes;
+    nodes_ = reinterpret_cast<Node*>(block);
     for (std::size_t i = 0; i < 2 * n + 2; ++i) ::new (static_cast<void*>(nodes_ + i)) Node;  // writes nothing
     Builder<BuildTriangle>(triangles, nodes_, buildThreads, leafMax).build();
-    std::byte* const leaves = block_.get() + nodeBytes;
+    std::byte* const leaves = block + nodeBytes;
     if (keepCorners) {
       leafCorners_ = reinterpret_cast<LeafTriangle*>(leaves);
       for (std::size_t i = 0; i < n; ++i)

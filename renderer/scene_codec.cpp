@@ -200,10 +200,10 @@ void encodeGeometry(const SceneGeometry& g, Bytes& out) {
 SceneGeometry decodeGeometry(const std::uint8_t* data, std::size_t size, std::size_t& at) {
   Reader r(data, size, at);
   SceneGeometry g;
-  g.vertices = r.array<glm::dvec3, OwnPagesAllocator<glm::dvec3>>();
+  g.vertices = r.array<glm::dvec3, SceneArray<glm::dvec3>::allocator_type>();
   g.texCoords = r.array<glm::vec2>();
   g.normals = r.array<glm::vec3>();
-  g.triangles = r.array<Triangle, OwnPagesAllocator<Triangle>>();
+  g.triangles = r.array<Triangle, SceneArray<Triangle>::allocator_type>();
   g.faceAttributes = r.array<FaceAttributes>();
   g.meshes.resize(r.items(sizeof(std::uint64_t)));
   for (Mesh& mesh : g.meshes) {

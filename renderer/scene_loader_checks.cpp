@@ -132,7 +132,7 @@ void Loader::warnAboutDuplicatedFaces() {
   };
   int bits = 1;  // slots: a power of two, at most two thirds full
   while ((std::size_t{1} << bits) < triangles.size() + triangles.size() / 2) ++bits;
-  SceneArray<std::uint32_t> slots(std::size_t{1} << bits, 0);  // face index + 1; 0: empty
+  BigArray<std::uint32_t> slots(std::size_t{1} << bits, 0);  // face index + 1; 0: empty
   const std::size_t mask = slots.size() - 1;
   std::size_t repeats = 0;
   std::uint32_t firstRepeat = 0;  // faces come in order: the first repeat found is the earliest
