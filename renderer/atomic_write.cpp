@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <random>
+#include <string_view>
 
 #include "rayview/image.h"
 #include "rayview/input_files.h"
@@ -67,7 +68,7 @@ int createTemporary(const std::filesystem::path& target, std::filesystem::path& 
   return -1;
 }
 
-bool writeAll(int fd, const std::string& bytes) {
+bool writeAll(int fd, std::string_view bytes) {
   std::size_t done = 0;
   while (done < bytes.size()) {
     const ssize_t wrote = ::write(fd, bytes.data() + done, bytes.size() - done);
@@ -78,11 +79,40 @@ bool writeAll(int fd, const std::string& bytes) {
   return true;
 }
 
+bool writeAll(int fd, const FileBytes& bytes) {
+  for (std::string_view piece : bytes.pieces)
+    if (!writeAll(fd, piece)) return false;
+  return true;
+}
+
 }  // namespace
 
 const char* temporaryFileInProgress() { return g_temporaryActive.load() ? g_temporaryPath : nullptr; }
 
+FileBytes FileBytes::viewOf(const std::string& bytes) {
+  FileBytes view;
+  view.pieces.push_back(bytes);
+  return view;
+}
+
+std::size_t FileBytes::size() const {
+  std::size_t total = 0;
+  for (std::string_view piece : pieces) total += piece.size();
+  return total;
+}
+
+std::string FileBytes::joined() const {
+  std::string bytes;
+  bytes.reserve(size());
+  for (std::string_view piece : pieces) bytes += piece;
+  return bytes;
+}
+
 void writeFileAtomically(const std::filesystem::path& path, const std::string& bytes, std::string_view mayReplaceRole) {
+  writeFileAtomically(path, FileBytes::viewOf(bytes), mayReplaceRole);
+}
+
+void writeFileAtomically(const std::filesystem::path& path, const FileBytes& bytes, std::string_view mayReplaceRole) {
   if (const std::string problem = outputReplacesInput(path, mayReplaceRole); !problem.empty())
     throw ImageIoError(problem);
   const std::filesystem::path target = throughSymlinks(path);

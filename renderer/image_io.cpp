@@ -1,6 +1,7 @@
 // Image files whole: PNG (png_encode.cpp) or PPM written through a temporary file renamed into place, and read
 // back with the texture decoders.
 
+#include <memory>
 #include <string>
 #include <utility>
 
@@ -11,10 +12,19 @@
 namespace rayview {
 namespace {
 
-std::string encodePpm(const Image& image) {
-  std::string bytes = "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
-  bytes.append(reinterpret_cast<const char*>(image.rgb.data()), image.rgb.size());
-  return bytes;
+// The PPM header, then the pixels where they are: `image` must outlive the bytes unless `owned` holds it.
+FileBytes encodePpm(const Image& image, std::shared_ptr<const Image> owned = nullptr) {
+  struct Pieces {
+    std::string header;
+    std::shared_ptr<const Image> image;
+  };
+  auto made = std::make_shared<Pieces>();
+  made->header = "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
+  made->image = std::move(owned);
+  FileBytes file;
+  file.pieces = {made->header, std::string_view(reinterpret_cast<const char*>(image.rgb.data()), image.rgb.size())};
+  file.owner = std::move(made);
+  return file;
 }
 
 }  // namespace
@@ -26,19 +36,23 @@ bool isSupportedImageExtension(const std::filesystem::path& path) {
 
 void writeImageFile(const std::filesystem::path& path, const Image& image) {
   const std::string ext = lowerExtension(path);
-  if (ext == ".png") writeFileAtomically(path, encodePng(image));
+  if (ext == ".png") writeFileAtomically(path, encodePngFile(image));
   else if (ext == ".ppm") writeFileAtomically(path, encodePpm(image));
   else throw ImageIoError("cannot write " + path.string() + ": the extension must be .png or .ppm");
 }
 
 void writeImageFile(const std::filesystem::path& path, Image&& image) {
-  Image owned = std::move(image);
+  auto owned = std::make_shared<Image>(std::move(image));
   const std::string ext = lowerExtension(path);
   if (ext != ".png" && ext != ".ppm")
     throw ImageIoError("cannot write " + path.string() + ": the extension must be .png or .ppm");
-  const std::string bytes = ext == ".png" ? encodePng(owned) : encodePpm(owned);
+  if (ext == ".ppm") {
+    const Image& pixels = *owned;
+    return writeFileAtomically(path, encodePpm(pixels, std::move(owned)));  // the pixels are the file's bytes
+  }
+  const FileBytes bytes = encodePngFile(*owned);
   // The pixels are not needed while the file is written: their memory goes back before the write's.
-  owned = Image();
+  owned.reset();
   writeFileAtomically(path, bytes);
 }
 

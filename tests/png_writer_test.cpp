@@ -5,6 +5,8 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <random>
 #include <string>
 #include <utility>
@@ -93,6 +95,33 @@ TEST(PngWriter, AnImageGivenAwayWritesTheSameFile) {
     writeImageFile(dir / name, std::move(given));
     EXPECT_EQ(readImageFile(dir / name).rgb, image.rgb) << name;
   }
+}
+
+// A file is written as the pieces it was made in (the PNG's headers, each deflated part, its trailer; the PPM's header
+// and the pixels where they are), never gathered: the file must hold exactly those bytes, in order.
+TEST(PngWriter, TheFileHoldsExactlyTheEncodedBytes) {
+  const std::filesystem::path dir = testing::testOutputDirectory() / "png_writer";
+  std::filesystem::create_directories(dir);
+  const Image image = testImage(1024, 768, 21);  // several parts
+  const auto fileBytes = [](const std::filesystem::path& file) {
+    std::ifstream in(file, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+  };
+  const FileBytes pieces = encodePngFile(image);
+  EXPECT_GT(pieces.pieces.size(), 3u) << "headers, two parts or more, trailer";
+  EXPECT_EQ(pieces.joined(), encodePng(image));
+  writeImageFile(dir / "pieces.png", image);
+  EXPECT_EQ(fileBytes(dir / "pieces.png"), encodePng(image));
+  Image given = image;
+  writeImageFile(dir / "pieces_given.png", std::move(given));
+  EXPECT_EQ(fileBytes(dir / "pieces_given.png"), encodePng(image));
+
+  const std::string ppm = "P6\n1024 768\n255\n" + std::string(image.rgb.begin(), image.rgb.end());
+  writeImageFile(dir / "pieces.ppm", image);
+  EXPECT_EQ(fileBytes(dir / "pieces.ppm"), ppm);
+  given = image;
+  writeImageFile(dir / "pieces_given.ppm", std::move(given));
+  EXPECT_EQ(fileBytes(dir / "pieces_given.ppm"), ppm);
 }
 
 TEST(PngWriter, WrittenFileReadsBack) {
