@@ -13,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <new>
 #include <string>
 #include <thread>
 #include <vector>
@@ -137,7 +138,9 @@ struct PartScratch {
 // faults, 0.7 ms). The mapping is kept for the next write of as many parts (rayview/own_pages.h).
 class PartScratchBlock {
  public:
-  explicit PartScratchBlock(std::size_t count) : count_(count), parts_(Pages().allocate(count)) {}
+  explicit PartScratchBlock(std::size_t count) : count_(count), parts_(Pages().allocate(count)) {
+    for (std::size_t k = 0; k < count; ++k) ::new (static_cast<void*>(parts_ + k)) PartScratch;  // writes nothing
+  }
   ~PartScratchBlock() { Pages().deallocate(parts_, count_); }
   PartScratchBlock(const PartScratchBlock&) = delete;
   PartScratchBlock& operator=(const PartScratchBlock&) = delete;
