@@ -74,7 +74,8 @@ std::string encodeTexturePng(const Texture& texture);
 // Writes to a temporary file beside `path` and renames it into place, so an existing file is never left
 // half-written. Format from the extension: .png or .ppm (binary P6). Throws ImageIoError.
 void writeImageFile(const std::filesystem::path& path, const Image& image);
-// The same, taking the image: its pixels are freed once encoded, before the file is written.
+// The same, taking the image: a PNG's pixels are freed once encoded, before the file is written; a PPM's are its bytes,
+// written where they are.
 void writeImageFile(const std::filesystem::path& path, Image&& image);
 
 // Reads PNG, JPEG, binary PPM/PGM as 8-bit RGB (the values the file holds, scaled from its bit depth; refused
