@@ -87,16 +87,8 @@ static_assert(sizeof(Node) == 32 && alignof(Node) <= 64);
 struct alignas(64) CacheLine {
   std::byte bytes[64];
 };
-using BlockPages = OwnPagesAllocator<CacheLine>;
-struct FreeBlock {
-  std::size_t lines = 0;
-  void operator()(CacheLine* p) const { BlockPages().deallocate(p, lines); }
-};
-using Block = std::unique_ptr<CacheLine[], FreeBlock>;
-Block allocateBlock(std::size_t bytes) {
-  const std::size_t lines = (bytes + sizeof(CacheLine) - 1) / sizeof(CacheLine);
-  return Block(BlockPages().allocate(lines), FreeBlock{lines});
-}
+using Block = OwnPagesArray<CacheLine>;
+Block allocateBlock(std::size_t bytes) { return Block((bytes + sizeof(CacheLine) - 1) / sizeof(CacheLine)); }
 
 struct LeafTriangle {
   glm::dvec3 a, b, c;  // relative to the accel's origin, as the Embree back-end computes them per test
@@ -402,7 +394,7 @@ class PacketBvhAccel final : public Accel {
     const bool keepCorners = leafMax == 1 && n <= kKeptCornersTriangles;
     const std::size_t nodeBytes = (2 * n + 2) * sizeof(Node);  // a whole number of cache lines
     block_ = allocateBlock(nodeBytes + n * (keepCorners ? sizeof(LeafTriangle) : sizeof(std::uint32_t)));
-    std::byte* const block = block_.get()->bytes;
+    std::byte* const block = block_.data()->bytes;
     nodes_ = reinterpret_cast<Node*>(block);
     for (std::size_t i = 0; i < 2 * n + 2; ++i) ::new (static_cast<void*>(nodes_ + i)) Node;  // writes nothing
     Builder<BuildTriangle>(triangles, nodes_, buildThreads, leafMax).build();
@@ -575,7 +567,7 @@ class PacketBvhAccel final : public Accel {
                                           [this](std::uint32_t i) { return corners(i); });
   }
 
-  Block block_;                             // holds the three below; null without triangles
+  Block block_;                             // holds the three below; empty without triangles
   Node* nodes_ = nullptr;                   // nodes_[1] is the root (nodes_[0] unused)
   LeafTriangle* leafCorners_ = nullptr;     // the triangles in leaf order with their corners (kKeptCornersTriangles),
   std::uint32_t* leafTriangles_ = nullptr;  // or their indices only

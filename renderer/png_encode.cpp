@@ -125,31 +125,14 @@ class ZlibPart {
 };
 
 // What a part's deflate works in, besides its output: ISA-L's stream state (~80 KB) and level buffer (~280 KB, left
-// unfilled: ISA-L writes before it reads), and the chunk of rows it is fed. Every part's in one block
-// (PartScratchBlock).
+// unfilled: ISA-L writes before it reads), and the chunk of rows it is fed. Every part's in one block, on pages of its
+// own from kOwnPagesMinBytes (two parts and more): on the heap, each part's were fresh pages, whose first touches cost
+// more than the deflate of a small image (bunny's 512x512: ~65 faults, 0.7 ms). The mapping is kept for the next
+// write of as many parts (rayview/own_pages.h).
 struct PartScratch {
   isal_zstream stream;
   std::uint8_t level[ISAL_DEF_LVL1_DEFAULT];
   std::uint8_t chunk[kChunkBytes];
-};
-
-// Every part's scratch in one block, on pages of its own from kOwnPagesMinBytes (two parts and more): on the heap, each
-// part's were fresh pages, whose first touches cost more than the deflate of a small image (bunny's 512x512: ~65
-// faults, 0.7 ms). The mapping is kept for the next write of as many parts (rayview/own_pages.h).
-class PartScratchBlock {
- public:
-  explicit PartScratchBlock(std::size_t count) : count_(count), parts_(Pages().allocate(count)) {
-    for (std::size_t k = 0; k < count; ++k) ::new (static_cast<void*>(parts_ + k)) PartScratch;  // writes nothing
-  }
-  ~PartScratchBlock() { Pages().deallocate(parts_, count_); }
-  PartScratchBlock(const PartScratchBlock&) = delete;
-  PartScratchBlock& operator=(const PartScratchBlock&) = delete;
-  PartScratch& operator[](std::size_t k) { return parts_[k]; }
-
- private:
-  using Pages = OwnPagesAllocator<PartScratch, OwnPages::RoundedUp>;
-  std::size_t count_;
-  PartScratch* parts_;
 };
 
 // ISA-L's level 1: the fastest deflate measured here, files 1-6 % larger than zlib's level 1 (docs/PERFORMANCE.md,
@@ -233,7 +216,7 @@ std::vector<DeflatedPart> deflateParts(const Rows& rows, int level, int threadCo
   const std::size_t bytes = rows.bytes();
   const int count = partCount(bytes, threadCount);
   std::vector<DeflatedPart> parts(static_cast<std::size_t>(count));
-  PartScratchBlock scratch(static_cast<std::size_t>(count));
+  OwnPagesArray<PartScratch, OwnPages::RoundedUp> scratch(static_cast<std::size_t>(count));
   auto work = [&](int k) {
     const std::size_t begin = bytes * k / count, end = bytes * (k + 1) / count;
     const bool last = k + 1 == count;

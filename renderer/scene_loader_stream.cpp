@@ -28,22 +28,18 @@ constexpr std::size_t kSkeletonStep = std::size_t{1} << 16;
 // the first's (rayview/own_pages.h); a small one is a small piece.
 class Buffer {
  public:
-  explicit Buffer(std::uint64_t wanted) : size_(pieceFor(wanted)), data_(Pages().allocate(size_)) {}
-  ~Buffer() { Pages().deallocate(data_, size_); }
-  Buffer(const Buffer&) = delete;
-  Buffer& operator=(const Buffer&) = delete;
-  char* data() { return data_; }
-  char operator[](std::size_t i) const { return data_[i]; }
-  std::size_t size() const { return size_; }
+  explicit Buffer(std::uint64_t wanted) : bytes_(pieceFor(wanted)) {}
+  char* data() { return bytes_.data(); }
+  char operator[](std::size_t i) const { return bytes_[i]; }
+  std::size_t size() const { return bytes_.size(); }
 
  private:
-  using Pages = OwnPagesAllocator<char, OwnPages::RoundedUp>;
+  using Bytes = OwnPagesArray<char, OwnPages::RoundedUp>;
   static std::size_t pieceFor(std::uint64_t wanted) {
     const auto piece = static_cast<std::size_t>(std::clamp<std::uint64_t>(wanted, 16, kPiece));
-    return Pages::ownPages(piece) ? piece : std::min(piece, kSmallPiece);
+    return OwnPagesAllocator<char, OwnPages::RoundedUp>::ownPages(piece) ? piece : std::min(piece, kSmallPiece);
   }
-  std::size_t size_;
-  char* data_;
+  Bytes bytes_;
 };
 
 bool isNameStart(char c) {

@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <memory>
 #include <new>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace rayview {
@@ -55,6 +57,42 @@ template <class T, class U, OwnPages Kind, std::size_t MinBytes>
 bool operator==(const OwnPagesAllocator<T, Kind, MinBytes>&, const OwnPagesAllocator<U, Kind, MinBytes>&) noexcept {
   return true;
 }
+
+// `size` objects of T, left as the allocation gives them (T writes nothing when constructed), from
+// OwnPagesAllocator<T, Kind> and given back to it: a buffer that its user fills (the loader's pieces, the PNG
+// writer's scratch, the packet BVH's block). Empty when default-constructed; moved, never copied.
+template <class T, OwnPages Kind = OwnPages::Exact>
+class OwnPagesArray {
+  static_assert(std::is_trivially_default_constructible_v<T> && std::is_trivially_destructible_v<T>);
+  using Allocator = OwnPagesAllocator<T, Kind>;
+
+ public:
+  OwnPagesArray() = default;
+  explicit OwnPagesArray(std::size_t size) : size_(size), data_(Allocator().allocate(size)) {
+    for (std::size_t k = 0; k < size; ++k) ::new (static_cast<void*>(data_ + k)) T;  // writes nothing
+  }
+  OwnPagesArray(OwnPagesArray&& other) noexcept
+      : size_(std::exchange(other.size_, 0)), data_(std::exchange(other.data_, nullptr)) {}
+  OwnPagesArray& operator=(OwnPagesArray&& other) noexcept {
+    OwnPagesArray gone(std::move(*this));
+    size_ = std::exchange(other.size_, 0);
+    data_ = std::exchange(other.data_, nullptr);
+    return *this;
+  }
+  ~OwnPagesArray() {
+    if (data_) Allocator().deallocate(data_, size_);
+  }
+
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  std::size_t size() const { return size_; }
+  T& operator[](std::size_t k) { return data_[k]; }
+  const T& operator[](std::size_t k) const { return data_[k]; }
+
+ private:
+  std::size_t size_ = 0;
+  T* data_ = nullptr;
+};
 
 // A big array that is not an image: Exact pages of its own from kOwnPagesMinBytes on.
 template <class T>
