@@ -89,7 +89,11 @@ class SceneCoordinator final : public Dealing {
     if (rank == 0) renderOwn(run);
     else sendScene(rank, run);
   }
-  bool receive() override { return takeOwnResults() | receiveOne(); }
+  bool receive() override {  // both, every time: no short-circuit
+    const bool own = takeOwnResults();
+    const bool received = receiveOne();
+    return own || received;
+  }
   void nudge(int worker) override { post(worker, kTagNudge, {}); }
   void lost(int worker, int why, const std::vector<std::size_t>& runs) override;
   Halt halt() override { return stopped_ ? Halt::AfterHeld : Halt::No; }

@@ -73,7 +73,11 @@ class ViewerFarm::Pass final : public Dealing {
                                   pass_.stride, pass_.skipStride, pass_.sample, t.x0, t.y0, t.x1, t.y1};
     farm_.sendTo(worker, kTagViewTile, bytesOf(request));
   }
-  bool receive() override { return takeLocal() | receiveOne(); }
+  bool receive() override {  // both, every time: no short-circuit
+    const bool own = takeLocal();
+    const bool received = receiveOne();
+    return own || received;
+  }
   void lost(int worker, int why, const std::vector<std::size_t>& /*tiles*/) override {
     if (why == static_cast<int>(Loss::Silent))
       std::fprintf(stderr, "rayview: warning: rank %d fell silent; the other ranks go on without it\n", worker);

@@ -160,7 +160,9 @@ std::optional<Texture> loadTexture(const aiScene& scene, const fs::path& modelDi
 std::string keptTextureName(const fs::path& model, const fs::path& file, std::size_t number) {
   std::error_code ec;
   if (!file.empty() && outsideFolder(model.parent_path(), file)) return fs::absolute(file, ec).lexically_normal().string();
-  return model.stem().string() + "_texture" + (number > 1 ? "-" + std::to_string(number) : "") + ".png";
+  std::string name = model.stem().string() + "_texture";
+  if (number > 1) name += '-' + std::to_string(number);
+  return name + ".png";
 }
 
 // The metallic-roughness map a material names ("" when none): glTF's, which Assimp 5.2.5 files as UNKNOWN, or the

@@ -81,7 +81,7 @@ void readSolid(Tokens& tokens, const fs::path& path, SceneGeometry& g) {
   if (g.triangles.size() == first) return;
   if (name.empty()) name = path.stem().string();
   for (const Mesh& m : g.meshes)  // ids are unique in a scene
-    if (m.id == name) name += "_" + std::to_string(g.meshes.size() + 1);
+    if (m.id == name) name.append(1, '_').append(std::to_string(g.meshes.size() + 1));
   g.meshes.push_back(Mesh{name, 0, static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(g.triangles.size() - first)});
 }
 

@@ -425,7 +425,7 @@ class PacketBvhAccel final : public Accel {
         put(p.org[axis], f.origin[axis]);
         // A zero (or tiny) component would give 0 * inf in the slab test: a tiny one instead, as Embree does.
         const Float4 d = f.direction[axis];
-        put(p.inv[axis], splat4(1.0f) / ((d < tiny) & (d > -tiny) ? (d < zero ? -tiny : tiny) : d));
+        put(p.inv[axis], splat4(1.0f) / (((d < tiny) & (d > -tiny)) ? (d < zero ? -tiny : tiny) : d));
       }
       put(p.tNear, f.tNear);
       put(p.tFar, f.tFar);

@@ -4,6 +4,21 @@
 #include <type_traits>
 
 namespace rayview {
+
+// Resized, then copied: `insert` of a range into an empty vector trips GCC 12's -Wstringop-overflow.
+void appendBytes(const void* data, std::size_t bytes, Bytes& out) {
+  if (bytes == 0) return;
+  const std::size_t at = out.size();
+  out.resize(at + bytes);
+  std::memcpy(out.data() + at, data, bytes);
+}
+
+void readBytes(const std::uint8_t* data, std::size_t size, std::size_t& at, void* to, std::size_t bytes) {
+  if (bytes > size - at) throw CodecError("truncated");
+  if (bytes != 0) std::memcpy(to, data + at, bytes);
+  at += bytes;
+}
+
 namespace {
 
 class Writer {
@@ -26,12 +41,7 @@ class Writer {
   }
 
  private:
-  void raw(const void* data, std::size_t bytes) {
-    if (bytes == 0) return;
-    const std::size_t at = out_.size();
-    out_.resize(at + bytes);
-    std::memcpy(out_.data() + at, data, bytes);
-  }
+  void raw(const void* data, std::size_t bytes) { appendBytes(data, bytes, out_); }
   Bytes& out_;
 };
 
@@ -67,11 +77,7 @@ class Reader {
     if (n > (size_ - at_) / elementBytes) throw CodecError("truncated");
     return static_cast<std::size_t>(n);
   }
-  void raw(void* out, std::size_t bytes) {
-    if (bytes > size_ - at_) throw CodecError("truncated");
-    if (bytes != 0) std::memcpy(out, data_ + at_, bytes);
-    at_ += bytes;
-  }
+  void raw(void* out, std::size_t bytes) { readBytes(data_, size_, at_, out, bytes); }
   const std::uint8_t* data_;
   std::size_t size_;
   std::size_t at_;

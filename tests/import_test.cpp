@@ -345,6 +345,7 @@ TEST(ImportModel, GlbWithAnEmbeddedPngTextureShowsIt) {
   const Texture* texture = scene.textureOf(scene.materials[0]);
   ASSERT_TRUE(texture) << model.summary;
   EXPECT_EQ(texture->width, 4);
+  EXPECT_EQ(scene.materials[0].textureImage, "quad_texture.png");  // the name `import` saves it under
   EXPECT_GT(scene.materials[0].textureFactor, 0.0f);
   const Image image = render(scene);
   writeImageFile(modelDirectory() / "quad_glb.png", image);

@@ -179,20 +179,27 @@ TEST(OwnReaders, PlyColoursAreKeptAndStripsRead) {
   EXPECT_EQ(model.scene.vertexColors[1], Color(0.0f, 1.0f, 0.0f));
 }
 
-// A TGA texture named by map_Kd (with an option before the file name) is read and kept.
+// A TGA texture named by map_Kd (with an option before the file name) is read and kept, under the name of the copy
+// `import` saves beside the scene: the model's name, numbered from the second texture on.
 TEST(ObjReader, TgaTextureFromTheMtlIsKept) {
   std::string tga(18, '\0');
   tga[2] = 2, tga[12] = 2, tga[14] = 2, tga[16] = 24;
-  tga += std::string(12, '\x40');
-  writeFile("wood.tga", tga);
-  writeFile("textured.mtl", "newmtl wood\nKd 1 1 1\nmap_Kd -s 1 1 1 wood.tga\n");
-  const ModelScene model = read(writeFile("textured.obj", "mtllib textured.mtl\n" + kSquare +
-                                                              "vt 0 0\nvt 1 0\nvt 1 1\nusemtl wood\nf 1/1 2/2 3/3\n"));
-  EXPECT_NE(model.summary.find("texture wood.tga (2x2)"), std::string::npos) << model.summary;
-  EXPECT_EQ(model.scene.materials.at(0).id, "wood");
-  const Texture* texture = model.scene.textureOf(model.scene.materials.at(0));
+  writeFile("wood.tga", tga + std::string(12, '\x40'));
+  writeFile("stone.tga", tga + std::string(12, '\x80'));
+  writeFile("textured.mtl", "newmtl wood\nKd 1 1 1\nmap_Kd -s 1 1 1 wood.tga\nnewmtl stone\nmap_Kd stone.tga\n");
+  const ModelScene model =
+      read(writeFile("textured.obj", "mtllib textured.mtl\n" + kSquare +
+                                         "vt 0 0\nvt 1 0\nvt 1 1\nusemtl wood\nf 1/1 2/2 3/3\nusemtl stone\nf 1/1 3/3 4/2\n"));
+  EXPECT_NE(model.summary.find("textures wood.tga (2x2), stone.tga (2x2)"), std::string::npos) << model.summary;
+  ASSERT_EQ(model.scene.materials.size(), 2u);
+  EXPECT_EQ(model.scene.materials[0].id, "wood");
+  const Texture* texture = model.scene.textureOf(model.scene.materials[0]);
   ASSERT_TRUE(texture);
   EXPECT_EQ(texture->rgb[0], 0x40);
+  EXPECT_EQ(model.scene.materials[0].textureImage, "textured_texture.png");
+  EXPECT_EQ(model.scene.materials[1].textureImage, "textured_texture-2.png");
+  ASSERT_TRUE(model.scene.textureOf(model.scene.materials[1]));
+  EXPECT_EQ(model.scene.textureOf(model.scene.materials[1])->rgb[0], 0x80);
 }
 
 // An opacity map (map_d, a grey image) is the material's cut-out at cutoff 0.5.

@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "rayview/scene.h"
@@ -20,6 +21,25 @@ class CodecError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// Appends `bytes` bytes at `data` to `out`; reads `bytes` bytes at `data[at..]` into `to`, moving `at` past them
+// (CodecError "truncated" when fewer are left). Both codecs' values go through these.
+void appendBytes(const void* data, std::size_t bytes, Bytes& out);
+void readBytes(const std::uint8_t* data, std::size_t size, std::size_t& at, void* to, std::size_t bytes);
+
+// One trivially copyable value as its bytes, and back.
+template <class T>
+void encodeValue(const T& value, Bytes& out) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  appendBytes(&value, sizeof value, out);
+}
+template <class T>
+T decodeValue(const std::uint8_t* data, std::size_t size, std::size_t& at) {
+  static_assert(std::is_trivially_copyable_v<T>);
+  T value;
+  readBytes(data, size, at, &value, sizeof value);
+  return value;
+}
 
 // Appends the geometry (vertices, texture coordinates, normals, triangles, face attributes, meshes, the texture's
 // name and pixels) to `out`.
