@@ -39,20 +39,7 @@ std::uint32_t seedOfPixel(int i, int j) {
 
 }  // namespace
 
-glm::dvec3 faceNormalOf(const SceneGeometry& scene, const Triangle& triangle) {
-  const glm::dvec3& w0 = scene.vertices[triangle.vertex[0]];
-  const glm::dvec3 cross = glm::cross(scene.vertices[triangle.vertex[1]] - w0, scene.vertices[triangle.vertex[2]] - w0);
-  const double crossLength = glm::length(cross);
-  return crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
-}
-
-ShadingGeometry prepareShadingGeometry(const SceneGeometry& scene, const glm::dvec3& origin) {
-  ShadingGeometry shading{origin, {}};
-  if (scene.triangles.size() > kKeptFaceNormalsTriangles) return shading;
-  shading.faceNormals.reserve(scene.triangles.size());
-  for (const Triangle& t : scene.triangles) shading.faceNormals.push_back(faceNormalOf(scene, t));
-  return shading;
-}
+ShadingGeometry prepareShadingGeometry(const SceneGeometry&, const glm::dvec3& origin) { return {origin}; }
 
 // A hit's colour is local + mirror * (colour of the next hit), then blended with the texture:
 //   c = tf * texel + (1 - tf) * (local + mirror * next).
@@ -480,9 +467,8 @@ struct SurfacePoint {
 // A two-sided material's face seen from behind (twoSided, the ray along `direction` meeting its back) is shaded as
 // its front: both normals turned toward the viewer, so the lights, the mirror ray and the secondary rays' offset
 // all work on the side the ray arrived at. One-sided materials (every handout scene's) keep the normals as they are.
-inline SurfacePoint surfaceAt(const SceneGeometry& meshes, const ShadingGeometry& shading, const Hit& hit,
+inline SurfacePoint surfaceAt(const SceneGeometry& meshes, const glm::dvec3& origin, const Hit& hit,
                               const FaceAttributes& attributes, bool twoSided, const glm::dvec3& direction) {
-  const glm::dvec3& origin = shading.origin;
   const Triangle& triangle = meshes.triangles[hit.triangle];
   const auto b1 = static_cast<float>(hit.b1), b2 = static_cast<float>(hit.b2);
   const float b0 = 1.0f - b1 - b2;
@@ -492,7 +478,9 @@ inline SurfacePoint surfaceAt(const SceneGeometry& meshes, const ShadingGeometry
   const glm::dvec3 a = w0 - origin;
   SurfacePoint s;
   s.p = a + hit.b1 * ((w1 - origin) - a) + hit.b2 * ((w2 - origin) - a);
-  s.ng = shading.faceNormals.empty() ? faceNormalOf(meshes, triangle) : shading.faceNormals[hit.triangle];
+  const glm::dvec3 cross = glm::cross(w1 - w0, w2 - w0);
+  const double crossLength = glm::length(cross);
+  s.ng = crossLength > 0.0 ? cross / crossLength : glm::dvec3(0.0, 0.0, 1.0);
   s.n = toFloat(s.ng);
   if (attributes.hasNormals()) {
     const glm::vec3 interpolated = b0 * meshes.normals[attributes.normal[0]] +
@@ -514,7 +502,7 @@ void Tracer::shadeHit(const Ray& ray, const Hit& hit, int depth, std::uint32_t p
                       Shadows& shadows, PathVertex& v, Ray& mirrorRay, LitPoint* lit) const {
   const Material& material = materialOf(hit.triangle);
   const FaceAttributes& attributes = meshes_.attributesOf(hit.triangle);
-  const SurfacePoint surface = surfaceAt(meshes_, shading_, hit, attributes, material.twoSided, ray.direction);
+  const SurfacePoint surface = surfaceAt(meshes_, shading_.origin, hit, attributes, material.twoSided, ray.direction);
   const glm::dvec3& pExact = surface.p;
   const glm::dvec3& ngExact = surface.ng;
   const glm::vec3 n = surface.n;

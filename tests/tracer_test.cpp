@@ -335,27 +335,6 @@ TEST(Threads, ImageIsBitIdenticalForAnyThreadCount) {
   }
 }
 
-// A small scene keeps each triangle's face normal (ShadingGeometry::faceNormals); a big one computes it at every hit.
-// Both are the same arithmetic: the same image bit for bit, mirrors and shadows included.
-TEST(Shading, KeptFaceNormalsGiveTheImageOfNormalsComputedPerHit) {
-  const Scene scene = busyScene();
-  auto geometry = prepareGeometry(scene, AccelKind::Embree, BvhBuild::Interactive);
-  ASSERT_EQ(geometry->shading.faceNormals.size(), scene.triangles.size());
-  ShadingGeometry computed = geometry->shading;
-  computed.faceNormals.clear();
-  ThreadPool pool(2);
-  Image kept, perHit;
-  FrameStats stats;
-  ASSERT_TRUE(renderFrame(Tracer(scene, *geometry->accel, geometry->shading, {}), scene.camera.width,
-                          scene.camera.height, pool, kept, stats));
-  ASSERT_TRUE(renderFrame(Tracer(scene, *geometry->accel, computed, {}), scene.camera.width, scene.camera.height,
-                          pool, perHit, stats));
-  EXPECT_EQ(kept.rgb, perHit.rgb);
-  std::size_t lit = 0;
-  for (std::uint8_t v : kept.rgb) lit += v > 0;
-  EXPECT_GT(lit, kept.rgb.size() / 4) << "the scene must be on screen for the comparison to mean anything";
-}
-
 // A scene big enough that the packet BVH builds the halves under its top node on threads of their own
 // (renderer/packet_bvh_accel.cpp, Builder): it answers every ray bit for bit as the same BVH built on one thread
 // (so the image cannot depend on the machine's cores), and under ThreadSanitizer (this test runs in the tsan preset)

@@ -43,15 +43,7 @@ struct PixelXY {
 // held, without 24-96 B per triangle of copies (docs/PERFORMANCE.md, "Memory per triangle").
 struct ShadingGeometry {
   glm::dvec3 origin{0.0};
-  // Each triangle's unit face normal (faceNormalOf), kept for scenes of up to kKeptFaceNormalsTriangles, whose
-  // triangles are each hit many times; empty for bigger ones, where each hit computes its own.
-  std::vector<glm::dvec3> faceNormals;
 };
-
-inline constexpr std::size_t kKeptFaceNormalsTriangles = std::size_t{1} << 16;  // 1.5 MiB of normals
-
-// The unit normal of `triangle` from its world positions (exact whatever the origin), +z for a degenerate one.
-glm::dvec3 faceNormalOf(const SceneGeometry& scene, const Triangle& triangle);
 
 ShadingGeometry prepareShadingGeometry(const SceneGeometry& scene, const glm::dvec3& origin);
 
