@@ -65,7 +65,7 @@ int runBenchCommand(const CommandLine& command) {
   std::vector<std::shared_ptr<const Scene>> scenes;
   for (const std::string& path : command.job.scenes) {
     try {
-      LoadedScene loaded = openScene(path, command.job.open);
+      LoadedScene loaded = openScene(path, command.job.open, nullptr, command.job.threads);
       if (!command.job.quiet)
         for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
       if (const std::string problem = scaledImageProblem(loaded.scene.camera, command.resolutionScale); !problem.empty()) {

@@ -48,7 +48,7 @@ int runExportCommand(const CommandLine& command) {
   }
   TexturesBeside beside(output);
   try {
-    LoadedScene loaded = openScene(input, command.job.open);
+    LoadedScene loaded = openScene(input, command.job.open, nullptr, command.job.threads);
     for (const Diagnostic& warning : loaded.warnings) std::fprintf(stderr, "%s\n", warning.format().c_str());
     Scene& scene = loaded.scene;
     // The names the exported materials give their textures, relative to the model; none when there is no file to

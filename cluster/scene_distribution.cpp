@@ -87,7 +87,7 @@ int loadSceneOnRankZero(const RenderJob& job, LoadedScene& loaded, std::string& 
     return kExitBadInput;
   }
   try {
-    loaded = openScene(job.scene(), job.open);
+    loaded = openScene(job.scene(), job.open, nullptr, job.threads);
   } catch (const SceneError& error) {
     message = error.what();
     return kExitBadInput;

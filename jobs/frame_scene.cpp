@@ -30,7 +30,7 @@ MemoryPlan memoryPlanFor(const RenderJob& job, const Scene& scene) {
 
 int openFrameScene(const RenderJob& job, const FrameJob& frame, LoadedScene& loaded) {
   try {
-    loaded = openScene(frame.scenePath, jobForFrame(job, frame).open);
+    loaded = openScene(frame.scenePath, jobForFrame(job, frame).open, nullptr, job.threads);
   } catch (const SceneError& error) {
     std::fprintf(stderr, "%s\n", error.what());
     return kExitBadInput;

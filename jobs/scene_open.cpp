@@ -34,14 +34,16 @@ void checkModelCamera(const std::string& path, int camera) {
 
 }  // namespace
 
-LoadedScene openScene(const std::string& path, const SceneOpenOptions& options, std::string* summary) {
+LoadedScene openScene(const std::string& path, const SceneOpenOptions& options, std::string* summary, int threads) {
   if (inputKindOf(path) == InputKind::Model) {
     checkModelCamera(path, options.camera);
     ImportedModel model = importModel(path, options.model);
     if (summary) *summary = std::move(model.summary);
     return std::move(model.loaded);
   }
-  LoadedScene loaded = loadSceneOrDefault(path, loadOptionsOf(options));
+  LoadOptions load = loadOptionsOf(options);
+  load.threads = threads;
+  LoadedScene loaded = loadSceneOrDefault(path, load);
   if (summary)
     *summary = counted(loaded.scene.triangles.size(), "triangle") + ", " + std::to_string(loaded.scene.meshes.size()) +
                (loaded.scene.meshes.size() == 1 ? " mesh, " : " meshes, ") + counted(loaded.scene.materials.size(), "material");

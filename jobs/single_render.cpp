@@ -72,7 +72,7 @@ std::optional<int> RenderRun::checkOutput() {
 std::optional<int> RenderRun::load() {
   const auto start = Clock::now();
   try {
-    loaded_ = openScene(job_.scene(), job_.open);
+    loaded_ = openScene(job_.scene(), job_.open, nullptr, job_.threads);
   } catch (const SceneError& error) {
     return fail(kExitBadInput, error.what());
   }

@@ -138,7 +138,7 @@ std::optional<LoadedScene> loadStreamed(const scene_loading::ReadAt& read, std::
   if (!options.streamBlocks) return std::nullopt;
   try {
     scene_loading::StreamedBlocks streamed = scene_loading::streamSkeleton(read, size);
-    Loader::parseStreamedBlocks(streamed, read);
+    Loader::parseStreamedBlocks(streamed, read, options.threads);
     return Loader(displayName, baseDirectory, options).loadStreamed(streamed);
   } catch (const scene_loading::StreamAbandoned&) {
   } catch (const SceneError&) {

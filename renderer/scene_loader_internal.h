@@ -223,9 +223,10 @@ class Loader {
   // tinyxml2 reads the file itself: one copy of the text at the parse instead of two (the load's peak).
   LoadedScene load(std::string_view text, std::string* owned = nullptr, const fs::path* source = nullptr);
 
-  // The second pass: each block's numbers, read again from `read` and parsed as the walk's readers would.
-  // Throws StreamAbandoned where they would report or warn.
-  static void parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read);
+  // The second pass: each block's numbers, read again from `read` and parsed as the walk's readers would, on two
+  // threads when `threads` allows and the file's faces and other blocks are both big. Throws StreamAbandoned where
+  // they would report or warn.
+  static void parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, int threads);
 
   // Loads from the skeleton, taking each block's numbers from `streamed`. Throws StreamAbandoned, or a
   // SceneError, when the ordinary reading must decide (the caller then makes it with a new Loader).

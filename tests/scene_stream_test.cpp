@@ -80,7 +80,7 @@ scene_loading::ReadAt readerOf(const std::string& xml) {
 }
 
 // Does the stream read this text by itself (no fallback to the ordinary reading)?
-bool streams(const std::string& xml, bool strict = false) {
+bool streams(const std::string& xml, bool strict = false, int threads = 1) {
   using namespace scene_loading;
   const ReadAt read = readerOf(xml);
   const std::string name = "s.xml";
@@ -89,7 +89,7 @@ bool streams(const std::string& xml, bool strict = false) {
   options.loadTexture = false;
   try {
     StreamedBlocks streamed = streamSkeleton(read, xml.size());
-    Loader::parseStreamedBlocks(streamed, read);
+    Loader::parseStreamedBlocks(streamed, read, threads);
     Loader(name, ".", options).loadStreamed(streamed);
     return true;
   } catch (const StreamAbandoned&) {
@@ -212,6 +212,44 @@ TEST(SceneStream, BlocksLongerThanAPieceAreStreamedWhole) {
   EXPECT_EQ(streamed.scene.vertices.size(), static_cast<std::size_t>(n));
   EXPECT_GT(streamed.scene.triangles.size(), static_cast<std::size_t>(n / 2));  // less the degenerate ones
   expectSame(streamed, loadFile(file, false), "long file");
+}
+
+Outcome loadTextOn(const std::string& xml, int threads) {
+  LoadOptions options;
+  options.loadTexture = false;
+  options.threads = threads;
+  return outcomeOf([&] { return loadSceneText(xml, "s.xml", ".", options); });
+}
+
+// On two threads (the faces on one, the vertices on the other) a big file is the same scene, with the same
+// messages, as on one and as the DOM reads it; so is a file either side gives up on (the DOM then reports it). The
+// name puts it in the ThreadSanitizer run.
+TEST(SceneStreamThreads, ABigFileParsedOnTwoThreadsIsTheSameScene) {
+  const std::string xml = longBlocksXml(120000);
+  {
+    const scene_loading::StreamedBlocks streamed = scene_loading::streamSkeleton(readerOf(xml), xml.size());
+    std::uint64_t faceBytes = 0, otherBytes = 0;
+    for (const scene_loading::StreamedBlock& b : streamed.blocks)
+      (b.tag == scene_loading::Tag::Faces ? faceBytes : otherBytes) += b.end - b.begin;
+    ASSERT_GT(faceBytes, 1u << 20) << "both sides big enough to be parsed apart";
+    ASSERT_GT(otherBytes, 1u << 20);
+  }
+  EXPECT_TRUE(streams(xml, false, 2)) << "read by the stream itself, not left to the DOM";
+  const Outcome two = loadTextOn(xml, 2);
+  ASSERT_TRUE(two.ok) << two.error;
+  EXPECT_EQ(two.scene.vertices.size(), 120000u);
+  expectSame(two, loadTextOn(xml, 1), "two threads against one");
+  expectSame(two, loadText(xml, false), "two threads against the DOM");
+
+  const std::size_t vertexMiddle = xml.find("\n", xml.size() / 4) + 1;
+  const std::size_t faceMiddle = xml.find("\n", xml.rfind("</faces>") - 200) + 1;
+  for (const auto& [at, what] : {std::pair{vertexMiddle, "a bad vertex"}, std::pair{faceMiddle, "a bad face"}}) {
+    std::string bad = xml;
+    bad.insert(at, "x ");
+    const Outcome failed = loadTextOn(bad, 2);
+    EXPECT_FALSE(failed.ok) << what;
+    expectSame(failed, loadText(bad, false), what);
+  }
 }
 
 TEST(SceneStream, TheSkeletonNeverHoldsABlocksText) {

@@ -42,7 +42,8 @@ LoadOutcome SceneLoaderTask::run(std::uint64_t id, const LoadRequest& request, c
     if (!scene) {
       const auto readStart = std::chrono::steady_clock::now();
       // A model (OBJ, PLY, glTF...) is read by the import worker, a child process: its crash is an error here.
-      LoadedScene loaded = openScene(request.path, request.options);
+      // On every hardware thread, as the BVH's build: nothing renders the new scene until both are done.
+      LoadedScene loaded = openScene(request.path, request.options, nullptr, 0);
       outcome.readMs = msSince(readStart);
       outcome.warnings = std::move(loaded.warnings);
       if (const std::string problem = cameraProblem(loaded.scene.camera); !problem.empty()) {

@@ -32,7 +32,9 @@ InputKind inputKindOf(const std::string& path);
 // Throws SceneError (located, naming the file) when the input cannot be opened as asked. `summary`, when given, gets
 // what opening made of the input: a model's "1234 triangles, 2 materials, ...; made up: ...; dropped: ...", a scene's
 // counts.
-LoadedScene openScene(const std::string& path, const SceneOpenOptions& options, std::string* summary = nullptr);
+// `threads`: how many the load may use (LoadOptions::threads), the job's own count.
+LoadedScene openScene(const std::string& path, const SceneOpenOptions& options, std::string* summary = nullptr,
+                      int threads = 1);
 
 // The output names of a CENG477 file's cameras (<ImageName>, in order): one per camera, "" for a camera with none.
 // Empty for any other input. Throws SceneError as openScene does.

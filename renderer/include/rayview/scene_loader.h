@@ -22,6 +22,9 @@ struct LoadOptions {
   // Which camera of a CENG477 file's <Cameras> to read, 1-based; 0 reads the first. Asking for a camera the file
   // does not have (any but the first of a CSE 461 file) is a located error.
   int camera = 0;
+  // Threads the load may use (0: one per hardware thread): with two or more, a big file's faces are parsed on one
+  // and its vertices, normals and texture coordinates on another. The same scene either way.
+  int threads = 1;
 };
 
 struct LoadedScene {
