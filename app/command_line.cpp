@@ -150,7 +150,7 @@ std::vector<OptionSpec> makeOptionTable() {
          if (!parseResolution(v, c.job.open.model.width, c.job.open.model.height))
            throw UsageError("--resolution expects WIDTHxHEIGHT up to 32768x32768, not '" + v + "'");
        }},
-      {"--threads", "N", kAll, "render threads (default: one per hardware thread)",
+      {"--threads", "N", kAll, "threads that load and render (default: one per hardware thread)",
        [](CommandLine& c, const std::string& v) { c.job.threads = parseInt("--threads", v, 1, 1024); }},
   };
   for (const Knob& knob : knobTable()) table.push_back(knobOption(knob));
