@@ -336,22 +336,6 @@ void parseNumberBlock(const ReadAt& read, StreamedBlock& block, Buffer& buffer) 
   }
 }
 
-// Each block that `mine` accepts, in file order.
-template <class Mine, class Parse>
-void parseBlocks(std::vector<StreamedBlock>& blocks, Buffer& buffer, Mine&& mine, Parse&& parse) {
-  for (StreamedBlock& block : blocks)
-    if (mine(block)) parse(block, buffer);
-}
-
-// The longest text among the blocks `mine` accepts: what their buffer is sized for.
-template <class Mine>
-std::uint64_t longestOf(const std::vector<StreamedBlock>& blocks, Mine&& mine) {
-  std::uint64_t longest = 0;
-  for (const StreamedBlock& block : blocks)
-    if (mine(block)) longest = std::max(longest, block.end - block.begin);
-  return longest;
-}
-
 // From this much text on each side, the faces and the other blocks are parsed on two threads: ~3 ms of parsing a
 // side against ~0.1 ms to start a thread.
 constexpr std::uint64_t kApartBytes = std::uint64_t{1} << 20;
@@ -398,23 +382,27 @@ void parseFaceBlock(const ReadAt& read, StreamedBlock& block, Buffer& buffer, St
 }  // namespace
 
 void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, int threads) {
-  std::uint64_t faceBytes = 0, otherBytes = 0;
+  std::uint64_t faceBytes = 0, otherBytes = 0, longestFaces = 0, longestOthers = 0;
   std::vector<const StreamedBlock*> faceBlocks;
   for (const StreamedBlock& block : streamed.blocks) {
-    if (block.tag == Tag::Faces) faceBytes += block.end - block.begin, faceBlocks.push_back(&block);
-    else otherBytes += block.end - block.begin;
+    const std::uint64_t bytes = block.end - block.begin;
+    if (block.tag == Tag::Faces) {
+      faceBytes += bytes, longestFaces = std::max(longestFaces, bytes);
+      faceBlocks.push_back(&block);
+    } else {
+      otherBytes += bytes, longestOthers = std::max(longestOthers, bytes);
+    }
   }
   streamed.triangles.reserve(detail::estimatedItems(sampleOf(read, faceBlocks), faceBytes, 3) + faceBlocks.size());
-  const auto isFaces = [](const StreamedBlock& block) { return block.tag == Tag::Faces; };
-  const auto isOther = [](const StreamedBlock& block) { return block.tag != Tag::Faces; };
-  const auto faces = [&](Buffer& buffer) {
-    parseBlocks(streamed.blocks, buffer, isFaces, [&](StreamedBlock& block, Buffer& b) {
-      parseFaceBlock(read, block, b, streamed, &Loader::parseCorner);
-    });
-  };
-  const auto others = [&](Buffer& buffer) {
-    parseBlocks(streamed.blocks, buffer, isOther,
-                [&](StreamedBlock& block, Buffer& b) { parseNumberBlock(read, block, b); });
+  // The faces' blocks or the others', in file order: no block reads another's.
+  const auto parseKind = [&](bool faces, Buffer& buffer) {
+    for (StreamedBlock& block : streamed.blocks) {
+      if ((block.tag == Tag::Faces) != faces) continue;
+      if (faces)
+        parseFaceBlock(read, block, buffer, streamed, &Loader::parseCorner);
+      else
+        parseNumberBlock(read, block, buffer);
+    }
   };
   // Apart, each side writes only its own blocks' arrays (the faces also the triangles and their attributes) and
   // reads the file with pread: the two share nothing. A thread that cannot be started leaves it to this one.
@@ -425,8 +413,8 @@ void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, i
     try {
       apart = std::thread([&] {
         try {
-          Buffer buffer(longestOf(streamed.blocks, isOther));
-          others(buffer);
+          Buffer buffer(longestOthers);
+          parseKind(false, buffer);
         } catch (...) {
           othersFailed = std::current_exception();
         }
@@ -435,11 +423,9 @@ void Loader::parseStreamedBlocks(StreamedBlocks& streamed, const ReadAt& read, i
     }
   }
   try {
-    Buffer buffer(longestOf(streamed.blocks, [&](const StreamedBlock& block) {
-      return isFaces(block) || !apart.joinable();
-    }));
-    if (!apart.joinable()) others(buffer);  // the blocks of each kind in file order; no block reads another's
-    faces(buffer);
+    Buffer buffer(apart.joinable() ? longestFaces : std::max(longestFaces, longestOthers));
+    if (!apart.joinable()) parseKind(false, buffer);
+    parseKind(true, buffer);
   } catch (...) {
     if (apart.joinable()) apart.join();
     throw;
